@@ -1,0 +1,75 @@
+#pragma once
+// Light sources and photon emission. A light turns four uniforms into a starting point
+// and direction; which light and which band emits photon k is chosen by LightSet in
+// proportion to flux (SPEC §3).
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/light/ies.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+
+enum class LightType { point, spot, area, directional };
+
+struct EmittedRay {
+    Vec3 origin;
+    Vec3 direction;
+    int emitter_triangle = -1;  // area lights: the scene triangle the photon leaves from
+};
+
+// Triangles of an area emitter, with the cumulative area for uniform position sampling.
+struct EmitterSurface {
+    std::vector<Vec3> p0, e1, e2, normal;  // vertex, two edges, unit front normal
+    std::vector<double> cdf;               // normalised cumulative area
+    std::vector<int> scene_triangle;
+    double area_m2 = 0.0;
+};
+
+struct Light {
+    std::string label;        // e.g. "light 2 (spot)" for messages
+    LightType type = LightType::point;
+    double flux_lm = 0.0;
+    std::vector<double> band_share;  // normalised colour share per band
+    // point / spot
+    Vec3 position{0.0};
+    Vec3 aim{0.0, 0.0, -1.0};        // point+IES: photometric nadir; spot: axis
+    double cos_half_angle = 1.0;     // spot
+    std::shared_ptr<const IesDistribution> ies;  // point with photometry
+    Frame frame = Frame::around(Vec3(0, 0, -1));  // local +z = aim, +x = C0 (IES)
+    // area
+    EmitterSurface surface;
+    // directional: a disk of radius `beam_radius` centred on the scene's bounding sphere,
+    // set back along -direction, emits parallel rays.
+    double illuminance_lx = 0.0;
+    Vec3 beam_center{0.0};
+    double beam_radius = 0.0;
+
+    EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
+};
+
+// Choice of light and band for a photon, both by inversion of cumulative tables.
+class LightSet {
+public:
+    LightSet() = default;
+    explicit LightSet(std::vector<Light> lights);
+    const std::vector<Light>& lights() const { return lights_; }
+    double total_flux_lm() const { return total_flux_lm_; }
+    std::size_t pick_light(double u) const;
+    int pick_band(std::size_t light, double u) const;
+
+private:
+    std::vector<Light> lights_;
+    std::vector<double> light_cdf_;
+    std::vector<std::vector<double>> band_cdf_;
+    double total_flux_lm_ = 0.0;
+};
+
+// Uniform direction on the unit sphere and inside a cone around +z (local frame).
+Vec3 sample_uniform_sphere(double u1, double u2);
+Vec3 sample_uniform_cone(double cos_max, double u1, double u2);
+// Index of the first cdf entry > u (cdf normalised, last entry 1).
+std::size_t sample_cdf(const std::vector<double>& cdf, double u);
+
+}  // namespace luxtrace

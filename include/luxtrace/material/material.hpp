@@ -1,0 +1,57 @@
+#pragma once
+// Surface materials and their analog scattering: at each arrival a photon of band b is
+// reflected, transmitted or absorbed with the material's probabilities for that band,
+// so every tally stays an integer count (SPEC §3).
+#include "luxtrace/core/math.hpp"
+
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+
+enum class MaterialType { diffuse, mirror, glass, general, black };
+
+struct Material {
+    std::string name;
+    MaterialType type = MaterialType::diffuse;
+    // Per-band probabilities (one entry per scene band). For `diffuse` only
+    // diffuse_reflectance is used, for `mirror` only specular_reflectance; `general`
+    // uses all four (thin surface, specular transmission goes straight through).
+    std::vector<double> diffuse_reflectance;
+    std::vector<double> specular_reflectance;
+    std::vector<double> diffuse_transmittance;
+    std::vector<double> specular_transmittance;
+    // glass: refractive index (Fresnel at each interface) and the probability that a
+    // refracted photon survives the crossing (1 = clear glass).
+    double ior = 1.5;
+    std::vector<double> transmittance;
+};
+
+enum class ScatterEvent { absorbed, diffuse_reflection, specular_reflection,
+                          diffuse_transmission, specular_transmission, refraction };
+
+struct Scattered {
+    ScatterEvent event = ScatterEvent::absorbed;
+    Vec3 direction{0.0};
+    // +1: the photon leaves on the side it came from; -1: it crosses the surface.
+    int side = 1;
+};
+
+// Unpolarised Fresnel reflectance of a dielectric interface. cos_i > 0 is the cosine
+// of incidence, eta = n_incident / n_transmitted. Returns 1 for total internal reflection.
+double fresnel_dielectric(double cos_i, double eta);
+
+// Cosine-weighted direction on the hemisphere around n (Malley's method).
+Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2);
+
+// Scatter a photon of `band` travelling along unit `dir` that hit a surface with unit
+// geometric normal `ng` (either orientation: the front side is where ng points).
+// u_event picks the event, (u1, u2) its direction. Glass is entered from the front side.
+Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
+                  double u_event, double u1, double u2);
+
+// Probability that a photon of `band` hitting the material at normal incidence survives
+// (used for checks and warnings, not for tracing).
+double albedo(const Material& m, int band);
+
+}  // namespace luxtrace

@@ -1,0 +1,39 @@
+#pragma once
+// One `luxtrace run`: trace this rank's share of the photon budget with its threads,
+// reduce the tallies to rank 0, estimate the errors and write the result file.
+#include "luxtrace/io/result_file.hpp"
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+namespace luxtrace {
+
+struct Scene;
+class Communicator;
+
+struct RunOptions {
+    int threads = 0;     // per rank; 0 = every core this process may run on
+    bool quiet = false;
+};
+
+struct RunSummary {
+    std::string output;
+    std::uint64_t photons = 0;
+    double elapsed_s = 0.0;
+    GlobalEstimate global;
+    std::vector<DetectorEstimate> detectors;
+};
+
+// Cores this process may run on (its affinity mask), at least 1.
+int available_cores();
+
+// Runs the simulation described by `scene` (its `run` table already holds the
+// command-line overrides). Rank 0 prints progress and the summary to `out`.
+RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out);
+
+// The summary printed at the end of a run and by `luxtrace info`.
+void print_result_summary(const ResultReader& result, std::ostream& out);
+
+}  // namespace luxtrace

@@ -1,0 +1,45 @@
+#pragma once
+// The whole simulated world after loading: one triangle soup with a material per
+// triangle, the lights, the detectors and the run settings. Built once per rank and
+// then shared read-only by its threads.
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/detector/detector.hpp"
+#include "luxtrace/light/light.hpp"
+#include "luxtrace/material/material.hpp"
+#include "luxtrace/scene/run_config.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+
+struct Scene {
+    std::filesystem::path file;
+    std::string name;
+    std::vector<std::string> bands{"Y"};
+    std::vector<Material> materials;
+    // Geometry: vertices and triangles as Embree takes them.
+    std::vector<glm::vec3> vertices;
+    std::vector<glm::uvec3> triangles;
+    std::vector<std::uint32_t> triangle_material;
+    std::vector<double> triangle_area_m2;
+    std::vector<Vec3> triangle_normal;  // unit geometric normal (front side)
+    LightSet lights;
+    std::vector<Detector> detectors;
+    RunConfig run;
+    std::vector<std::string> warnings;
+    Vec3 bounds_min{0.0}, bounds_max{0.0};
+
+    int band_count() const { return static_cast<int>(bands.size()); }
+    std::size_t triangle_count() const { return triangles.size(); }
+    double total_area_m2() const;
+    // Length scale for ray offsets: a small fraction of the scene's extent.
+    double ray_epsilon_m() const;
+};
+
+// Parse and validate a scene file; throws InputError naming the file and line or key.
+Scene load_scene(const std::filesystem::path& file);
+
+}  // namespace luxtrace

@@ -1,0 +1,52 @@
+#pragma once
+// Error estimates of SPEC §3 from reduced tallies. Pure functions of the counts: rank 0
+// calls them after every reduction and the result writer stores what they return.
+#include "luxtrace/tally/tally.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace luxtrace {
+
+struct Detector;
+
+struct GlobalEstimate {
+    double odd_even_rms_lx = 0.0;      // D of eq. (5)
+    double sigma_lx = 0.0;             // D / 2: RMS error of the combined map
+    double mean_arithmetic_lx = 0.0;   // eq. (4), area-weighted
+    double mean_quadratic_lx = 0.0;
+    double sigma_rel_arithmetic = 0.0;
+    double sigma_rel_quadratic = 0.0;
+};
+
+// Band-summed illuminance of every triangle; E0 = flux per photon (lm).
+std::vector<double> triangle_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
+                                            std::span<const double> area_m2, double e0, std::size_t band);
+GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
+                               std::span<const double> area_m2, double e0);
+
+struct CellRange { int i0 = 0, i1 = 0, j0 = 0, j1 = 0; };  // [i0,i1) x [j0,j1); i1 = 0: all
+
+struct DetectorEstimate {
+    std::vector<double> value;       // [ny][nx][B], lx or cd/m^2
+    std::vector<double> sigma_rel;   // [ny][nx][B], eq. (8); NaN where the cell got nothing
+    double mean_arithmetic = 0.0;    // over the range, band-summed values
+    double mean_quadratic = 0.0;
+    double sigma_abs = 0.0;          // sqrt(mean sigma_c^2), eq. (9) numerator
+    double sigma_rel_arithmetic = 0.0;
+    double sigma_rel_quadratic = 0.0;
+    // The detector's mean value over the whole grid and its relative standard error,
+    // eq. (8) applied to the grid as one cell.
+    double mean_value = 0.0;
+    double mean_sigma_rel = 0.0;
+    std::uint64_t photons_received = 0;   // whole detector
+    std::uint64_t registrations = 0;      // sum of n_c over the range
+};
+
+// photons = N, the photons emitted so far.
+DetectorEstimate estimate_detector(const Detector& det, std::size_t det_index, const TallyLayout& layout,
+                                   std::span<const std::uint64_t> data, double e0,
+                                   std::uint64_t photons, CellRange range = {});
+
+}  // namespace luxtrace

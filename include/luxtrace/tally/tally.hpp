@@ -1,0 +1,114 @@
+#pragma once
+// Integer tallies of one rank, shared by all its threads.
+//
+// Everything lives in one flat uint64 array so that the MPI layer reduces it in one
+// call and a checkpoint stores it as is. Counts are integers: adding them in any order
+// gives the same bits, which is what makes any rank/thread split bit-identical.
+// Threads do not write the array directly; each fills a small TallyBuffer that merges
+// repeated indices and flushes with atomic adds, so memory does not grow with threads.
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace luxtrace {
+
+struct Scene;
+
+// Where each quantity sits in the flat array.
+class TallyLayout {
+public:
+    // Photon fates, counted once per photon: left the scene, absorbed, stopped at the
+    // bounce limit.
+    enum Counter : std::size_t { kEscaped = 0, kAbsorbed = 1, kTruncated = 2, kCounters = 8 };
+    // Per triangle and band.
+    enum SurfaceSlot : std::size_t { kCountOdd = 0, kCountEven = 1, kDirectOdd = 2, kDirectEven = 3, kSurfaceSlots = 4 };
+
+    TallyLayout() = default;
+    TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells);
+    explicit TallyLayout(const Scene& scene);
+
+    std::size_t size() const { return size_; }
+    std::size_t triangles() const { return triangles_; }
+    std::size_t bands() const { return bands_; }
+    std::size_t detector_count() const { return det_offset_.size(); }
+
+    std::size_t counter(Counter c) const { return c; }
+    std::size_t surface(std::size_t tri, std::size_t band, SurfaceSlot s) const {
+        return kCounters + (tri * bands_ + band) * kSurfaceSlots + s;
+    }
+    // n_c of cell `cell` in `band`; q_c is the next slot.
+    std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band) const {
+        return det_offset_[det] + (cell * bands_ + band) * 2;
+    }
+    std::size_t detector_q(std::size_t det, std::size_t cell, std::size_t band) const {
+        return detector_n(det, cell, band) + 1;
+    }
+    // Photons that registered at least once in the detector.
+    std::size_t detector_received(std::size_t det) const {
+        return det_offset_[det] + det_cells_[det] * bands_ * 2;
+    }
+    // The whole grid as one cell: sum over photons of E (registrations anywhere in the
+    // detector) and of E^2, for the error of the detector's mean value.
+    std::size_t detector_total_n(std::size_t det) const { return detector_received(det) + 1; }
+    std::size_t detector_total_q(std::size_t det) const { return detector_received(det) + 2; }
+
+private:
+    std::size_t triangles_ = 0, bands_ = 0, size_ = kCounters;
+    std::vector<std::size_t> det_offset_;
+    std::vector<std::size_t> det_cells_;
+};
+
+// The rank's shared tallies.
+class TallyStore {
+public:
+    TallyStore() = default;
+    explicit TallyStore(TallyLayout layout) : layout_(std::move(layout)), data_(layout_.size(), 0) {}
+    const TallyLayout& layout() const { return layout_; }
+    void add(std::size_t index, std::uint64_t value) {
+        std::atomic_ref<std::uint64_t>(data_[index]).fetch_add(value, std::memory_order_relaxed);
+    }
+    std::uint64_t operator[](std::size_t i) const { return data_[i]; }
+    std::vector<std::uint64_t>& data() { return data_; }
+    const std::vector<std::uint64_t>& data() const { return data_; }
+
+private:
+    TallyLayout layout_;
+    std::vector<std::uint64_t> data_;
+};
+
+// A thread's fixed-size write-combining buffer (open addressing on the tally index).
+class TallyBuffer {
+public:
+    explicit TallyBuffer(TallyStore& store);
+    ~TallyBuffer() { flush(); }
+    TallyBuffer(const TallyBuffer&) = delete;
+    TallyBuffer& operator=(const TallyBuffer&) = delete;
+
+    void add(std::size_t index, std::uint64_t value) {
+        std::size_t h = (index * 0x9E3779B97F4A7C15ull) >> (64 - kLogCapacity);
+        while (true) {
+            Slot& s = slots_[h];
+            if (s.index == index) { s.value += value; return; }
+            if (s.index == kEmpty) {
+                s = {index, value};
+                if (++used_ >= kMaxLoad) flush();
+                return;
+            }
+            h = (h + 1) & (kCapacity - 1);
+        }
+    }
+    void flush();
+
+private:
+    static constexpr int kLogCapacity = 12;
+    static constexpr std::size_t kCapacity = std::size_t{1} << kLogCapacity;
+    static constexpr std::size_t kMaxLoad = kCapacity / 2;
+    static constexpr std::size_t kEmpty = ~std::size_t{0};
+    struct Slot { std::size_t index; std::uint64_t value; };
+    TallyStore& store_;
+    std::vector<Slot> slots_;
+    std::size_t used_ = 0;
+};
+
+}  // namespace luxtrace

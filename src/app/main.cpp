@@ -1,0 +1,156 @@
+// luxtrace command line (SPEC §1). Thin: parse, call the library, map errors to exit codes.
+#include "luxtrace/core/count.hpp"
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/simulation.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/probe.hpp"
+#include "scene_summary.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+namespace fs = std::filesystem;
+using namespace luxtrace;
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+
+struct RunArgs {
+    std::string scene;
+    std::string photons, seed;
+    std::optional<double> time_limit, target, report_every;
+    std::optional<int> threads;
+    std::string output, checkpoint, restart, sampler;
+    bool quiet = false;
+};
+
+std::uint64_t parse_count_option(const std::string& opt, const std::string& text) {
+    if (const auto v = parse_count(text)) return *v;
+    throw InputError(opt + ": '" + text + "' is not a count (use forms like 1000000, 1e6 or 100M)");
+}
+
+// Command-line values win over the scene's [run] table.
+void apply_overrides(Scene& scene, const RunArgs& a) {
+    RunConfig& run = scene.run;
+    if (!a.photons.empty()) run.photons = parse_count_option("--photons", a.photons);
+    if (run.photons == 0) throw InputError("--photons: must be positive");
+    if (!a.seed.empty()) run.seed = parse_count_option("--seed", a.seed);
+    if (a.time_limit) {
+        if (!(*a.time_limit >= 0.0)) throw InputError("--time-limit: must not be negative");
+        run.time_limit_s = *a.time_limit;
+    }
+    if (a.report_every) run.report_every_s = *a.report_every;
+    if (a.target) {
+        if (!(*a.target > 0.0)) throw InputError("--target: must be positive");
+        if (run.targets.empty()) run.targets.push_back(Target{});
+        run.targets.front().relative_error = *a.target;
+        run.targets.front().absolute_error = 0.0;
+        run.targets.front().photons_received = 0.0;
+    }
+    if (!a.output.empty()) run.output = a.output;
+    if (!a.sampler.empty()) {
+        if (a.sampler != "random") throw InputError("--sampler: '" + a.sampler + "' is not available yet (use random)");
+        run.sampler = a.sampler;
+    }
+    if (!a.checkpoint.empty() || !a.restart.empty())
+        throw InputError("--checkpoint/--restart: checkpoints are not available in this version");
+    const fs::path out(run.output);
+    const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    if (!fs::is_directory(dir)) throw InputError(run.output + ": output directory '" + dir.string() + "' does not exist");
+    if (fs::is_directory(out)) throw InputError(run.output + ": output path is a directory");
+}
+
+int cmd_run(const Communicator& comm, const RunArgs& a) {
+    Scene scene = load_scene(a.scene);
+    apply_overrides(scene, a);
+    if (a.threads && *a.threads < 1) throw InputError("--threads: must be at least 1");
+    RunOptions opt;
+    opt.threads = a.threads.value_or(0);
+    opt.quiet = a.quiet;
+    if (comm.is_root() && !a.quiet)
+        std::cout << "luxtrace: " << scene.file.string() << ": " << scene.triangle_count() << " triangles, "
+                  << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on "
+                  << comm.size() << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores())
+                  << " thread(s)\n" << std::flush;
+    const RunSummary s = run_simulation(scene, comm, opt, std::cout);
+    if (comm.is_root()) {
+        if (!a.quiet) {
+            ResultReader r(s.output);
+            print_result_summary(r, std::cout);
+        }
+        std::cout << "result: " << fs::absolute(s.output).string() << '\n';
+    }
+    return 0;
+}
+
+int cmd_check(const std::string& path) {
+    const Scene scene = load_scene(path);
+    const EmbreeScene embree(scene);
+    std::vector<std::string> warnings = scene.warnings;
+    for (std::string& w : probe_scene(scene, embree)) warnings.push_back(std::move(w));
+    print_scene_summary(scene, warnings, std::cout);
+    return 0;
+}
+
+int cmd_info(const std::string& path) {
+    const ResultReader r(path);
+    print_result_summary(r, std::cout);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Communicator comm(&argc, &argv);
+    CLI::App app{"luxtrace: forward Monte Carlo photon simulation for lighting"};
+    app.require_subcommand(1);
+    RunArgs ra;
+    auto* run = app.add_subcommand("run", "simulate a scene and write the result file");
+    run->add_option("scene", ra.scene, "scene file (TOML)")->required();
+    run->add_option("--photons", ra.photons, "photon budget, e.g. 1e8 or 100M");
+    run->add_option("--time-limit", ra.time_limit, "wall-time limit in seconds");
+    run->add_option("--target", ra.target, "relative error goal of the first target");
+    run->add_option("--seed", ra.seed, "random seed");
+    run->add_option("--threads", ra.threads, "threads per rank (default: all cores given to the rank)");
+    run->add_option("--output", ra.output, "result file (.h5)");
+    run->add_option("--checkpoint", ra.checkpoint, "checkpoint file");
+    run->add_option("--restart", ra.restart, "continue from a checkpoint");
+    run->add_option("--report-every", ra.report_every, "seconds between progress lines");
+    run->add_option("--sampler", ra.sampler, "random | sobol");
+    run->add_flag("--quiet", ra.quiet, "no progress output");
+    std::string check_path, info_path;
+    auto* check = app.add_subcommand("check", "parse and validate a scene, print a summary");
+    check->add_option("scene", check_path, "scene file (TOML)")->required();
+    auto* info = app.add_subcommand("info", "print the stored summary of a result file");
+    info->add_option("result", info_path, "result file (.h5)")->required();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        if (comm.is_root()) app.exit(e);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        if (comm.is_root()) app.exit(e);
+        return e.get_exit_code() == 0 ? 0 : kExitBadInput;
+    }
+    try {
+        if (*run) return cmd_run(comm, ra);
+        if (*check) return comm.is_root() ? cmd_check(check_path) : 0;
+        if (*info) return comm.is_root() ? cmd_info(info_path) : 0;
+    } catch (const InputError& e) {
+        // Every rank reads the same input and fails the same way; one message is enough.
+        if (comm.is_root()) std::cerr << "luxtrace: error: " << e.what() << '\n';
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "luxtrace: internal error on rank " << comm.rank() << ": " << e.what() << '\n';
+        comm.abort(1);
+    }
+    return 0;
+}

@@ -1,0 +1,61 @@
+#include "scene_summary.hpp"
+
+#include "luxtrace/scene/scene.hpp"
+
+#include <iomanip>
+#include <ostream>
+
+namespace luxtrace {
+
+namespace {
+const char* type_name(MaterialType t) {
+    switch (t) {
+    case MaterialType::diffuse: return "diffuse";
+    case MaterialType::mirror: return "mirror";
+    case MaterialType::glass: return "glass";
+    case MaterialType::general: return "general";
+    case MaterialType::black: return "black";
+    }
+    return "?";
+}
+}  // namespace
+
+void print_scene_summary(const Scene& s, const std::vector<std::string>& warnings, std::ostream& out) {
+    out << "scene      " << s.name << " (" << s.file.string() << ")\n";
+    out << "bands      ";
+    for (const std::string& b : s.bands) out << b << ' ';
+    out << "\ngeometry   " << s.triangle_count() << " triangles, " << s.vertices.size() << " vertices, "
+        << std::setprecision(6) << s.total_area_m2() << " m^2; bounds [" << s.bounds_min.x << ", "
+        << s.bounds_min.y << ", " << s.bounds_min.z << "] - [" << s.bounds_max.x << ", " << s.bounds_max.y
+        << ", " << s.bounds_max.z << "]\n";
+    std::vector<std::size_t> count(s.materials.size(), 0);
+    std::vector<double> area(s.materials.size(), 0.0);
+    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+        ++count[s.triangle_material[t]];
+        area[s.triangle_material[t]] += s.triangle_area_m2[t];
+    }
+    out << "materials  " << s.materials.size() << '\n';
+    for (std::size_t m = 0; m < s.materials.size(); ++m)
+        out << "  " << std::left << std::setw(16) << s.materials[m].name << std::right << std::setw(8)
+            << type_name(s.materials[m].type) << "  albedo " << std::setprecision(3)
+            << albedo(s.materials[m], 0) << "  " << count[m] << " triangles, " << area[m] << " m^2\n";
+    out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6)
+        << s.lights.total_flux_lm() << " lm\n";
+    for (const Light& l : s.lights.lights()) {
+        out << "  " << std::left << std::setw(24) << l.label << std::right << "  " << l.flux_lm << " lm";
+        if (l.ies) out << " (IES photometry)";
+        if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
+        out << '\n';
+    }
+    out << "detectors  " << s.detectors.size() << '\n';
+    for (const Detector& d : s.detectors)
+        out << "  " << std::left << std::setw(16) << d.name << std::right << " "
+            << (d.type == DetectorType::illuminance ? "illuminance" : "luminance") << "  " << d.nx << " x "
+            << d.ny << " cells of " << d.cell_area_m2() << " m^2, units " << d.units() << '\n';
+    out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
+        << ", " << s.run.targets.size() << " target(s)\n";
+    out << "warnings   " << warnings.size() << '\n';
+    for (const std::string& w : warnings) out << "  warning: " << w << '\n';
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,258 @@
+#include "luxtrace/io/result_file.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/scene/scene.hpp"
+
+#include <hdf5.h>
+
+#include <stdexcept>
+#include <unistd.h>
+
+namespace luxtrace {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Owns one HDF5 identifier and closes it with the matching function.
+class H5Id {
+public:
+    using Closer = herr_t (*)(hid_t);
+    H5Id(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
+        if (id_ < 0) throw std::runtime_error("HDF5: " + what + " failed");
+    }
+    ~H5Id() { if (id_ >= 0) close_(id_); }
+    H5Id(const H5Id&) = delete;
+    H5Id& operator=(const H5Id&) = delete;
+    operator hid_t() const { return id_; }
+
+private:
+    hid_t id_;
+    Closer close_;
+};
+
+void check(herr_t status, const std::string& what) {
+    if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+}
+
+hid_t group(hid_t parent, const std::string& name) {
+    return H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+}
+
+template <class T>
+hid_t native_type();
+template <> hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+template <> hid_t native_type<std::uint64_t>() { return H5T_NATIVE_UINT64; }
+template <> hid_t native_type<std::uint32_t>() { return H5T_NATIVE_UINT32; }
+
+template <class T>
+hid_t file_type();
+template <> hid_t file_type<double>() { return H5T_IEEE_F64LE; }
+template <> hid_t file_type<std::uint64_t>() { return H5T_STD_U64LE; }
+template <> hid_t file_type<std::uint32_t>() { return H5T_STD_U32LE; }
+
+template <class T>
+void dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, const T* data) {
+    H5Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "dataspace");
+    // Large maps are chunked and compressed: counts compress well.
+    H5Id plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "property list");
+    hsize_t total = 1;
+    for (hsize_t d : dims) total *= d;
+    if (total >= 4096 && !dims.empty()) {
+        std::vector<hsize_t> chunk = dims;
+        chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, total / dims[0])));
+        check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "chunk");
+        check(H5Pset_shuffle(plist), "shuffle");
+        check(H5Pset_deflate(plist, 1), "deflate");
+    }
+    H5Id ds(H5Dcreate2(parent, name.c_str(), file_type<T>(), space, H5P_DEFAULT, plist, H5P_DEFAULT),
+            H5Dclose, "create dataset " + name);
+    check(H5Dwrite(ds, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+template <class T>
+void attr(hid_t obj, const std::string& name, const std::vector<T>& values) {
+    const hsize_t n = values.size();
+    H5Id space(values.size() == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose, "attr space");
+    H5Id a(H5Acreate2(obj, name.c_str(), file_type<T>(), space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "attr " + name);
+    check(H5Awrite(a, native_type<T>(), values.data()), "write attr " + name);
+}
+template <class T>
+void attr(hid_t obj, const std::string& name, T value) { attr(obj, name, std::vector<T>{value}); }
+
+// Variable-length UTF-8 strings: h5py reads them as str.
+void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values, bool scalar) {
+    H5Id type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+    check(H5Tset_size(type, H5T_VARIABLE), "string size");
+    check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
+    const hsize_t n = values.size();
+    H5Id space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose, "attr space");
+    H5Id a(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "attr " + name);
+    std::vector<const char*> ptrs;
+    for (const std::string& s : values) ptrs.push_back(s.c_str());
+    check(H5Awrite(a, type, ptrs.data()), "write attr " + name);
+}
+void attr(hid_t obj, const std::string& name, const std::string& value) {
+    attr_strings(obj, name, {value}, true);
+}
+void attr(hid_t obj, const std::string& name, const char* value) { attr(obj, name, std::string(value)); }
+
+void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+                   const RunInfo& info, const GlobalEstimate& g) {
+    const std::size_t T = scene.triangle_count(), B = scene.bands.size();
+    {
+        H5Id mesh(group(file, "mesh"), H5Gclose, "group /mesh");
+        std::vector<double> v;
+        for (const glm::vec3& p : scene.vertices) v.insert(v.end(), {p.x, p.y, p.z});
+        dataset(mesh, "vertices", {scene.vertices.size(), 3}, v.data());
+        std::vector<std::uint32_t> t;
+        for (const glm::uvec3& tri : scene.triangles) t.insert(t.end(), {tri.x, tri.y, tri.z});
+        dataset(mesh, "triangles", {T, 3}, t.data());
+        dataset(mesh, "area", {T}, scene.triangle_area_m2.data());
+        dataset(mesh, "material", {T}, scene.triangle_material.data());
+        std::vector<std::string> names;
+        for (const Material& m : scene.materials) names.push_back(m.name);
+        attr_strings(mesh, "material_names", names, false);
+        // Also as a dataset, so the index in /mesh/material names a dataset row.
+        H5Id type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+        check(H5Tset_size(type, H5T_VARIABLE), "string size");
+        check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
+        const hsize_t n = names.size();
+        H5Id space(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
+        H5Id ds(H5Dcreate2(mesh, "material_names", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose, "material_names");
+        std::vector<const char*> ptrs;
+        for (const std::string& s : names) ptrs.push_back(s.c_str());
+        check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "material_names");
+    }
+    H5Id glob(group(file, "global"), H5Gclose, "group /global");
+    const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {
+        {"count_odd", TallyLayout::kCountOdd}, {"count_even", TallyLayout::kCountEven},
+        {"direct_odd", TallyLayout::kDirectOdd}, {"direct_even", TallyLayout::kDirectEven}};
+    std::vector<std::uint64_t> buf(T * B);
+    for (const auto& [name, slot] : slots) {
+        for (std::size_t t = 0; t < T; ++t)
+            for (std::size_t b = 0; b < B; ++b) buf[t * B + b] = data[L.surface(t, b, slot)];
+        dataset(glob, name, {T, B}, buf.data());
+    }
+    std::vector<double> e(T * B), direct(T * B);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t b = 0; b < B; ++b) {
+            const double k = info.flux_per_photon_lm / scene.triangle_area_m2[t];
+            e[t * B + b] = k * static_cast<double>(data[L.surface(t, b, TallyLayout::kCountOdd)] +
+                                                   data[L.surface(t, b, TallyLayout::kCountEven)]);
+            direct[t * B + b] = k * static_cast<double>(data[L.surface(t, b, TallyLayout::kDirectOdd)] +
+                                                        data[L.surface(t, b, TallyLayout::kDirectEven)]);
+        }
+    dataset(glob, "illuminance", {T, B}, e.data());
+    dataset(glob, "illuminance_direct", {T, B}, direct.data());
+    attr(glob, "sigma_lx", g.sigma_lx);
+    attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
+    attr(glob, "sigma_rel_quadratic", g.sigma_rel_quadratic);
+    attr(glob, "odd_even_rms_lx", g.odd_even_rms_lx);
+    attr(glob, "mean_arithmetic_lx", g.mean_arithmetic_lx);
+    attr(glob, "mean_quadratic_lx", g.mean_quadratic_lx);
+    attr(glob, "photons_escaped", data[L.counter(TallyLayout::kEscaped)]);
+    attr(glob, "photons_absorbed", data[L.counter(TallyLayout::kAbsorbed)]);
+    attr(glob, "photons_truncated", data[L.counter(TallyLayout::kTruncated)]);
+}
+
+void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+                     const std::vector<DetectorEstimate>& est) {
+    H5Id dets(group(file, "detectors"), H5Gclose, "group /detectors");
+    const std::size_t B = scene.bands.size();
+    for (std::size_t di = 0; di < scene.detectors.size(); ++di) {
+        const Detector& d = scene.detectors[di];
+        const DetectorEstimate& e = est[di];
+        H5Id g(group(dets, d.name), H5Gclose, "group /detectors/" + d.name);
+        const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
+        std::vector<std::uint64_t> n(d.cells() * B), q(d.cells() * B);
+        for (int c = 0; c < d.cells(); ++c)
+            for (std::size_t b = 0; b < B; ++b) {
+                n[c * B + b] = data[L.detector_n(di, c, b)];
+                q[c * B + b] = data[L.detector_q(di, c, b)];
+            }
+        dataset(g, "count", dims, n.data());
+        dataset(g, "sumsq", dims, q.data());
+        dataset(g, "value", dims, e.value.data());
+        dataset(g, "sigma_rel", dims, e.sigma_rel.data());
+        attr(g, "type", d.type == DetectorType::illuminance ? "illuminance" : "luminance");
+        attr(g, "units", d.units());
+        attr(g, "center", std::vector<double>{d.center.x, d.center.y, d.center.z});
+        attr(g, "normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
+        attr(g, "up", std::vector<double>{d.v_axis.x, d.v_axis.y, d.v_axis.z});
+        attr(g, "size", std::vector<double>{d.size_u, d.size_v});
+        attr(g, "cells", std::vector<std::uint64_t>{static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny)});
+        attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
+        attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
+        attr(g, "mean_arithmetic", e.mean_arithmetic);
+        attr(g, "mean_quadratic", e.mean_quadratic);
+        attr(g, "photons_received", e.photons_received);
+        attr(g, "mean_value", e.mean_value);
+        attr(g, "mean_sigma_rel", e.mean_sigma_rel);
+        if (d.type == DetectorType::luminance) {
+            attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});
+            attr(g, "half_angle_deg", d.half_angle_deg);
+        }
+    }
+}
+
+void write_history(hid_t file, const std::vector<HistoryRow>& history) {
+    H5Id h(group(file, "history"), H5Gclose, "group /history");
+    std::vector<double> t, s, f;
+    std::vector<std::uint64_t> p;
+    for (const HistoryRow& r : history) {
+        t.push_back(r.time_s);
+        p.push_back(r.photons);
+        s.push_back(r.sigma_rel_global);
+        f.push_back(r.forecast_s);
+    }
+    const std::vector<hsize_t> dims{history.size()};
+    dataset(h, "time_s", dims, t.data());
+    dataset(h, "photons", dims, p.data());
+    dataset(h, "sigma_rel_global", dims, s.data());
+    dataset(h, "forecast_s", dims, f.data());
+}
+
+}  // namespace
+
+void write_result(const fs::path& path, const Scene& scene, const TallyLayout& layout,
+                  const std::vector<std::uint64_t>& tallies, const RunInfo& info,
+                  const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
+                  const std::vector<HistoryRow>& history) {
+    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    // Hidden temporary name beside the target, so the rename stays within one file system.
+    std::string tmp_name = path.filename().string();
+    tmp_name.insert(0, 1, '.');
+    tmp_name += ".tmp." + std::to_string(::getpid());
+    const fs::path tmp = dir / tmp_name;
+    try {
+        H5Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                  "create " + tmp.string());
+        attr(file, "format", "luxtrace-result");
+        attr(file, "format_version", std::uint64_t{1});
+        attr(file, "luxtrace_version", info.luxtrace_version);
+        attr(file, "scene_file", info.scene_file);
+        attr(file, "scene_name", scene.name);
+        attr(file, "seed", info.seed);
+        attr(file, "ranks", static_cast<std::uint64_t>(info.ranks));
+        attr(file, "threads_per_rank", static_cast<std::uint64_t>(info.threads_per_rank));
+        attr(file, "photons", info.photons);
+        attr(file, "flux_per_photon_lm", info.flux_per_photon_lm);
+        attr(file, "total_flux_lm", scene.lights.total_flux_lm());
+        attr(file, "elapsed_s", info.elapsed_s);
+        attr(file, "stop_reason", info.stop_reason);
+        attr_strings(file, "bands", scene.bands, false);
+        attr(file, "sampler", info.sampler);
+        write_surface(file, scene, layout, tallies, info, global);
+        write_detectors(file, scene, layout, tallies, detectors);
+        write_history(file, history);
+        check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw;
+    }
+    fs::rename(tmp, path);
+}
+
+}  // namespace luxtrace

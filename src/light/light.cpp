@@ -1,0 +1,81 @@
+#include "luxtrace/light/light.hpp"
+
+#include "luxtrace/material/material.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxtrace {
+
+Vec3 sample_uniform_sphere(double u1, double u2) {
+    const double z = 1.0 - 2.0 * u1;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = 2.0 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+Vec3 sample_uniform_cone(double cos_max, double u1, double u2) {
+    // Uniform in solid angle: cos(theta) uniform in [cos_max, 1].
+    const double z = 1.0 - u1 * (1.0 - cos_max);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = 2.0 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+std::size_t sample_cdf(const std::vector<double>& cdf, double u) {
+    const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+    return std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1);
+}
+
+EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
+    switch (type) {
+    case LightType::point:
+        if (ies) return {position, frame.to_world(ies->sample(ud1, ud2))};
+        return {position, sample_uniform_sphere(ud1, ud2)};
+    case LightType::spot:
+        return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
+    case LightType::area: {
+        // Pick a triangle by area, then a uniform point in it (folded square sampling),
+        // then a Lambertian direction from its front side.
+        const std::size_t i = sample_cdf(surface.cdf, up1);
+        const double lo = i == 0 ? 0.0 : surface.cdf[i - 1];
+        const double width = surface.cdf[i] - lo;
+        double a = width > 0.0 ? std::clamp((up1 - lo) / width, 0.0, 1.0) : 0.5;
+        double b = up2;
+        if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+        const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
+        return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2),
+                surface.scene_triangle[i]};
+    }
+    case LightType::directional: {
+        const double r = beam_radius * std::sqrt(up1);
+        const double phi = 2.0 * kPi * up2;
+        const Vec3 p = beam_center + frame.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), 0.0));
+        return {p, aim};
+    }
+    }
+    return {};
+}
+
+LightSet::LightSet(std::vector<Light> lights) : lights_(std::move(lights)) {
+    double sum = 0.0;
+    for (const Light& l : lights_) {
+        sum += l.flux_lm;
+        light_cdf_.push_back(sum);
+        std::vector<double> bands;
+        double s = 0.0;
+        for (double share : l.band_share) bands.push_back(s += share);
+        for (double& v : bands) v /= s;
+        band_cdf_.push_back(std::move(bands));
+    }
+    total_flux_lm_ = sum;
+    for (double& v : light_cdf_) v /= sum;
+}
+
+std::size_t LightSet::pick_light(double u) const { return sample_cdf(light_cdf_, u); }
+
+int LightSet::pick_band(std::size_t light, double u) const {
+    return static_cast<int>(sample_cdf(band_cdf_[light], u));
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,97 @@
+#include "luxtrace/material/material.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxtrace {
+
+double fresnel_dielectric(double cos_i, double eta) {
+    cos_i = std::clamp(cos_i, 0.0, 1.0);
+    const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0) return 1.0;  // total internal reflection
+    const double cos_t = std::sqrt(1.0 - sin2_t);
+    const double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2) {
+    // Uniform point on the unit disk, lifted to the hemisphere: pdf = cos(theta) / pi.
+    const double r = std::sqrt(u1);
+    const double phi = 2.0 * kPi * u2;
+    const double z = std::sqrt(std::max(0.0, 1.0 - u1));
+    return Frame::around(n).to_world(Vec3(r * std::cos(phi), r * std::sin(phi), z));
+}
+
+namespace {
+
+Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2.0 * glm::dot(d, n) * n; }
+
+double at(const std::vector<double>& v, int band) {
+    return v.empty() ? 0.0 : v[static_cast<size_t>(band)];
+}
+
+}  // namespace
+
+Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
+                  double u, double u1, double u2) {
+    // Normal on the side the photon arrives from.
+    const bool from_front = glm::dot(dir, ng) < 0.0;
+    const Vec3 n = from_front ? ng : -ng;
+    Scattered s;
+    switch (m.type) {
+    case MaterialType::black:
+        return s;
+    case MaterialType::diffuse:
+        if (u < at(m.diffuse_reflectance, band))
+            s = {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
+        return s;
+    case MaterialType::mirror:
+        if (u < at(m.specular_reflectance, band))
+            s = {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        return s;
+    case MaterialType::general: {
+        double p = at(m.diffuse_reflectance, band);
+        if (u < p) return {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
+        p += at(m.specular_reflectance, band);
+        if (u < p) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        p += at(m.diffuse_transmittance, band);
+        if (u < p)
+            return {ScatterEvent::diffuse_transmission, sample_cosine_hemisphere(-n, u1, u2), -1};
+        p += at(m.specular_transmittance, band);
+        if (u < p) return {ScatterEvent::specular_transmission, dir, -1};
+        return s;
+    }
+    case MaterialType::glass: {
+        // Entering through the front side goes from air (1) into glass (ior).
+        const double eta = from_front ? 1.0 / m.ior : m.ior;
+        const double cos_i = -glm::dot(dir, n);
+        const double r = fresnel_dielectric(cos_i, eta);
+        if (u < r) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        const double t = m.transmittance.empty() ? 1.0 : at(m.transmittance, band);
+        if (u >= r + (1.0 - r) * t) return s;  // absorbed in the crossing
+        const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+        const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
+        const Vec3 refracted = glm::normalize(eta * dir + (eta * cos_i - cos_t) * n);
+        return {ScatterEvent::refraction, refracted, -1};
+    }
+    }
+    return s;
+}
+
+double albedo(const Material& m, int band) {
+    switch (m.type) {
+    case MaterialType::black: return 0.0;
+    case MaterialType::diffuse: return at(m.diffuse_reflectance, band);
+    case MaterialType::mirror: return at(m.specular_reflectance, band);
+    case MaterialType::general:
+        return at(m.diffuse_reflectance, band) + at(m.specular_reflectance, band) +
+               at(m.diffuse_transmittance, band) + at(m.specular_transmittance, band);
+    case MaterialType::glass:
+        return m.transmittance.empty() ? 1.0 : std::max(fresnel_dielectric(1.0, 1.0 / m.ior), 0.0) +
+               (1.0 - fresnel_dielectric(1.0, 1.0 / m.ior)) * at(m.transmittance, band);
+    }
+    return 0.0;
+}
+
+}  // namespace luxtrace

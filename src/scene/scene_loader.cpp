@@ -1,0 +1,513 @@
+// Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
+// thrown as an InputError naming the file, the line and the key.
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/scene/mesh_loader.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/scene/shapes.hpp"
+#include "toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace luxtrace {
+
+using detail::TableReader;
+namespace fs = std::filesystem;
+
+double Scene::total_area_m2() const {
+    double s = 0.0;
+    for (double a : triangle_area_m2) s += a;
+    return s;
+}
+
+double Scene::ray_epsilon_m() const {
+    const Vec3 ext = bounds_max - bounds_min;
+    const double scale = std::max({glm::length(ext), glm::length(bounds_max), glm::length(bounds_min), 1e-3});
+    return 2e-6 * scale;
+}
+
+namespace {
+
+struct Loader {
+    fs::path file;
+    std::string fname;
+    Scene scene;
+    std::map<std::string, std::uint32_t> material_index;
+    std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;  // triangle range
+
+    fs::path resolve(const std::string& p) const {
+        const fs::path path(p);
+        return path.is_absolute() ? path : file.parent_path() / path;
+    }
+
+    std::vector<const toml::table*> tables_of(TableReader& root, const std::string& key) {
+        std::vector<const toml::table*> out;
+        const toml::array* a = root.array(key);
+        if (a == nullptr) return out;
+        for (const toml::node& n : *a) {
+            if (!n.is_table()) root.fail(key, "expected [[" + key + "]] tables");
+            out.push_back(n.as_table());
+        }
+        return out;
+    }
+
+    static std::string entry_name(const std::string& kind, std::size_t i, const toml::table& t) {
+        std::string s = "[[" + kind + "]] #" + std::to_string(i + 1);
+        if (const auto n = t["name"].value<std::string>()) s += " '" + *n + "'";
+        return s;
+    }
+
+    static Vec3 unit(TableReader& r, const std::string& key, Vec3 v) {
+        if (glm::length(v) < 1e-12) r.fail(key, "must be a non-zero vector");
+        return glm::normalize(v);
+    }
+
+    void parse_scene_table(TableReader& root) {
+        const toml::table* t = root.table("scene");
+        if (t == nullptr) return;
+        TableReader r(*t, fname, "[scene]");
+        scene.name = r.string("name").value_or(file.stem().string());
+        if (auto b = r.strings("bands")) {
+            if (b->empty()) r.fail("bands", "needs at least one band");
+            scene.bands = *b;
+        }
+        r.finish();
+    }
+
+    void parse_material(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("material", i, t));
+        Material m;
+        const auto name = r.string("name");
+        if (!name || name->empty()) r.fail_entry("needs a 'name'");
+        m.name = *name;
+        if (material_index.count(m.name)) r.fail("name", "material '" + m.name + "' is defined twice");
+        const std::string type = r.string("type").value_or("diffuse");
+        const std::size_t nb = scene.bands.size();
+        auto required = [&](const std::string& key) {
+            auto v = r.per_band(key, nb);
+            if (!v) r.fail_entry("type '" + type + "' needs '" + key + "'");
+            return *v;
+        };
+        if (type == "diffuse") {
+            m.type = MaterialType::diffuse;
+            m.diffuse_reflectance = required("reflectance");
+        } else if (type == "mirror") {
+            m.type = MaterialType::mirror;
+            m.specular_reflectance = required("specular_reflectance");
+        } else if (type == "glass") {
+            m.type = MaterialType::glass;
+            m.ior = r.number("ior").value_or(1.5);
+            if (!(m.ior >= 1.0 && m.ior <= 4.0)) r.fail("ior", "must lie in [1, 4]");
+            m.transmittance = r.per_band("transmittance", nb).value_or(std::vector<double>(nb, 1.0));
+        } else if (type == "general") {
+            m.type = MaterialType::general;
+            const std::vector<double> zero(nb, 0.0);
+            m.diffuse_reflectance = r.per_band("diffuse_reflectance", nb).value_or(zero);
+            m.specular_reflectance = r.per_band("specular_reflectance", nb).value_or(zero);
+            m.diffuse_transmittance = r.per_band("diffuse_transmittance", nb).value_or(zero);
+            m.specular_transmittance = r.per_band("specular_transmittance", nb).value_or(zero);
+            for (std::size_t b = 0; b < nb; ++b) {
+                const double sum = m.diffuse_reflectance[b] + m.specular_reflectance[b] +
+                                   m.diffuse_transmittance[b] + m.specular_transmittance[b];
+                if (sum > 1.0 + 1e-12)
+                    r.fail_entry("reflectances and transmittances sum to " + std::to_string(sum) +
+                                 " > 1 in band '" + scene.bands[b] + "'");
+            }
+        } else if (type == "black") {
+            m.type = MaterialType::black;
+        } else {
+            r.fail("type", "unknown material type '" + type +
+                               "' (expected diffuse, mirror, glass, general or black)");
+        }
+        r.finish();
+        material_index[m.name] = static_cast<std::uint32_t>(scene.materials.size());
+        scene.materials.push_back(std::move(m));
+    }
+
+    std::uint32_t material_ref(TableReader& r, const std::string& key, bool required) {
+        const auto name = r.string(key);
+        if (!name) {
+            if (required) r.fail_entry("needs a '" + key + "'");
+            return UINT32_MAX;
+        }
+        const auto it = material_index.find(*name);
+        if (it == material_index.end()) r.fail(key, "no [[material]] is named '" + *name + "'");
+        return it->second;
+    }
+
+    void add_triangles(const TriangleMesh& mesh, std::uint32_t default_material, TableReader& r) {
+        const auto base = static_cast<unsigned>(scene.vertices.size());
+        for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            std::uint32_t mat = default_material;
+            const std::string& usemtl = mesh.material_names[t];
+            if (!usemtl.empty()) {
+                const auto it = material_index.find(usemtl);
+                if (it != material_index.end()) mat = it->second;
+            }
+            if (mat == UINT32_MAX)
+                r.fail_entry("triangles with file material '" + usemtl +
+                             "' match no [[material]] and no default 'material' is given");
+            const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
+            const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
+            const Vec3 cr = glm::cross(b - a, c - a);
+            const double area = 0.5 * glm::length(cr);
+            if (!(area > 0.0)) continue;  // degenerate triangles carry no light and no map entry
+            scene.triangles.push_back(tri);
+            scene.triangle_material.push_back(mat);
+            scene.triangle_area_m2.push_back(area);
+            scene.triangle_normal.push_back(cr / (2.0 * area));
+        }
+    }
+
+    void parse_mesh(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("mesh", i, t));
+        const auto f = r.string("file");
+        if (!f) r.fail_entry("needs a 'file'");
+        const std::uint32_t mat = material_ref(r, "material", false);
+        Transform tr;
+        if (const toml::table* tt = r.table("transform")) {
+            TableReader tx(*tt, fname, r.context() + " transform");
+            tr.translate = tx.vec3("translate").value_or(Vec3(0.0));
+            tr.rotate_deg = tx.vec3("rotate_deg").value_or(Vec3(0.0));
+            if (tx.has("scale")) {
+                if (t["transform"]["scale"].is_array()) tr.scale = *tx.vec3("scale");
+                else tr.scale = Vec3(*tx.number("scale"));
+                if (!(tr.scale.x != 0.0 && tr.scale.y != 0.0 && tr.scale.z != 0.0))
+                    tx.fail("scale", "must be non-zero");
+            }
+            tx.finish();
+        }
+        r.finish();
+        TriangleMesh mesh = load_mesh(resolve(*f), tr, fname + ":" + std::to_string(r.line("file")) + ": " + r.context());
+        if (tr.scale.x * tr.scale.y * tr.scale.z < 0.0)  // a mirroring scale flips the winding
+            for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
+        add_triangles(mesh, mat, r);
+    }
+
+    void parse_shape(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("shape", i, t));
+        const std::string type = r.string("type").value_or("");
+        const std::uint32_t mat = material_ref(r, "material", true);
+        const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
+        const auto name = r.string("name");
+        const int subdiv = static_cast<int>(r.integer("subdivisions").value_or(type == "sphere" ? 16 : 1));
+        if (subdiv < 1 || subdiv > 4096) r.fail("subdivisions", "must lie in [1, 4096]");
+        auto positive = [&](const std::string& key) {
+            const auto v = r.number(key);
+            if (!v) r.fail_entry("type '" + type + "' needs '" + key + "'");
+            if (!(*v > 0.0)) r.fail(key, "must be positive");
+            return *v;
+        };
+        TriangleMesh mesh;
+        if (type == "rectangle" || type == "disk") {
+            const Vec3 n = unit(r, "normal", r.vec3("normal").value_or(Vec3(0, 0, 1)));
+            if (type == "rectangle") {
+                const Vec3 up = unit(r, "up", r.vec3("up").value_or(default_up(n)));
+                if (glm::length(glm::cross(up, n)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
+                const auto size = r.numbers("size", 2);
+                if (!size) r.fail_entry("type 'rectangle' needs 'size' = [w, h]");
+                if (!((*size)[0] > 0.0 && (*size)[1] > 0.0)) r.fail("size", "must be positive");
+                mesh = make_rectangle(center, n, up, (*size)[0], (*size)[1], subdiv);
+            } else {
+                mesh = make_disk(center, n, positive("radius"), subdiv);
+            }
+        } else if (type == "box") {
+            const auto size = r.vec3("size");
+            if (!size) r.fail_entry("type 'box' needs 'size' = [x, y, z]");
+            if (!(size->x > 0.0 && size->y > 0.0 && size->z > 0.0)) r.fail("size", "must be positive");
+            mesh = make_box(center, *size, subdiv, r.boolean("inward").value_or(false));
+        } else if (type == "sphere") {
+            mesh = make_sphere(center, positive("radius"), subdiv, r.boolean("inward").value_or(false));
+        } else {
+            r.fail("type", "unknown shape type '" + type + "' (expected rectangle, box, sphere or disk)");
+        }
+        r.finish();
+        const std::size_t first = scene.triangles.size();
+        add_triangles(mesh, mat, r);
+        if (name) {
+            if (named_shapes.count(*name)) r.fail("name", "shape '" + *name + "' is defined twice");
+            named_shapes[*name] = {first, scene.triangles.size()};
+        }
+    }
+
+    Light parse_light(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("light", i, t));
+        Light l;
+        const std::string type = r.string("type").value_or("");
+        l.label = "light " + std::to_string(i + 1) + " (" + type + ")";
+        auto flux = [&](const char* key) {
+            const auto f = r.number(key);
+            if (!f) r.fail_entry("type '" + type + "' needs '" + key + "'");
+            if (!(*f > 0.0)) r.fail(key, "must be positive, got " + std::to_string(*f));
+            return *f;
+        };
+        if (type == "point" || type == "spot") {
+            const auto pos = r.vec3("position");
+            if (!pos) r.fail_entry("type '" + type + "' needs 'position'");
+            l.position = *pos;
+        }
+        if (type == "point") {
+            l.type = LightType::point;
+            l.aim = unit(r, "aim", r.vec3("aim").value_or(Vec3(0, 0, -1)));
+            if (const auto ies = r.string("ies")) {
+                const double mult = r.number("multiplier").value_or(1.0);
+                if (!(mult > 0.0)) r.fail("multiplier", "must be positive");
+                if (r.has("flux_lm")) r.fail("flux_lm", "with 'ies' the flux comes from the file (use 'multiplier')");
+                const IesPhotometry photometry = load_ies(resolve(*ies));
+                auto dist = std::make_shared<IesDistribution>(photometry);
+                l.flux_lm = dist->flux_lm() * mult;
+                if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
+                l.ies = std::move(dist);
+            } else {
+                l.flux_lm = flux("flux_lm");
+            }
+            // Local +z = photometric nadir; C0 plane toward +x of the scene projected
+            // perpendicular to the aim (+y when aiming along x).
+            const Vec3 ref = std::abs(l.aim.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+            const Vec3 c0 = glm::normalize(ref - glm::dot(ref, l.aim) * l.aim);
+            l.frame = Frame{c0, glm::cross(l.aim, c0), l.aim};
+        } else if (type == "spot") {
+            l.type = LightType::spot;
+            l.flux_lm = flux("flux_lm");
+            l.aim = unit(r, "direction", r.vec3("direction").value_or(Vec3(0, 0, -1)));
+            const auto half = r.number("half_angle_deg");
+            if (!half) r.fail_entry("type 'spot' needs 'half_angle_deg'");
+            if (!(*half > 0.0 && *half <= 180.0)) r.fail("half_angle_deg", "must lie in (0, 180]");
+            l.cos_half_angle = std::cos(*half * kPi / 180.0);
+            l.frame = Frame::around(l.aim);
+        } else if (type == "area") {
+            l.type = LightType::area;
+            l.flux_lm = flux("flux_lm");
+            const auto shape = r.string("shape");
+            if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
+            const auto it = named_shapes.find(*shape);
+            if (it == named_shapes.end()) r.fail("shape", "no [[shape]] is named '" + *shape + "'");
+            EmitterSurface& s = l.surface;
+            for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
+                const glm::uvec3 v = scene.triangles[tri];
+                const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
+                s.p0.push_back(a);
+                s.e1.push_back(b - a);
+                s.e2.push_back(c - a);
+                s.normal.push_back(scene.triangle_normal[tri]);
+                s.scene_triangle.push_back(static_cast<int>(tri));
+                s.area_m2 += scene.triangle_area_m2[tri];
+                s.cdf.push_back(s.area_m2);
+            }
+            for (double& c : s.cdf) c /= s.area_m2;
+        } else if (type == "directional") {
+            l.type = LightType::directional;
+            const auto d = r.vec3("direction");
+            if (!d) r.fail_entry("type 'directional' needs 'direction'");
+            l.aim = unit(r, "direction", *d);
+            l.frame = Frame::around(l.aim);
+            l.illuminance_lx = flux("illuminance_lx");
+        } else {
+            r.fail("type", "unknown light type '" + type + "' (expected point, spot, area or directional)");
+        }
+        const std::size_t nb = scene.bands.size();
+        l.band_share.assign(nb, 1.0);
+        if (r.has("colour")) {
+            if (t["colour"].is_array()) l.band_share = *r.numbers("colour", nb);
+            else l.band_share.assign(nb, *r.number("colour"));
+            double sum = 0.0;
+            for (double c : l.band_share) {
+                if (!(c >= 0.0)) r.fail("colour", "shares must not be negative");
+                sum += c;
+            }
+            if (!(sum > 0.0)) r.fail("colour", "needs a positive share in some band");
+        }
+        r.finish();
+        return l;
+    }
+
+    void parse_detector(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("detector", i, t));
+        Detector d;
+        const auto name = r.string("name");
+        if (!name || name->empty()) r.fail_entry("needs a 'name'");
+        for (const Detector& other : scene.detectors)
+            if (other.name == *name) r.fail("name", "detector '" + *name + "' is defined twice");
+        if (name->find_first_of("/[]:. ") != std::string::npos)
+            r.fail("name", "may not contain '/', '[', ']', ':', '.' or spaces");
+        d.name = *name;
+        const std::string type = r.string("type").value_or("illuminance");
+        if (type == "illuminance") d.type = DetectorType::illuminance;
+        else if (type == "luminance") d.type = DetectorType::luminance;
+        else r.fail("type", "unknown detector type '" + type + "' (expected illuminance or luminance)");
+        const auto c = r.vec3("center");
+        if (!c) r.fail_entry("needs 'center'");
+        d.center = *c;
+        d.normal = unit(r, "normal", r.vec3("normal").value_or(Vec3(0, 0, 1)));
+        d.up = unit(r, "up", r.vec3("up").value_or(default_up(d.normal)));
+        if (glm::length(glm::cross(d.up, d.normal)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
+        const auto size = r.numbers("size", 2);
+        if (!size) r.fail_entry("needs 'size' = [w, h]");
+        if (!((*size)[0] > 0.0 && (*size)[1] > 0.0))
+            r.fail("size", "the detector has zero or negative area");
+        d.size_u = (*size)[0];
+        d.size_v = (*size)[1];
+        if (const auto cells = r.numbers("cells", 2)) {
+            const double nx = (*cells)[0], ny = (*cells)[1];
+            if (!(nx >= 1 && ny >= 1 && nx == std::floor(nx) && ny == std::floor(ny) && nx * ny <= 1e8))
+                r.fail("cells", "expected two positive whole numbers [nx, ny]");
+            d.nx = static_cast<int>(nx);
+            d.ny = static_cast<int>(ny);
+        }
+        if (d.type == DetectorType::luminance) {
+            d.view_direction = unit(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
+            d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);
+            if (!(d.half_angle_deg > 0.0 && d.half_angle_deg <= 90.0))
+                r.fail("half_angle_deg", "must lie in (0, 90]");
+            if (std::abs(glm::dot(d.view_direction, d.normal)) < 1e-3)
+                r.fail("view_direction", "must not lie in the detector plane");
+        }
+        r.finish();
+        d.finalize();
+        scene.detectors.push_back(d);
+    }
+
+    void parse_run(TableReader& root) {
+        RunConfig& run = scene.run;
+        run.output = (fs::path(file.stem().string() + ".h5")).string();
+        const toml::table* t = root.table("run");
+        if (t == nullptr) return;
+        TableReader r(*t, fname, "[run]");
+        run.seed = r.count("seed").value_or(run.seed);
+        run.photons = r.count("photons").value_or(run.photons);
+        if (run.photons == 0) r.fail("photons", "must be positive");
+        auto nonneg = [&](const std::string& key, double def) {
+            const double v = r.number(key).value_or(def);
+            if (!(v >= 0.0)) r.fail(key, "must not be negative");
+            return v;
+        };
+        run.time_limit_s = nonneg("time_limit_s", run.time_limit_s);
+        run.report_every_s = nonneg("report_every_s", run.report_every_s);
+        run.checkpoint_every_s = nonneg("checkpoint_every_s", run.checkpoint_every_s);
+        if (auto o = r.string("output")) run.output = resolve(*o).string();
+        if (auto c = r.string("checkpoint")) run.checkpoint = resolve(*c).string();
+        run.sampler = r.string("sampler").value_or(run.sampler);
+        if (run.sampler != "random" && run.sampler != "sobol")
+            r.fail("sampler", "expected 'random' or 'sobol'");
+        if (const auto mb = r.integer("max_bounces")) {
+            if (*mb < 1) r.fail("max_bounces", "must be at least 1");
+            run.max_bounces = static_cast<int>(*mb);
+        }
+        if (const toml::array* targets = r.array("target"))
+            for (std::size_t i = 0; i < targets->size(); ++i) {
+                const toml::table* tt = (*targets)[i].as_table();
+                if (tt == nullptr) r.fail("target", "expected [[run.target]] tables");
+                run.targets.push_back(parse_target(*tt, i));
+            }
+        r.finish();
+    }
+
+    Target parse_target(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1));
+        Target g;
+        g.on = r.string("on").value_or("global");
+        if (g.on != "global") {
+            if (g.on.rfind("detector:", 0) != 0)
+                r.fail("on", "expected 'global', 'detector:NAME' or 'detector:NAME[i0:i1,j0:j1]'");
+            std::string rest = g.on.substr(9);
+            const auto br = rest.find('[');
+            g.detector = rest.substr(0, br);
+            const auto det = std::find_if(scene.detectors.begin(), scene.detectors.end(),
+                                          [&](const Detector& d) { return d.name == g.detector; });
+            if (det == scene.detectors.end()) r.fail("on", "no [[detector]] is named '" + g.detector + "'");
+            if (br != std::string::npos) {
+                char close = 0;
+                std::istringstream in(rest.substr(br + 1));
+                char c1 = 0, c2 = 0, c3 = 0;
+                if (!(in >> g.i0 >> c1 >> g.i1 >> c2 >> g.j0 >> c3 >> g.j1 >> close) || c1 != ':' ||
+                    c2 != ',' || c3 != ':' || close != ']')
+                    r.fail("on", "cell range must read [i0:i1,j0:j1]");
+                if (!(0 <= g.i0 && g.i0 < g.i1 && g.i1 <= det->nx && 0 <= g.j0 && g.j0 < g.j1 &&
+                      g.j1 <= det->ny))
+                    r.fail("on", "cell range lies outside the " + std::to_string(det->nx) + " x " +
+                                     std::to_string(det->ny) + " grid or is empty");
+            } else {
+                g.i1 = det->nx;
+                g.j1 = det->ny;
+            }
+        }
+        int kinds = 0;
+        if (auto v = r.number("relative_error")) { g.relative_error = *v; ++kinds; if (!(*v > 0)) r.fail("relative_error", "must be positive"); }
+        if (auto v = r.number("absolute_error")) { g.absolute_error = *v; ++kinds; if (!(*v > 0)) r.fail("absolute_error", "must be positive"); }
+        if (auto v = r.count("photons_received")) {
+            g.photons_received = static_cast<double>(*v); ++kinds;
+            if (g.detector.empty()) r.fail("photons_received", "applies to a detector target only");
+        }
+        if (kinds != 1) r.fail_entry("needs exactly one of relative_error, absolute_error, photons_received");
+        const std::string avg = r.string("averaging").value_or("quadratic");
+        if (avg == "quadratic") g.averaging = Averaging::quadratic;
+        else if (avg == "arithmetic") g.averaging = Averaging::arithmetic;
+        else r.fail("averaging", "expected 'quadratic' or 'arithmetic'");
+        r.finish();
+        return g;
+    }
+
+    void finish_geometry() {
+        if (scene.triangles.empty()) throw InputError(fname + ": the scene has no surfaces");
+        scene.bounds_min = scene.bounds_max = Vec3(scene.vertices[scene.triangles[0].x]);
+        for (const glm::uvec3& t : scene.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 v(scene.vertices[t[k]]);
+                scene.bounds_min = glm::min(scene.bounds_min, v);
+                scene.bounds_max = glm::max(scene.bounds_max, v);
+            }
+    }
+};
+
+}  // namespace
+
+Scene load_scene(const fs::path& file) {
+    Loader L;
+    L.file = file;
+    L.fname = file.string();
+    L.scene.file = file;
+    if (!fs::is_regular_file(file)) throw InputError(L.fname + ": no such scene file");
+    toml::table root_table;
+    try {
+        root_table = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw InputError(L.fname + ":" + std::to_string(e.source().begin.line) +
+                         ": TOML syntax error: " + std::string(e.description()));
+    }
+    TableReader root(root_table, L.fname, "top level");
+    L.scene.name = file.stem().string();
+    L.parse_scene_table(root);
+    {
+        const auto materials = L.tables_of(root, "material");
+        for (std::size_t i = 0; i < materials.size(); ++i) L.parse_material(*materials[i], i);
+        const auto meshes = L.tables_of(root, "mesh");
+        for (std::size_t i = 0; i < meshes.size(); ++i) L.parse_mesh(*meshes[i], i);
+        const auto shapes = L.tables_of(root, "shape");
+        for (std::size_t i = 0; i < shapes.size(); ++i) L.parse_shape(*shapes[i], i);
+    }
+    L.finish_geometry();
+    std::vector<Light> lights;
+    const auto light_tables = L.tables_of(root, "light");
+    for (std::size_t i = 0; i < light_tables.size(); ++i) lights.push_back(L.parse_light(*light_tables[i], i));
+    if (lights.empty()) throw InputError(L.fname + ": the scene has no [[light]]");
+    // Directional beams cover the scene's bounding sphere, started just outside it.
+    const Vec3 mid = 0.5 * (L.scene.bounds_min + L.scene.bounds_max);
+    const double radius = 0.5 * glm::length(L.scene.bounds_max - L.scene.bounds_min) * 1.001 + 1e-6;
+    for (Light& l : lights)
+        if (l.type == LightType::directional) {
+            l.beam_radius = radius;
+            l.beam_center = mid - 1.01 * radius * l.aim;
+            l.flux_lm = l.illuminance_lx * kPi * radius * radius;
+        }
+    L.scene.lights = LightSet(std::move(lights));
+    const auto detector_tables = L.tables_of(root, "detector");
+    for (std::size_t i = 0; i < detector_tables.size(); ++i) L.parse_detector(*detector_tables[i], i);
+    L.parse_run(root);
+    root.finish();
+    return std::move(L.scene);
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,116 @@
+#include "luxtrace/scene/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxtrace {
+
+void TriangleMesh::append(const TriangleMesh& other) {
+    const auto base = static_cast<unsigned>(vertices.size());
+    vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
+    for (const glm::uvec3& t : other.triangles) triangles.push_back(t + glm::uvec3(base));
+    material_names.insert(material_names.end(), other.material_names.begin(),
+                          other.material_names.end());
+    material_names.resize(triangles.size());
+}
+
+Vec3 default_up(const Vec3& normal) {
+    const Vec3 n = glm::normalize(normal);
+    return std::abs(n.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(0, 1, 0);
+}
+
+TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& up,
+                            double size_u, double size_v, int subdivisions) {
+    const Vec3 n = glm::normalize(normal);
+    const Vec3 u = glm::normalize(glm::cross(up, n));
+    const Vec3 v = glm::cross(n, u);
+    const int s = std::max(1, subdivisions);
+    TriangleMesh m;
+    for (int j = 0; j <= s; ++j)
+        for (int i = 0; i <= s; ++i)
+            m.vertices.push_back(center + (double(i) / s - 0.5) * size_u * u +
+                                 (double(j) / s - 0.5) * size_v * v);
+    for (int j = 0; j < s; ++j)
+        for (int i = 0; i < s; ++i) {
+            const unsigned a = j * (s + 1) + i, b = a + 1, c = a + s + 2, d = a + s + 1;
+            m.triangles.push_back({a, b, c});  // u x v = n: counter-clockwise from the front
+            m.triangles.push_back({a, c, d});
+        }
+    m.material_names.resize(m.triangles.size());
+    return m;
+}
+
+TriangleMesh make_box(const Vec3& center, const Vec3& size, int subdivisions, bool inward) {
+    TriangleMesh m;
+    const double sign = inward ? -1.0 : 1.0;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int dir = -1; dir <= 1; dir += 2) {
+            Vec3 n(0.0);
+            n[axis] = dir;
+            const Vec3 face_center = center + 0.5 * size[axis] * n;
+            // The face's "up" is the next axis; its other side follows from up x normal.
+            const int up_axis = (axis + 2) % 3;
+            const int other_axis = (axis + 1) % 3;
+            Vec3 up(0.0);
+            up[up_axis] = 1.0;
+            m.append(make_rectangle(face_center, sign * n, up, size[other_axis], size[up_axis],
+                                    subdivisions));
+        }
+    return m;
+}
+
+TriangleMesh make_sphere(const Vec3& center, double radius, int subdivisions, bool inward) {
+    // Latitude-longitude sphere: `stacks` bands from pole to pole, 2*stacks segments.
+    const int stacks = std::max(3, subdivisions);
+    const int slices = 2 * stacks;
+    TriangleMesh m;
+    for (int j = 0; j <= stacks; ++j) {
+        const double theta = kPi * j / stacks;
+        for (int i = 0; i < slices; ++i) {
+            const double phi = 2.0 * kPi * i / slices;
+            m.vertices.push_back(center + radius * Vec3(std::sin(theta) * std::cos(phi),
+                                                        std::sin(theta) * std::sin(phi),
+                                                        std::cos(theta)));
+        }
+    }
+    auto idx = [&](int j, int i) { return static_cast<unsigned>(j * slices + (i % slices)); };
+    auto add = [&](unsigned a, unsigned b, unsigned c) {
+        if (inward) m.triangles.push_back({a, c, b});
+        else m.triangles.push_back({a, b, c});
+    };
+    for (int j = 0; j < stacks; ++j)
+        for (int i = 0; i < slices; ++i) {
+            // Outward winding: going down in theta (j+1) and around in phi (i+1).
+            if (j > 0) add(idx(j, i), idx(j + 1, i), idx(j, i + 1));
+            if (j < stacks - 1) add(idx(j, i + 1), idx(j + 1, i), idx(j + 1, i + 1));
+        }
+    m.material_names.resize(m.triangles.size());
+    return m;
+}
+
+TriangleMesh make_disk(const Vec3& center, const Vec3& normal, double radius, int subdivisions) {
+    const Frame f = Frame::around(glm::normalize(normal));
+    const int rings = std::max(1, subdivisions);
+    const int slices = std::max(12, 8 * rings);
+    TriangleMesh m;
+    m.vertices.push_back(center);
+    for (int r = 1; r <= rings; ++r)
+        for (int i = 0; i < slices; ++i) {
+            const double phi = 2.0 * kPi * i / slices;
+            m.vertices.push_back(center + radius * r / rings *
+                                              f.to_world(Vec3(std::cos(phi), std::sin(phi), 0)));
+        }
+    auto idx = [&](int r, int i) {
+        return r == 0 ? 0u : static_cast<unsigned>(1 + (r - 1) * slices + (i % slices));
+    };
+    for (int i = 0; i < slices; ++i) m.triangles.push_back({idx(0, 0), idx(1, i), idx(1, i + 1)});
+    for (int r = 1; r < rings; ++r)
+        for (int i = 0; i < slices; ++i) {
+            m.triangles.push_back({idx(r, i), idx(r + 1, i), idx(r + 1, i + 1)});
+            m.triangles.push_back({idx(r, i), idx(r + 1, i + 1), idx(r, i + 1)});
+        }
+    m.material_names.resize(m.triangles.size());
+    return m;
+}
+
+}  // namespace luxtrace

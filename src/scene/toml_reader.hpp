@@ -1,0 +1,55 @@
+#pragma once
+// Internal to the scene loader: reads one TOML table with strict key checking and
+// error messages of the form "FILE:LINE: CONTEXT: key 'K': WHAT".
+#include "luxtrace/core/count.hpp"
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/core/math.hpp"
+
+#include <toml++/toml.h>
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace luxtrace::detail {
+
+class TableReader {
+public:
+    TableReader(const toml::table& table, std::string file, std::string context);
+
+    const std::string& context() const { return context_; }
+    void set_context(std::string c) { context_ = std::move(c); }
+    bool has(const std::string& key) const;
+    int line(const std::string& key) const;  // line of the key's value, or of the table
+    // "FILE:LINE: CONTEXT" for messages about the whole entry.
+    std::string where() const;
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+    [[noreturn]] void fail_entry(const std::string& what) const;
+
+    std::optional<std::string> string(const std::string& key);
+    std::optional<double> number(const std::string& key);
+    std::optional<bool> boolean(const std::string& key);
+    std::optional<std::int64_t> integer(const std::string& key);
+    // Counts such as photons: an integer, a float like 1e8, or a string like "100M".
+    std::optional<std::uint64_t> count(const std::string& key);
+    std::optional<Vec3> vec3(const std::string& key);
+    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t n);
+    std::optional<std::vector<std::string>> strings(const std::string& key);
+    // A scalar or one value per band, each in [0, 1].
+    std::optional<std::vector<double>> per_band(const std::string& key, std::size_t bands);
+    const toml::table* table(const std::string& key);
+    const toml::array* array(const std::string& key);
+
+    // Every key of the table must have been read: anything else is an unknown key.
+    void finish() const;
+
+private:
+    const toml::node* get(const std::string& key);
+    const toml::table& table_;
+    std::string file_;
+    std::string context_;
+    std::set<std::string> used_;
+};
+
+}  // namespace luxtrace::detail

@@ -1,0 +1,105 @@
+#include "luxtrace/stats/estimates.hpp"
+
+#include "luxtrace/detector/detector.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace luxtrace {
+
+std::vector<double> triangle_illuminance_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
+                                            std::span<const double> area, double e0, std::size_t band) {
+    std::vector<double> e(L.triangles());
+    for (std::size_t t = 0; t < L.triangles(); ++t) {
+        const std::uint64_t n = data[L.surface(t, band, TallyLayout::kCountOdd)] +
+                                data[L.surface(t, band, TallyLayout::kCountEven)];
+        e[t] = static_cast<double>(n) * e0 / area[t];
+    }
+    return e;
+}
+
+GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64_t> data,
+                               std::span<const double> area, double e0) {
+    // Eqs. (4)-(5) on the band-summed map: E_odd,t = 2 n_odd E0 / A_t, likewise even.
+    double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_e2 = 0.0;
+    for (std::size_t t = 0; t < L.triangles(); ++t) {
+        std::uint64_t odd = 0, even = 0;
+        for (std::size_t b = 0; b < L.bands(); ++b) {
+            odd += data[L.surface(t, b, TallyLayout::kCountOdd)];
+            even += data[L.surface(t, b, TallyLayout::kCountEven)];
+        }
+        const double a = area[t];
+        const double e_odd = 2.0 * static_cast<double>(odd) * e0 / a;
+        const double e_even = 2.0 * static_cast<double>(even) * e0 / a;
+        const double e = static_cast<double>(odd + even) * e0 / a;
+        s += a;
+        sum_d2 += a * (e_odd - e_even) * (e_odd - e_even);
+        sum_e += a * e;
+        sum_e2 += a * e * e;
+    }
+    GlobalEstimate g;
+    if (s <= 0.0) return g;
+    g.odd_even_rms_lx = std::sqrt(sum_d2 / s);
+    g.sigma_lx = 0.5 * g.odd_even_rms_lx;
+    g.mean_arithmetic_lx = sum_e / s;
+    g.mean_quadratic_lx = std::sqrt(sum_e2 / s);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    g.sigma_rel_arithmetic = g.mean_arithmetic_lx > 0.0 ? g.sigma_lx / g.mean_arithmetic_lx : nan;
+    g.sigma_rel_quadratic = g.mean_quadratic_lx > 0.0 ? g.sigma_lx / g.mean_quadratic_lx : nan;
+    return g;
+}
+
+DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const TallyLayout& L,
+                                   std::span<const std::uint64_t> data, double e0,
+                                   std::uint64_t photons, CellRange r) {
+    if (r.i1 == 0) r = {0, det.nx, 0, det.ny};
+    const std::size_t nb = L.bands();
+    const double per_count = e0 * det.value_per_lm();
+    const double inv_n = photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    DetectorEstimate out;
+    out.value.resize(static_cast<std::size_t>(det.cells()) * nb);
+    out.sigma_rel.resize(out.value.size());
+    // eq. (8) for one cell from its n_c and q_c.
+    auto rel = [&](double n, double q) {
+        return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n)) : nan;
+    };
+    for (int c = 0; c < det.cells(); ++c)
+        for (std::size_t b = 0; b < nb; ++b) {
+            const double n = static_cast<double>(data[L.detector_n(di, c, b)]);
+            const double q = static_cast<double>(data[L.detector_q(di, c, b)]);
+            out.value[c * nb + b] = n * per_count;
+            out.sigma_rel[c * nb + b] = rel(n, q);
+        }
+    // Eq. (9) over the range on band-summed cells (a photon has one band, so n and q add).
+    double sum_l = 0.0, sum_l2 = 0.0, sum_s2 = 0.0;
+    const int k = (r.i1 - r.i0) * (r.j1 - r.j0);
+    for (int j = r.j0; j < r.j1; ++j)
+        for (int i = r.i0; i < r.i1; ++i) {
+            const int c = j * det.nx + i;
+            double n = 0.0, q = 0.0;
+            for (std::size_t b = 0; b < nb; ++b) {
+                n += static_cast<double>(data[L.detector_n(di, c, b)]);
+                q += static_cast<double>(data[L.detector_q(di, c, b)]);
+            }
+            const double l = n * per_count;
+            const double sigma_c = n > 0.0 ? rel(n, q) * l : 0.0;
+            sum_l += l;
+            sum_l2 += l * l;
+            sum_s2 += sigma_c * sigma_c;
+            out.registrations += static_cast<std::uint64_t>(n);
+        }
+    out.mean_arithmetic = sum_l / k;
+    out.mean_quadratic = std::sqrt(sum_l2 / k);
+    out.sigma_abs = std::sqrt(sum_s2 / k);
+    out.sigma_rel_arithmetic = out.mean_arithmetic > 0.0 ? out.sigma_abs / out.mean_arithmetic : nan;
+    out.sigma_rel_quadratic = out.mean_quadratic > 0.0 ? out.sigma_abs / out.mean_quadratic : nan;
+    out.photons_received = data[L.detector_received(di)];
+    const double tn = static_cast<double>(data[L.detector_total_n(di)]);
+    const double tq = static_cast<double>(data[L.detector_total_q(di)]);
+    out.mean_value = tn * per_count / det.cells();
+    out.mean_sigma_rel = rel(tn, tq);
+    return out;
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,129 @@
+#include "luxtrace/tracer/tracer.hpp"
+
+#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
+
+#include <algorithm>
+#include <thread>
+
+namespace luxtrace {
+
+PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout)
+    : scene_(scene), embree_(embree), layout_(layout), eps_(scene.ray_epsilon_m()) {
+    for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
+        (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_)
+            .push_back(i);
+    regs_.reserve(64);
+}
+
+void PhotonTracer::check_luminance(const Vec3& p, const Vec3& d, int band) {
+    for (std::uint32_t di : luminance_dets_) {
+        const int cell = scene_.detectors[di].leaving(p, d);
+        if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
+    }
+}
+
+void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
+    sampler.start_photon(k);
+    const LightSet& lights = scene_.lights;
+    const std::size_t li = lights.pick_light(sampler.next());
+    const int band = lights.pick_band(li, sampler.next());
+    const double p1 = sampler.next(), p2 = sampler.next();
+    const double d1 = sampler.next(), d2 = sampler.next();
+    const Light& light = lights.lights()[li];
+    const EmittedRay ray = light.emit(p1, p2, d1, d2);
+    Vec3 o = ray.origin, d = ray.direction;
+    if (ray.emitter_triangle >= 0) {
+        o += eps_ * scene_.triangle_normal[static_cast<std::size_t>(ray.emitter_triangle)];
+        check_luminance(ray.origin, d, band);
+    }
+    // SPEC §3: odd photons feed the odd map.
+    const bool odd = (k & 1u) != 0;
+    const auto count_slot = odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven;
+    const auto direct_slot = odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven;
+    const int max_bounces = scene_.run.max_bounces;
+    TallyLayout::Counter fate = TallyLayout::kTruncated;
+    for (int bounce = 0; bounce < max_bounces; ++bounce) {
+        const Hit hit = embree_.intersect(o, d);
+        const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
+        for (std::uint32_t di : illuminance_dets_) {
+            const int cell = scene_.detectors[di].crossing(o, d, t_max);
+            if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
+        }
+        if (!hit.found) { fate = TallyLayout::kEscaped; break; }
+        const std::size_t tri = hit.triangle;
+        out.add(layout_.surface(tri, band, count_slot), 1);
+        if (bounce == 0) out.add(layout_.surface(tri, band, direct_slot), 1);
+
+        sampler.set_dimension(6 + 3 * static_cast<std::uint32_t>(bounce));
+        const double ue = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
+        const Vec3 p = o + t_max * d;
+        const Vec3& ng = scene_.triangle_normal[tri];
+        const Scattered s = scatter(scene_.materials[scene_.triangle_material[tri]], band, d, ng, ue, u1, u2);
+        if (s.event == ScatterEvent::absorbed) { fate = TallyLayout::kAbsorbed; break; }
+        // Leave the surface on the side the photon goes to.
+        const Vec3 n_in = glm::dot(d, ng) < 0.0 ? ng : -ng;
+        o = p + (s.side * eps_) * n_in;
+        d = s.direction;
+        if (!luminance_dets_.empty()) check_luminance(p, d, band);
+    }
+    out.add(layout_.counter(fate), 1);
+    if (!regs_.empty()) finish_photon(out);
+}
+
+void PhotonTracer::finish_photon(TallyBuffer& out) {
+    // E_i of eq. (6): how many times this photon registered in each cell.
+    std::sort(regs_.begin(), regs_.end(),
+              [](const Registration& a, const Registration& b) { return a.index < b.index; });
+    std::uint32_t last_detector = UINT32_MAX;
+    std::uint64_t in_detector = 0;  // this photon's registrations in last_detector
+    auto close_detector = [&] {
+        if (last_detector == UINT32_MAX) return;
+        out.add(layout_.detector_received(last_detector), 1);
+        out.add(layout_.detector_total_n(last_detector), in_detector);
+        out.add(layout_.detector_total_q(last_detector), in_detector * in_detector);
+    };
+    for (std::size_t i = 0; i < regs_.size();) {
+        std::size_t j = i;
+        while (j < regs_.size() && regs_[j].index == regs_[i].index) ++j;
+        const std::uint64_t e = j - i;
+        out.add(regs_[i].index, e);      // n_c
+        out.add(regs_[i].index + 1, e * e);  // q_c
+        // Detectors occupy disjoint ascending index ranges, so sorted order groups them.
+        if (regs_[i].detector != last_detector) {
+            close_detector();
+            last_detector = regs_[i].detector;
+            in_detector = 0;
+        }
+        in_detector += e;
+        i = j;
+    }
+    close_detector();
+    regs_.clear();
+}
+
+void trace_photons(const Scene& scene, const EmbreeScene& embree, TallyStore& store,
+                   std::uint64_t begin, std::uint64_t end, const TraceOptions& opt,
+                   std::atomic<std::uint64_t>* done) {
+    std::atomic<std::uint64_t> next{begin};
+    auto worker = [&] {
+        PhotonTracer tracer(scene, embree, store.layout());
+        const auto sampler = make_sampler(opt.sampler, opt.seed);
+        TallyBuffer buffer(store);
+        while (true) {
+            const std::uint64_t first = next.fetch_add(opt.chunk);
+            if (first >= end) break;
+            const std::uint64_t last = std::min(end, first + opt.chunk);
+            for (std::uint64_t k = first; k < last; ++k) tracer.trace(k, *sampler, buffer);
+            if (done != nullptr) done->fetch_add(last - first, std::memory_order_relaxed);
+        }
+        buffer.flush();
+    };
+    const int n = std::max(1, opt.threads);
+    std::vector<std::jthread> pool;
+    for (int i = 1; i < n; ++i) pool.emplace_back(worker);
+    worker();
+}
+
+}  // namespace luxtrace

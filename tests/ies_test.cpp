@@ -1,0 +1,341 @@
+// Tests of the IES LM-63 reader (values, symmetry, flux), of IesDistribution sampling
+// (chi-square against intensity_cd) and of the errors for bad files.
+#include "luxtrace/light/ies.hpp"
+
+#include "luxtrace/core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#ifndef LUXTRACE_TEST_DATA_DIR
+#error "define LUXTRACE_TEST_DATA_DIR (the tests/data folder)"
+#endif
+#ifndef LUXTRACE_EXAMPLES_DIR
+#error "define LUXTRACE_EXAMPLES_DIR (the examples folder)"
+#endif
+
+namespace luxtrace {
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+
+std::filesystem::path data(const std::string& name) {
+    return std::filesystem::path(LUXTRACE_TEST_DATA_DIR) / "ies" / name;
+}
+std::filesystem::path office() {
+    return std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies";
+}
+
+double I(const IesPhotometry& p, double g_deg, double c_deg) {
+    return p.intensity_cd(g_deg * kDeg, c_deg * kDeg);
+}
+
+TEST(IesLoad, RotationalWithCommasAndMultipliers) {
+    const IesPhotometry p = load_ies(data("rotational.ies"));
+    EXPECT_EQ(p.vertical_deg, (std::vector<double>{0, 30, 60, 90}));
+    EXPECT_EQ(p.horizontal_deg, (std::vector<double>{0}));
+    ASSERT_EQ(p.candela_cd.size(), 1u);
+    // Raw 100 90 50 0 times multiplier 2.0 times ballast factor 0.9.
+    const std::vector<double> want{180, 162, 90, 0};
+    ASSERT_EQ(p.candela_cd[0].size(), want.size());
+    for (std::size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(p.candela_cd[0][i], want[i], 1e-9);
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Rotational);
+    EXPECT_EQ(p.num_lamps, 1);
+    EXPECT_DOUBLE_EQ(p.lumens_per_lamp, 1000.0);
+    EXPECT_DOUBLE_EQ(p.input_watts, 15.0);
+    ASSERT_FALSE(p.keywords.empty());
+    EXPECT_EQ(p.keywords[0].first, "TEST");
+
+    EXPECT_NEAR(I(p, 30, 0), 162.0, 1e-9);
+    EXPECT_NEAR(I(p, 45, 0), 126.0, 1e-9);  // halfway between 162 and 90
+    for (double c : {0.0, 37.0, 90.0, 200.0, 359.0}) EXPECT_NEAR(I(p, 45, c), 126.0, 1e-9);
+    EXPECT_EQ(I(p, 90.5, 0), 0.0);  // above the last vertical angle
+    EXPECT_EQ(I(p, 150, 10), 0.0);
+}
+
+TEST(IesLoad, QuadrantUnfolds) {
+    const IesPhotometry p = load_ies(data("quadrant.ies"));
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Quadrant);
+    EXPECT_EQ(p.horizontal_deg, (std::vector<double>{0, 45, 90}));
+    ASSERT_EQ(p.candela_cd.size(), 3u);
+    EXPECT_EQ(p.candela_cd[1], (std::vector<double>{1000, 700, 300, 0}));
+    EXPECT_NEAR(I(p, 30, 45), 700.0, 1e-9);
+    EXPECT_NEAR(I(p, 30, 22.5), 750.0, 1e-9);
+    EXPECT_NEAR(I(p, 45, 22.5), 550.0, 1e-9);   // bilinear: mean of 600 and 500
+    EXPECT_NEAR(I(p, 30, 112.5), 650.0, 1e-9);  // folds to 67.5
+    EXPECT_NEAR(I(p, 30, 270), 600.0, 1e-9);    // folds to 90
+    for (double g : {5.0, 33.0, 71.0})
+        for (double c : {3.0, 20.0, 44.0, 61.0, 89.0}) {
+            const double cr = c * kDeg, gr = g * kDeg, ref = p.intensity_cd(gr, cr);
+            EXPECT_NEAR(p.intensity_cd(gr, kPi - cr), ref, 1e-9) << g << " " << c;
+            EXPECT_NEAR(p.intensity_cd(gr, kPi + cr), ref, 1e-9) << g << " " << c;
+            EXPECT_NEAR(p.intensity_cd(gr, 2 * kPi - cr), ref, 1e-9) << g << " " << c;
+        }
+    EXPECT_NE(I(p, 30, 10), I(p, 30, 80));  // not rotationally symmetric
+}
+
+TEST(IesLoad, BilateralUnfolds) {
+    const IesPhotometry p = load_ies(data("bilateral.ies"));
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Bilateral);
+    EXPECT_EQ(p.vertical_deg.back(), 180.0);
+    EXPECT_NEAR(I(p, 45, 180), 300.0, 1e-9);
+    EXPECT_NEAR(I(p, 45, 270), 450.0, 1e-9);  // folds to 90
+    EXPECT_NEAR(I(p, 180, 90), 50.0, 1e-9);
+    EXPECT_NEAR(I(p, 157.5, 0), 150.0, 1e-9);
+    for (double c : {10.0, 80.0, 135.0, 179.0}) {
+        EXPECT_NEAR(I(p, 60, c), I(p, 60, 360 - c), 1e-9) << c;
+        EXPECT_NE(I(p, 60, c), I(p, 60, 180 - c)) << c;  // no 90-270 mirror
+    }
+}
+
+TEST(IesLoad, Bilateral90Unfolds) {
+    const IesPhotometry p = load_ies(data("bilateral90.ies"));
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Bilateral90);
+    EXPECT_NEAR(I(p, 45, 0), 250.0, 1e-9);  // plane 0 is plane 180
+    for (double c : {0.0, 30.0, 80.0})
+        EXPECT_NEAR(I(p, 30, c), I(p, 30, 180 - c), 1e-9) << c;
+    EXPECT_NEAR(I(p, 30, 300), I(p, 30, 240), 1e-9);
+}
+
+TEST(IesLoad, FullCircleAsymmetric) {
+    const IesPhotometry p = load_ies(data("full.ies"));
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Full);
+    ASSERT_EQ(p.vertical_deg.size(), 13u);
+    ASSERT_EQ(p.horizontal_deg.size(), 9u);
+    EXPECT_EQ(p.horizontal_deg.back(), 360.0);
+    EXPECT_NEAR(I(p, 45, 270), p.candela_cd[6][3], 1e-9);
+    EXPECT_NEAR(I(p, 180, 90), p.candela_cd[2][12], 1e-9);
+    EXPECT_NEAR(I(p, 45, 359.9999), I(p, 45, 0), 1e-2);  // continuous across C = 0
+    EXPECT_NEAR(I(p, 45, -90), I(p, 45, 270), 1e-9);    // c is wrapped
+    EXPECT_GT(std::abs(I(p, 45, 90) - I(p, 45, 270)), 50.0);
+}
+
+TEST(IesLoad, OfficeFixture) {
+    const IesPhotometry p = load_ies(office());
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Quadrant);
+    EXPECT_EQ(p.vertical_deg.size(), 19u);
+    EXPECT_EQ(p.num_lamps, 2);
+    EXPECT_NEAR(p.flux_lm(), 3000.0, 30.0);
+    EXPECT_EQ(I(p, 90, 0), 0.0);
+    EXPECT_EQ(I(p, 120, 0), 0.0);
+    bool luminaire = false;
+    for (const auto& [k, v] : p.keywords)
+        if (k == "LUMINAIRE") luminaire = v.find("opal") != std::string::npos;  // [MORE] joined
+    EXPECT_TRUE(luminaire);
+}
+
+TEST(IesFlux, CosineGivesPiI0) {
+    const IesPhotometry p = load_ies(data("cosine.ies"));
+    EXPECT_NEAR(p.flux_lm(), kPi * 1000.0, 0.005 * kPi * 1000.0);
+    EXPECT_NEAR(I(p, 60, 0), 500.0, 0.01);
+}
+
+TEST(IesFlux, ConstantOverSphereGives4PiI0) {
+    const IesPhotometry p = load_ies(data("uniform_sphere.ies"));
+    EXPECT_NEAR(p.flux_lm(), 4 * kPi * 250.0, 1e-9 * 4 * kPi * 250.0);
+    EXPECT_NEAR(I(p, 135, 77), 250.0, 1e-9);
+}
+
+TEST(IesFlux, DistributionMatchesPhotometry) {
+    for (const auto& f : {office(), data("full.ies"), data("quadrant.ies"), data("cosine.ies")}) {
+        const IesPhotometry p = load_ies(f);
+        const IesDistribution d(p);
+        EXPECT_NEAR(d.flux_lm() / p.flux_lm(), 1.0, 1e-3) << f;
+    }
+}
+
+// ---- chi-square test of IesDistribution::sample ------------------------------------
+
+constexpr int kBinsG = 9, kBinsC = 8;
+
+// Upper p-quantile of chi-square with k degrees of freedom (Wilson-Hilferty), z = N(0,1)
+// quantile of p.
+double chi2_quantile(int k, double z) {
+    const double a = 2.0 / (9.0 * k);
+    return k * std::pow(1.0 - a + z * std::sqrt(a), 3);
+}
+
+// Expected probability of each (gamma, c) bin: midpoint rule on a sub-grid that is not
+// aligned with IesDistribution's grid, with exact solid angles of the sub-cells.
+std::vector<double> bin_probabilities(const IesPhotometry& p) {
+    constexpr int kSub = 50;
+    const double dg = kPi / (kBinsG * kSub), dc = 2 * kPi / (kBinsC * kSub);
+    std::vector<double> prob(kBinsG * kBinsC, 0.0);
+    double total = 0.0;
+    for (int i = 0; i < kBinsG * kSub; ++i) {
+        const double solid = (std::cos(i * dg) - std::cos((i + 1) * dg)) * dc;
+        for (int j = 0; j < kBinsC * kSub; ++j) {
+            const double w = p.intensity_cd((i + 0.5) * dg, (j + 0.5) * dc) * solid;
+            prob[(i / kSub) * kBinsC + j / kSub] += w;
+            total += w;
+        }
+    }
+    EXPECT_NEAR(total / p.flux_lm(), 1.0, 1e-3);
+    for (double& q : prob) q /= total;
+    return prob;
+}
+
+struct ChiSquare {
+    double stat = 0.0;
+    int dof = 0;
+    long stray = 0;  // samples in bins of zero expected count
+};
+
+ChiSquare chi_square(const IesDistribution& d, const std::vector<double>& prob, long n,
+                     std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<long> observed(prob.size(), 0);
+    for (long k = 0; k < n; ++k) {
+        const double u1 = u(rng), u2 = u(rng);
+        const Vec3 w = d.sample(u1, u2);
+        EXPECT_NEAR(glm::length(w), 1.0, 1e-12);
+        const double g = std::acos(std::clamp(w.z, -1.0, 1.0));
+        double c = std::atan2(w.y, w.x);
+        if (c < 0) c += 2 * kPi;
+        const int bg = std::min(kBinsG - 1, static_cast<int>(g / kPi * kBinsG));
+        const int bc = std::min(kBinsC - 1, static_cast<int>(c / (2 * kPi) * kBinsC));
+        ++observed[bg * kBinsC + bc];
+    }
+    // Bins expecting fewer than 5 samples are pooled so the chi-square law holds.
+    ChiSquare r;
+    double pool_exp = 0.0;
+    long pool_obs = 0;
+    int bins = 0;
+    for (std::size_t b = 0; b < prob.size(); ++b) {
+        const double e = prob[b] * n;
+        if (e == 0.0) {
+            r.stray += observed[b];
+        } else if (e < 5.0) {
+            pool_exp += e;
+            pool_obs += observed[b];
+        } else {
+            r.stat += (observed[b] - e) * (observed[b] - e) / e;
+            ++bins;
+        }
+    }
+    if (pool_exp > 0.0) {
+        r.stat += (pool_obs - pool_exp) * (pool_obs - pool_exp) / pool_exp;
+        ++bins;
+    }
+    r.dof = bins - 1;
+    return r;
+}
+
+constexpr long kSamples = 200000;
+constexpr double kZ999 = 3.090232306167813;  // N(0,1) quantile of 0.999
+
+void expect_passes(const std::filesystem::path& f, std::uint64_t seed) {
+    const IesPhotometry p = load_ies(f);
+    const IesDistribution d(p);
+    const ChiSquare r = chi_square(d, bin_probabilities(p), kSamples, seed);
+    const double limit = chi2_quantile(r.dof, kZ999);
+    std::printf("  chi-square %s: %.2f with %d dof (0.999 quantile %.2f)\n",
+                f.filename().string().c_str(), r.stat, r.dof, limit);
+    EXPECT_EQ(r.stray, 0);
+    EXPECT_GT(r.dof, 20);
+    EXPECT_LT(r.stat, limit) << f;
+}
+
+TEST(IesSample, ChiSquareOfficeFixture) { expect_passes(office(), 0x1E5u); }
+TEST(IesSample, ChiSquareAsymmetricFull) { expect_passes(data("full.ies"), 42u); }
+
+// The same statistic must notice small errors: the office fixture's vertical angles
+// stretched by 2% (about a 1 degree shift at the peak), and the full file mirrored in c
+// (I(g, c) -> I(g, 360 - c), i.e. local +y taken as C = 270 instead of C = 90).
+TEST(IesSample, ChiSquareRejectsWrongDistributions) {
+    const IesPhotometry p = load_ies(office());
+    IesPhotometry stretched = p;
+    for (double& v : stretched.vertical_deg) v *= 1.02;
+    const ChiSquare r1 = chi_square(IesDistribution(p), bin_probabilities(stretched), kSamples, 7u);
+    std::printf("  chi-square stretched: %.2f with %d dof\n", r1.stat, r1.dof);
+    EXPECT_GT(r1.stat, chi2_quantile(r1.dof, kZ999));
+
+    const IesPhotometry f = load_ies(data("full.ies"));
+    IesPhotometry mirrored = f;
+    std::reverse(mirrored.candela_cd.begin(), mirrored.candela_cd.end());  // planes 0..360 evenly
+    const ChiSquare r2 = chi_square(IesDistribution(f), bin_probabilities(mirrored), kSamples, 8u);
+    std::printf("  chi-square mirrored: %.2f with %d dof\n", r2.stat, r2.dof);
+    EXPECT_GT(r2.stat, chi2_quantile(r2.dof, kZ999));
+}
+
+TEST(IesSample, OfficeEmitsOnlyDownward) {
+    const IesDistribution d(load_ies(office()));
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 0; k < 20000; ++k) EXPECT_GE(d.sample(u(rng), u(rng)).z, 0.0);
+    EXPECT_GE(d.sample(0.0, 0.0).z, 0.0);
+    EXPECT_GE(d.sample(1.0, 1.0).z, 0.0);  // out-of-range uniforms are clamped
+}
+
+TEST(IesSample, WiderUniformsAreUnitVectors) {
+    const IesDistribution d(load_ies(data("uniform_sphere.ies")), 90, 45);
+    for (double u1 : {0.0, 0.25, 0.5, 0.999999})
+        for (double u2 : {0.0, 0.5, 0.999999})
+            EXPECT_NEAR(glm::length(d.sample(u1, u2)), 1.0, 1e-12);
+    EXPECT_NEAR(d.sample(0.5, 0.0).z, 0.0, 1e-12);  // median of uniform cos(gamma) is 0
+}
+
+// ---- bad input -----------------------------------------------------------------------
+
+struct BadFile {
+    const char* name;
+    int line;
+    const char* what;  // a phrase the message must contain
+};
+
+class IesBadInput : public testing::TestWithParam<BadFile> {};
+
+TEST_P(IesBadInput, ThrowsWithFileAndLine) {
+    const BadFile& b = GetParam();
+    const std::filesystem::path f = data(b.name);
+    ASSERT_TRUE(std::filesystem::exists(f)) << f;
+    try {
+        load_ies(f);
+        FAIL() << "no InputError for " << b.name;
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(std::string(b.name) + ":" + std::to_string(b.line) + ": "),
+                  std::string::npos) << msg;
+        EXPECT_NE(msg.find(b.what), std::string::npos) << msg;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, IesBadInput,
+    testing::Values(BadFile{"bad_truncated.ies", 6, "unexpected end of file"},
+                    BadFile{"bad_nonnumeric.ies", 9, "found '7O0'"},
+                    BadFile{"bad_count_short.ies", 10, "expected 12 candela values"},
+                    BadFile{"bad_count_extra.ies", 9, "expected 6 candela values"},
+                    BadFile{"bad_decreasing.ies", 7, "vertical angles must increase"},
+                    BadFile{"bad_negative.ies", 8, "negative candela value -4"},
+                    BadFile{"bad_tilt_include.ies", 4, "TILT=INCLUDE is not supported"},
+                    BadFile{"bad_tilt_missing.ies", 3, "TILT file 'no_such_tilt.dat' not found"},
+                    BadFile{"bad_type_b.ies", 4, "type B photometry"},
+                    BadFile{"bad_type_a.ies", 5, "type A photometry"},
+                    BadFile{"bad_no_tilt.ies", 7, "no TILT= line"},
+                    BadFile{"bad_horizontal_range.ies", 7, "found 0-120"}),
+    [](const testing::TestParamInfo<BadFile>& param_info) {
+        const std::string n = param_info.param.name;
+        return n.substr(4, n.size() - 8);  // "bad_xxx.ies" -> "xxx"
+    });
+
+TEST(IesBadInputMissing, NamesTheFile) {
+    try {
+        load_ies(data("does_not_exist.ies"));
+        FAIL() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("does_not_exist.ies"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace luxtrace

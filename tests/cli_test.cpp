@@ -1,0 +1,164 @@
+// The command line as a user meets it: exit codes, messages, nothing written on bad
+// input, `check` and `info` summaries, count forms.
+#include "luxtrace/io/result_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+    int code;
+    std::string out;
+};
+
+Outcome run(const std::string& args) {
+    const fs::path log = fs::temp_directory_path() / ("luxtrace_cli_" + std::to_string(::getpid()) + ".log");
+    const std::string cmd = std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    fs::remove(log);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("luxtrace_cli_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return dir / name;
+    }
+    fs::path dir;
+};
+
+const char* kSmallScene = R"(
+[[material]]
+name = "grey"
+reflectance = 0.5
+[[shape]]
+type = "box"
+center = [0, 0, 1]
+size = [2, 2, 2]
+inward = true
+material = "grey"
+[[light]]
+type = "point"
+position = [0, 0, 1]
+flux_lm = 100
+[[detector]]
+name = "floor"
+center = [0, 0, 0]
+size = [2, 2]
+cells = [4, 4]
+)";
+
+}  // namespace
+
+TEST_F(Cli, BadInputExitsTwoNamesFileAndLineAndWritesNothing) {
+    const fs::path scene = write("bad.toml", std::string(kSmallScene) + "[run]\nphotons = 100\nspeed = 3\n");
+    const fs::path out = dir / "result.h5";
+    std::ofstream(out) << "precious";
+    const Outcome o = run("run " + scene.string() + " --output " + out.string() + " --quiet");
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("bad.toml:"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("speed"), std::string::npos) << o.out;
+    std::ifstream in(out);
+    std::string content;
+    in >> content;
+    EXPECT_EQ(content, "precious") << "bad input must not overwrite the output";
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().extension() == ".h5" && e.path() != out, false) << e.path();
+}
+
+TEST_F(Cli, BadCountAndMissingOutputDirectoryExitTwo) {
+    const fs::path scene = write("s.toml", kSmallScene);
+    Outcome o = run("run " + scene.string() + " --photons 12X --quiet --output " + (dir / "r.h5").string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("--photons"), std::string::npos) << o.out;
+    o = run("run " + scene.string() + " --photons 1k --quiet --output " + (dir / "no/such/dir/r.h5").string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_FALSE(fs::exists(dir / "no"));
+    o = run("run " + (dir / "missing.toml").string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("missing.toml"), std::string::npos) << o.out;
+    o = run("run");
+    EXPECT_EQ(o.code, 2);
+}
+
+TEST_F(Cli, RunAcceptsCountFormsAndInfoReportsThem) {
+    const fs::path scene = write("s.toml", kSmallScene);
+    const fs::path out = dir / "r.h5";
+    const Outcome o = run("run " + scene.string() + " --photons 20k --seed 5 --threads 2 --output " + out.string());
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find(fs::absolute(out).string()), std::string::npos) << "the run names its result file";
+    const luxtrace::ResultReader r(out);
+    EXPECT_EQ(r.attr_u64("/", "photons"), 20000u);
+    EXPECT_EQ(r.attr_u64("/", "seed"), 5u);
+    EXPECT_EQ(r.attr_str("/", "format"), "luxtrace-result");
+    const Outcome info = run("info " + out.string());
+    EXPECT_EQ(info.code, 0);
+    EXPECT_NE(info.out.find("20000"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("floor"), std::string::npos) << info.out;
+    // No temporary file is left beside the result.
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(Cli, CheckSummarisesAndWarnsAboutALightInABlackBox) {
+    const fs::path scene = write("boxed.toml", R"(
+[[material]]
+name = "black"
+type = "black"
+[[material]]
+name = "white"
+reflectance = 0.8
+[[shape]]
+type = "box"
+center = [0, 0, 1.5]
+size = [6, 6, 3]
+inward = true
+material = "white"
+[[shape]]
+type = "box"
+center = [0, 0, 2]
+size = [0.3, 0.3, 0.3]
+material = "black"
+[[light]]
+type = "point"
+position = [0, 0, 2]
+flux_lm = 1000
+[[light]]
+type = "spot"
+position = [1, 1, 2]
+direction = [0, 0, -1]
+half_angle_deg = 30
+flux_lm = 250
+)");
+    const Outcome o = run("check " + scene.string());
+    EXPECT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("1250 lm"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("triangles"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("light 1 (point): every probe ray hits a black surface"), std::string::npos) << o.out;
+    EXPECT_EQ(o.out.find("light 2 (spot): every probe ray"), std::string::npos) << o.out;
+}
+
+TEST_F(Cli, InfoRejectsWhatIsNotAResult) {
+    const fs::path f = write("x.h5", "not hdf5");
+    const Outcome o = run("info " + f.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("x.h5"), std::string::npos) << o.out;
+}

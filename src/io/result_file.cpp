@@ -6,6 +6,8 @@
 #include <hdf5.h>
 
 #include <stdexcept>
+#include <cmath>
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace luxtrace {
@@ -196,8 +198,22 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
     }
 }
 
-void write_history(hid_t file, const std::vector<HistoryRow>& history) {
+void write_history(hid_t file, const std::vector<HistoryRow>& history, const RunInfo& info) {
     H5Id h(group(file, "history"), H5Gclose, "group /history");
+    // Per-target columns: [rows, targets].
+    const std::size_t nt = info.target_labels.size();
+    std::vector<double> tv, tf;
+    for (const HistoryRow& r : history)
+        for (std::size_t i = 0; i < nt; ++i) {
+            tv.push_back(i < r.target_value.size() ? r.target_value[i] : std::nan(""));
+            tf.push_back(i < r.target_forecast_s.size() ? r.target_forecast_s[i] : std::nan(""));
+        }
+    if (nt > 0) {
+        dataset(h, "target_value", {history.size(), nt}, tv.data());
+        dataset(h, "target_forecast_s", {history.size(), nt}, tf.data());
+        attr_strings(h, "target_labels", info.target_labels, false);
+        attr(h, "target_goals", info.target_goals);
+    }
     std::vector<double> t, s, f;
     std::vector<std::uint64_t> p;
     for (const HistoryRow& r : history) {
@@ -218,7 +234,7 @@ void write_history(hid_t file, const std::vector<HistoryRow>& history) {
 void write_result(const fs::path& path, const Scene& scene, const TallyLayout& layout,
                   const std::vector<std::uint64_t>& tallies, const RunInfo& info,
                   const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
-                  const std::vector<HistoryRow>& history) {
+                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint) {
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     // Hidden temporary name beside the target, so the rename stays within one file system.
     std::string tmp_name = path.filename().string();
@@ -228,7 +244,7 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
     try {
         H5Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                   "create " + tmp.string());
-        attr(file, "format", "luxtrace-result");
+        attr(file, "format", checkpoint != nullptr ? "luxtrace-checkpoint" : "luxtrace-result");
         attr(file, "format_version", std::uint64_t{1});
         attr(file, "luxtrace_version", info.luxtrace_version);
         attr(file, "scene_file", info.scene_file);
@@ -245,14 +261,34 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "sampler", info.sampler);
         write_surface(file, scene, layout, tallies, info, global);
         write_detectors(file, scene, layout, tallies, detectors);
-        write_history(file, history);
+        write_history(file, history, info);
+        if (checkpoint != nullptr) {
+            H5Id ck(group(file, "checkpoint"), H5Gclose, "group /checkpoint");
+            dataset(ck, "tallies", {checkpoint->tallies.size()}, checkpoint->tallies.data());
+            dataset(ck, "done_ranges", {checkpoint->done.size() / 2, 2}, checkpoint->done.data());
+            attr(ck, "budget", checkpoint->budget);
+            attr(ck, "layout_size", static_cast<std::uint64_t>(layout.size()));
+            attr(ck, "triangles", static_cast<std::uint64_t>(layout.triangles()));
+            attr(ck, "bands", static_cast<std::uint64_t>(layout.bands()));
+        }
         check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
     } catch (...) {
         std::error_code ec;
         fs::remove(tmp, ec);
         throw;
     }
+    // Data on disk before the rename: a crash leaves either the old file or the new one.
+    const int fd = ::open(tmp.c_str(), O_RDONLY);
+    if (fd >= 0) {
+        ::fsync(fd);
+        ::close(fd);
+    }
     fs::rename(tmp, path);
+    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
 }
 
 }  // namespace luxtrace

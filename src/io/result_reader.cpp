@@ -128,3 +128,50 @@ std::vector<std::string> ResultReader::children(const std::string& group) const 
 }
 
 }  // namespace luxtrace
+
+namespace luxtrace {
+
+CheckpointState read_checkpoint(const std::filesystem::path& path) {
+    const ResultReader r(path);
+    const std::string where = path.string() + ": ";
+    if (r.attr_str("/", "format") != "luxtrace-checkpoint" || !r.has("/checkpoint"))
+        throw InputError(where + "not a luxtrace checkpoint (it is a result file; restart needs a checkpoint)");
+    CheckpointState s;
+    try {
+        s.tallies = r.u64("/checkpoint/tallies");
+        s.done = r.u64("/checkpoint/done_ranges");
+        s.budget = r.attr_u64("/checkpoint", "budget");
+        s.layout_size = r.attr_u64("/checkpoint", "layout_size");
+        s.triangles = r.attr_u64("/checkpoint", "triangles");
+        s.bands = r.attr_u64("/checkpoint", "bands");
+        s.seed = r.attr_u64("/", "seed");
+        s.sampler = r.attr_str("/", "sampler");
+        s.elapsed_s = r.attr_f64("/", "elapsed_s");
+        const auto t = r.f64("/history/time_s");
+        const auto p = r.u64("/history/photons");
+        const auto g = r.f64("/history/sigma_rel_global");
+        const auto f = r.f64("/history/forecast_s");
+        std::vector<std::size_t> shape;
+        std::vector<double> tv, tf;
+        if (r.has("/history/target_value")) {
+            tv = r.f64("/history/target_value", &shape);
+            tf = r.f64("/history/target_forecast_s");
+        }
+        const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            HistoryRow row{t[i], p[i], g[i], f[i], {}, {}};
+            for (std::size_t j = 0; j < nt; ++j) {
+                row.target_value.push_back(tv[i * nt + j]);
+                row.target_forecast_s.push_back(tf[i * nt + j]);
+            }
+            s.history.push_back(std::move(row));
+        }
+    } catch (const std::runtime_error& e) {
+        throw InputError(where + "damaged checkpoint: " + e.what());
+    }
+    if (s.tallies.size() != s.layout_size || s.done.size() % 2 != 0)
+        throw InputError(where + "damaged checkpoint: inconsistent sizes");
+    return s;
+}
+
+}  // namespace luxtrace

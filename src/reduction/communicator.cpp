@@ -35,6 +35,55 @@ void Communicator::reduce_sum_to_root(std::vector<std::uint64_t>& data) const {
     }
 }
 
+struct PendingReduce::Impl {
+    std::vector<MPI_Request> requests;
+};
+
+PendingReduce::PendingReduce(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PendingReduce::~PendingReduce() {
+    if (impl_) wait();
+}
+PendingReduce::PendingReduce(PendingReduce&&) noexcept = default;
+PendingReduce& PendingReduce::operator=(PendingReduce&&) noexcept = default;
+
+bool PendingReduce::test() {
+    if (impl_->requests.empty()) return true;
+    int done = 0;
+    MPI_Testall(static_cast<int>(impl_->requests.size()), impl_->requests.data(), &done, MPI_STATUSES_IGNORE);
+    if (done != 0) impl_->requests.clear();
+    return done != 0;
+}
+
+void PendingReduce::wait() {
+    if (impl_->requests.empty()) return;
+    MPI_Waitall(static_cast<int>(impl_->requests.size()), impl_->requests.data(), MPI_STATUSES_IGNORE);
+    impl_->requests.clear();
+}
+
+PendingReduce Communicator::ireduce_sum_to_root(const std::vector<std::uint64_t>& send,
+                                                std::vector<std::uint64_t>& recv) const {
+    auto impl = std::make_unique<PendingReduce::Impl>();
+    if (rank_ == 0) recv.assign(send.size(), 0);
+    if (size_ == 1) {
+        recv = send;
+        return PendingReduce(std::move(impl));
+    }
+    constexpr std::size_t kPiece = std::size_t{1} << 28;
+    for (std::size_t off = 0; off < send.size(); off += kPiece) {
+        const int n = static_cast<int>(std::min(kPiece, send.size() - off));
+        MPI_Request r;
+        MPI_Ireduce(send.data() + off, rank_ == 0 ? recv.data() + off : nullptr, n, MPI_UINT64_T, MPI_SUM, 0,
+                    MPI_COMM_WORLD, &r);
+        impl->requests.push_back(r);
+    }
+    return PendingReduce(std::move(impl));
+}
+
+void Communicator::broadcast(std::vector<double>& values) const {
+    if (size_ == 1) return;
+    MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
 std::uint64_t Communicator::allreduce_max(std::uint64_t v) const {
     std::uint64_t out = v;
     MPI_Allreduce(&v, &out, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);

@@ -1,6 +1,10 @@
 #include "luxtrace/run/simulation.hpp"
 
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/run_control.hpp"
+#include "luxtrace/run/work_plan.hpp"
+#include "luxtrace/run/worker_pool.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
@@ -9,7 +13,10 @@
 #include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -29,88 +36,177 @@ int available_cores() {
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
-namespace {
-
-// Progress for people: one line refreshed in place on a terminal, plain lines in a log.
-void report_progress(std::ostream& out, bool tty, double t, std::uint64_t done, std::uint64_t total) {
-    const double rate = t > 0.0 ? static_cast<double>(done) / t : 0.0;
-    char line[160];
-    std::snprintf(line, sizeof line, "  %7.1f s  %14llu / %llu photons (%5.1f%%)  %.3g photons/s", t,
-                  static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
-                  100.0 * static_cast<double>(done) / static_cast<double>(total), rate);
-    if (tty) out << '\r' << line << std::flush;
-    else out << line << '\n' << std::flush;
-}
-
-}  // namespace
 
 RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out) {
     const RunConfig& run = scene.run;
     const int threads = opt.threads > 0 ? opt.threads : available_cores();
     const double t0 = comm.wtime();
-    EmbreeScene embree(scene);
-    TallyStore store{TallyLayout(scene)};
+    const TallyLayout layout(scene);
+    TallyStore store(layout);
+    const int R = comm.size();
 
-    // Fixed budget: rank r traces photon indices [N r / R, N (r+1) / R). Which rank traces
-    // a photon does not matter for the tallies: its random numbers depend on k only.
-    const std::uint64_t n = run.photons;
-    const auto share = [&](int r) {
-        // floor(n r / R) without overflow: n = q R + rem.
-        const auto ranks = static_cast<std::uint64_t>(comm.size()), rr = static_cast<std::uint64_t>(r);
-        return (n / ranks) * rr + (n % ranks) * rr / ranks;
-    };
+    // Continue a checkpoint: its counts enter once (on rank 0), its traced ranges are skipped.
+    std::vector<PhotonRange> done_before;
+    std::vector<HistoryRow> history_before;
+    double elapsed_before = 0.0;
+    if (!opt.restart.empty()) {
+        const CheckpointState ck = read_checkpoint(opt.restart);
+        if (ck.layout_size != layout.size() || ck.triangles != layout.triangles() || ck.bands != layout.bands())
+            throw InputError(opt.restart + ": the checkpoint was made for another scene (" +
+                             std::to_string(ck.triangles) + " triangles, " + std::to_string(ck.bands) +
+                             " bands; this scene has " + std::to_string(layout.triangles()) + " and " +
+                             std::to_string(layout.bands()) + ")");
+        if (ck.seed != run.seed || ck.sampler != run.sampler)
+            throw InputError(opt.restart + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " +
+                             ck.sampler + "; restart with the same (drop --seed/--sampler)");
+        if (comm.is_root()) store.data() = ck.tallies;
+        for (std::size_t i = 0; i + 1 < ck.done.size(); i += 2) done_before.push_back({ck.done[i], ck.done[i + 1]});
+        history_before = ck.history;
+        elapsed_before = ck.elapsed_s;
+    }
+    // Items of at most 1M photons, at least 8 per rank when the budget is small.
+    const std::uint64_t block = std::clamp<std::uint64_t>(run.photons / (8 * static_cast<std::uint64_t>(R)) + 1,
+                                                          std::uint64_t{4096}, std::uint64_t{1} << 20);
+    const WorkPlan plan(done_before, run.photons, block, R);
+    const std::uint64_t photons_before = plan.previously_done_count();
+    RankWork work(plan, comm.rank());
+    EmbreeScene embree(scene);
+
     TraceOptions topt;
     topt.seed = run.seed;
     topt.sampler = run.sampler;
     topt.threads = threads;
-    std::atomic<std::uint64_t> done{0};
-    const bool show = comm.is_root() && !opt.quiet && run.report_every_s > 0.0;
-    const bool tty = show && ::isatty(STDOUT_FILENO) != 0;
-    {
-        std::jthread tracing([&] {
-            trace_photons(scene, embree, store, share(comm.rank()), share(comm.rank() + 1), topt, &done);
-        });
-        if (show) {
-            const std::uint64_t mine = share(1) - share(0);
-            auto next_report = std::chrono::steady_clock::now() + std::chrono::duration<double>(run.report_every_s);
-            while (done.load() < mine) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
-                if (std::chrono::steady_clock::now() >= next_report) {
-                    // Rank 0 sees only its own progress; the others trace as many.
-                    report_progress(out, tty, comm.wtime() - t0, done.load() * comm.size(), n);
-                    next_report += std::chrono::duration<double>(run.report_every_s);
-                }
-            }
-            if (tty) out << '\n';
-        }
-    }
-    comm.reduce_sum_to_root(store.data());
-    const double elapsed = comm.allreduce_max(comm.wtime() - t0);
+    topt.chunk = 256;  // pause latency: a thread finishes its chunk before parking
+
+    // The reduced message: the tallies, then per-rank progress and control flags.
+    const std::size_t S = layout.size();
+    const std::size_t kSignal = S + 2 * R, kIdle = kSignal + 1;
+    std::vector<std::uint64_t> snapshot(S + 2 * R + 2, 0), reduced;
+    std::optional<RunController> control;
+    if (comm.is_root()) control.emplace(scene, layout, history_before, elapsed_before, photons_before);
+    const bool show = comm.is_root() && !opt.quiet;
+    const std::string checkpoint_path =
+        run.checkpoint.empty() ? run.output + ".checkpoint.h5" : run.checkpoint;
 
     RunSummary summary;
     summary.output = run.output;
-    summary.photons = n;
-    summary.elapsed_s = elapsed;
-    if (!comm.is_root()) return summary;
-
-    const double e0 = scene.lights.total_flux_lm() / static_cast<double>(n);
-    const std::span<const std::uint64_t> data(store.data());
-    summary.global = estimate_global(store.layout(), data, scene.triangle_area_m2, e0);
-    for (std::size_t d = 0; d < scene.detectors.size(); ++d)
-        summary.detectors.push_back(estimate_detector(scene.detectors[d], d, store.layout(), data, e0, n));
     RunInfo info;
     info.luxtrace_version = LUXTRACE_VERSION;
     info.scene_file = std::filesystem::absolute(scene.file).string();
     info.seed = run.seed;
-    info.ranks = comm.size();
+    info.ranks = R;
     info.threads_per_rank = threads;
-    info.photons = n;
-    info.flux_per_photon_lm = e0;
-    info.elapsed_s = elapsed;
-    info.stop_reason = "photons";
     info.sampler = run.sampler;
-    const std::vector<HistoryRow> history{{elapsed, n, summary.global.sigma_rel_quadratic, 0.0}};
-    write_result(run.output, scene, store.layout(), store.data(), info, summary.global, summary.detectors, history);
+
+    // Root: the done ranges and photon count described by a reduced message.
+    auto done_ranges_of = [&](const std::vector<std::uint64_t>& msg) {
+        std::vector<RankProgress> progress(static_cast<std::size_t>(R));
+        for (int r = 0; r < R; ++r) progress[r] = {msg[S + 2 * r], msg[S + 2 * r + 1]};
+        return plan.done_ranges(progress);
+    };
+    auto write = [&](const std::string& path, const std::vector<std::uint64_t>& msg, double elapsed,
+                     const std::string& reason, bool as_checkpoint) {
+        const std::vector<PhotonRange> done = done_ranges_of(msg);
+        const std::uint64_t n = count_photons(done);
+        const std::vector<std::uint64_t> tallies(msg.begin(), msg.begin() + static_cast<std::ptrdiff_t>(S));
+        const double e0 = n > 0 ? scene.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
+        const GlobalEstimate g = estimate_global(layout, tallies, scene.triangle_area_m2, e0);
+        std::vector<DetectorEstimate> dets;
+        for (std::size_t d = 0; d < scene.detectors.size(); ++d)
+            dets.push_back(estimate_detector(scene.detectors[d], d, layout, tallies, e0, n));
+        RunInfo i = info;
+        i.photons = n;
+        i.flux_per_photon_lm = e0;
+        i.elapsed_s = elapsed_before + elapsed;
+        i.stop_reason = reason;
+        control->fill_run_info(i);
+        CheckpointData ck;
+        if (as_checkpoint) {
+            ck.tallies = tallies;
+            for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
+            ck.budget = run.photons;
+        }
+        write_result(path, scene, layout, tallies, i, g, dets, control->history(), as_checkpoint ? &ck : nullptr);
+        summary.photons = n;
+        summary.global = g;
+        summary.detectors = dets;
+    };
+
+    WorkerPool pool(scene, embree, store, work, topt);
+    auto take_snapshot = [&] {
+        // Threads park at chunk boundaries with their buffers flushed: the copy holds
+        // exactly the photons handed out so far.
+        pool.pause();
+        std::copy(store.data().begin(), store.data().end(), snapshot.begin());
+        const RankProgress p = work.progress();
+        pool.resume();
+        std::fill(snapshot.begin() + static_cast<std::ptrdiff_t>(S), snapshot.end(), 0);
+        snapshot[S + 2 * comm.rank()] = p.items_done;
+        snapshot[S + 2 * comm.rank() + 1] = p.prefix;
+        snapshot[kSignal] = opt.signal != nullptr && opt.signal->load() != 0 ? 1 : 0;
+        snapshot[kIdle] = pool.exhausted() ? 1 : 0;
+    };
+
+    double period = std::clamp(run.report_every_s > 0.0 ? run.report_every_s : 2.0, 0.05, 60.0);
+    double stall_s = 0.0, write_s = 0.0;
+    std::vector<double> decision(4, 0.0);
+    while (true) {
+        const double due = comm.wtime() + period;
+        while (comm.wtime() < due && !pool.exhausted() && !(opt.signal != nullptr && opt.signal->load() != 0))
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        const double s0 = comm.wtime();
+        take_snapshot();
+        stall_s = comm.wtime() - s0;
+        PendingReduce pending = comm.ireduce_sum_to_root(snapshot, reduced);
+        while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+        if (comm.is_root()) {
+            ReductionInput in;
+            in.tallies = std::span<const std::uint64_t>(reduced.data(), S);
+            in.photons = count_photons(done_ranges_of(reduced));
+            in.elapsed_s = comm.wtime() - t0;
+            in.all_ranks_idle = reduced[kIdle] == static_cast<std::uint64_t>(R);
+            in.signalled = reduced[kSignal] > 0;
+            in.stall_s = stall_s;
+            in.write_s = write_s;
+            const Decision d = control->after_reduction(in);
+            if (show) {
+                const bool tty = ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr;
+                out << (tty ? "\r" : "") << control->progress_line() << (tty ? "\033[K" : "\n") << std::flush;
+            }
+            decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code), d.next_period_s};
+            summary.stop_reason = d.reason;
+            // A periodic checkpoint comes from this exact snapshot; a final one (exit 3)
+            // from the final reduction below, which holds more photons.
+            if (d.checkpoint && !d.stop) {
+                const double w0 = comm.wtime();
+                write(checkpoint_path, reduced, in.elapsed_s, "checkpoint", true);
+                write_s = comm.wtime() - w0;
+            }
+        }
+        comm.broadcast(decision);
+        period = decision[3];
+        if (decision[0] != 0.0) break;
+    }
+    if (show && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr) out << '\n';
+    // Final exact reduction: the threads finish their chunks and flush.
+    pool.stop();
+    std::fill(snapshot.begin(), snapshot.end(), 0);
+    std::copy(store.data().begin(), store.data().end(), snapshot.begin());
+    const RankProgress p = work.progress();
+    snapshot[S + 2 * comm.rank()] = p.items_done;
+    snapshot[S + 2 * comm.rank() + 1] = p.prefix;
+    comm.ireduce_sum_to_root(snapshot, reduced).wait();
+    const double elapsed = comm.allreduce_max(comm.wtime() - t0);
+    summary.elapsed_s = elapsed_before + elapsed;
+    summary.exit_code = static_cast<int>(decision[2]);
+    std::vector<double> reason_code{0.0};
+    if (comm.is_root()) {
+        write(run.output, reduced, elapsed, summary.stop_reason, false);
+        if (summary.exit_code == 3 || decision[1] != 0.0) {
+            write(checkpoint_path, reduced, elapsed, summary.stop_reason, true);
+            summary.checkpoint = checkpoint_path;
+        }
+    }
     return summary;
 }
 

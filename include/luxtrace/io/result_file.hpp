@@ -18,7 +18,9 @@ struct HistoryRow {
     double time_s = 0.0;
     std::uint64_t photons = 0;
     double sigma_rel_global = 0.0;
-    double forecast_s = 0.0;
+    double forecast_s = 0.0;                // of the first target; NaN if none
+    std::vector<double> target_value;       // per target: its error or count
+    std::vector<double> target_forecast_s;  // per target: forecast wall time to meet it
 };
 
 struct RunInfo {
@@ -32,13 +34,36 @@ struct RunInfo {
     double elapsed_s = 0.0;
     std::string stop_reason;
     std::string sampler;
+    std::vector<std::string> target_labels;
+    std::vector<double> target_goals;
+};
+
+// What a checkpoint adds to a result: the rank-independent state needed to continue.
+struct CheckpointData {
+    std::vector<std::uint64_t> tallies;  // the whole flat tally array (TallyLayout order)
+    std::vector<std::uint64_t> done;     // traced photon ranges, flattened [begin, end) pairs
+    std::uint64_t budget = 0;            // photon budget of the run
+};
+
+struct CheckpointState {
+    std::vector<std::uint64_t> tallies;
+    std::vector<std::uint64_t> done;
+    std::uint64_t budget = 0;
+    std::uint64_t seed = 0;
+    std::string sampler;
+    double elapsed_s = 0.0;
+    std::uint64_t layout_size = 0, triangles = 0, bands = 0;
+    std::vector<HistoryRow> history;
 };
 
 // Writes `path` atomically (a temporary file in the same directory, then rename).
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
                   const std::vector<std::uint64_t>& tallies, const RunInfo& info,
                   const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
-                  const std::vector<HistoryRow>& history);
+                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);
+
+// Reads a checkpoint written by write_result with CheckpointData; throws InputError.
+CheckpointState read_checkpoint(const std::filesystem::path& path);
 
 // Reading back, for `luxtrace info` and for tests.
 class ResultReader {

@@ -1,10 +1,27 @@
 #pragma once
 // The only door to MPI. Everything here moves plain arrays; no physics type appears.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace luxtrace {
+
+// A sum-reduction in flight (MPI requests); the buffers must outlive it.
+class PendingReduce {
+public:
+    struct Impl;
+    explicit PendingReduce(std::unique_ptr<Impl> impl);
+    ~PendingReduce();
+    PendingReduce(PendingReduce&&) noexcept;
+    PendingReduce& operator=(PendingReduce&&) noexcept;
+    // True once complete (then the root's receive buffer holds the sums).
+    bool test();
+    void wait();
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
 
 class Communicator {
 public:
@@ -20,6 +37,12 @@ public:
 
     // Element-wise sum of `data` over all ranks into rank 0's `data` (exact: integers).
     void reduce_sum_to_root(std::vector<std::uint64_t>& data) const;
+    // Non-blocking: `recv` (rank 0 only, resized there) receives the element-wise sum of
+    // every rank's `send`, which must stay untouched until the reduction completes.
+    PendingReduce ireduce_sum_to_root(const std::vector<std::uint64_t>& send,
+                                      std::vector<std::uint64_t>& recv) const;
+    // Rank 0's values to every rank (same length everywhere).
+    void broadcast(std::vector<double>& values) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;
     double allreduce_max(double v) const;
     int broadcast(int v) const;

@@ -3,6 +3,7 @@
 // reduce the tallies to rank 0, estimate the errors and write the result file.
 #include "luxtrace/io/result_file.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
@@ -16,9 +17,15 @@ class Communicator;
 struct RunOptions {
     int threads = 0;     // per rank; 0 = every core this process may run on
     bool quiet = false;
+    std::string restart;                 // checkpoint to continue from
+    // Set (to the signal number) by the CLI's SIGTERM/SIGUSR1 handler: checkpoint and stop.
+    const std::atomic<int>* signal = nullptr;
 };
 
 struct RunSummary {
+    int exit_code = 0;   // 0 finished, 3 stopped early after writing a checkpoint
+    std::string stop_reason;
+    std::string checkpoint;  // written checkpoint, if any
     std::string output;
     std::uint64_t photons = 0;
     double elapsed_s = 0.0;

@@ -1,0 +1,32 @@
+#pragma once
+// Forecast of the photons and wall time a target needs (eqs. 10-11): statistical errors
+// fall as 1/sqrt(N), counts of received photons grow as N. Pure functions of the
+// reduced history.
+#include <vector>
+
+namespace luxtrace {
+
+struct HistoryPoint {
+    double time_s = 0.0;
+    double photons = 0.0;
+    double value = 0.0;  // the target's error (or received count) at that reduction
+};
+
+struct Forecast {
+    bool valid = false;
+    double photons_needed = 0.0;  // total photons at which the goal is reached
+    double time_s = 0.0;          // wall time (since the run's start) at which it is reached
+};
+
+// Photon rate from the history: least-squares slope of photons against time over the
+// later half of the points (start-up excluded).
+double photon_rate(const std::vector<HistoryPoint>& history);
+
+// Error target: fits value = C / sqrt(N) to the points with N >= N_last / 10, weighting
+// later points more (weights N), then solves C / sqrt(N) = goal.
+Forecast forecast_error(const std::vector<HistoryPoint>& history, double goal);
+
+// Count target: fits value = a N (through the origin) and solves a N = goal.
+Forecast forecast_count(const std::vector<HistoryPoint>& history, double goal);
+
+}  // namespace luxtrace

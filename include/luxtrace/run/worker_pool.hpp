@@ -1,0 +1,51 @@
+#pragma once
+// A rank's tracing threads. They take chunks from RankWork and trace them into the
+// rank's TallyStore; the main thread can pause them at chunk boundaries (every thread
+// has flushed its buffer, so the store holds exactly the photons handed out) to take a
+// consistent snapshot, then let them go on.
+#include "luxtrace/run/work_plan.hpp"
+#include "luxtrace/tracer/tracer.hpp"
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace luxtrace {
+
+class WorkerPool {
+public:
+    WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
+               const TraceOptions& opt);
+    ~WorkerPool();  // stops and joins
+    WorkerPool(const WorkerPool&) = delete;
+    WorkerPool& operator=(const WorkerPool&) = delete;
+
+    // Blocks until every thread is parked at a chunk boundary (or out of work).
+    void pause();
+    void resume();
+    // Finish the current chunks and end the threads.
+    void stop();
+    // True once every thread has run out of work.
+    bool exhausted() const { return idle_.load() == static_cast<int>(threads_.size()); }
+    // Photons traced so far by this rank's threads (for progress; exact when paused).
+    std::uint64_t photons_traced() const { return traced_.load(std::memory_order_relaxed); }
+
+private:
+    void worker();
+    const Scene& scene_;
+    const EmbreeScene& embree_;
+    TallyStore& store_;
+    RankWork& work_;
+    TraceOptions opt_;
+    std::mutex mutex_;
+    std::condition_variable cv_main_, cv_workers_;
+    bool pause_requested_ = false, stop_requested_ = false;
+    int parked_ = 0;
+    std::atomic<int> idle_{0};
+    std::atomic<std::uint64_t> traced_{0};
+    std::vector<std::thread> threads_;
+};
+
+}  // namespace luxtrace

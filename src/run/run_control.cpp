@@ -1,0 +1,130 @@
+#include "luxtrace/run/run_control.hpp"
+
+#include "luxtrace/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace luxtrace {
+
+RunController::RunController(const Scene& scene, const TallyLayout& layout, std::vector<HistoryRow> previous,
+                             double previous_elapsed_s, std::uint64_t previous_photons)
+    : scene_(scene), layout_(layout), history_(std::move(previous)), points_(scene.run.targets.size()),
+      time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons),
+      period_s_(std::clamp(scene.run.report_every_s, 0.05, 60.0)) {
+    if (scene.run.report_every_s <= 0.0) period_s_ = 2.0;
+}
+
+Decision RunController::after_reduction(const ReductionInput& in) {
+    const RunConfig& run = scene_.run;
+    photons_ = in.photons;
+    elapsed_s_ = in.elapsed_s;
+    const double e0 = in.photons > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(in.photons) : 0.0;
+    global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0);
+    status_.clear();
+    forecast_.clear();
+    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.sigma_rel_quadratic, std::nan(""), {}, {}};
+    for (std::size_t i = 0; i < run.targets.size(); ++i) {
+        status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
+        const TargetStatus& s = status_.back();
+        // Forecasts use this part of the run only: rates differ between parts.
+        if (in.photons > photon_offset_ && std::isfinite(s.value))
+            points_[i].push_back({in.elapsed_s, static_cast<double>(in.photons), s.value});
+        Forecast f = s.kind == TargetKind::photons_received ? forecast_count(points_[i], s.goal)
+                                                           : forecast_error(points_[i], s.goal);
+        forecast_.push_back(f);
+        row.target_value.push_back(s.value);
+        row.target_forecast_s.push_back(f.valid ? time_offset_s_ + f.time_s : std::nan(""));
+    }
+    if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
+    history_.push_back(row);
+    if (!points_.empty()) rate_ = photon_rate(points_.front());
+    else {
+        std::vector<HistoryPoint> p;
+        for (const HistoryRow& r : history_)
+            if (r.time_s >= time_offset_s_) p.push_back({r.time_s - time_offset_s_, static_cast<double>(r.photons), 0});
+        rate_ = photon_rate(p);
+    }
+
+    // Keep the tracing time lost to reductions under 1% of the run (the goal is 2%).
+    period_s_ = std::max(period_s_, 100.0 * in.stall_s);
+    Decision d;
+    d.next_period_s = period_s_;
+    bool error_targets_unmet = false;
+    for (const TargetStatus& s : status_) {
+        if (s.met) {
+            d.stop = true;
+            d.reason = "target " + s.label;
+            return d;
+        }
+        error_targets_unmet = error_targets_unmet || s.kind != TargetKind::photons_received;
+    }
+    if (in.all_ranks_idle) {
+        d.stop = true;
+        d.reason = "photons";
+        return d;
+    }
+    if (in.signalled) {
+        d.stop = d.checkpoint = true;
+        d.exit_code = 3;
+        d.reason = "signal";
+        return d;
+    }
+    // Stop in time to write the result before the wall-time limit. When error targets
+    // are still unmet, the run is unfinished work: checkpoint and exit 3 to be resumed.
+    if (run.time_limit_s > 0.0 &&
+        in.elapsed_s + period_s_ + 2.0 * in.write_s + 0.5 >= run.time_limit_s) {
+        d.stop = true;
+        d.reason = "time_limit";
+        if (error_targets_unmet) {
+            d.checkpoint = true;
+            d.exit_code = 3;
+        }
+        return d;
+    }
+    if (run.time_limit_s > 0.0) d.next_period_s = std::min(period_s_, std::max(0.05, run.time_limit_s - in.elapsed_s - 2.0 * in.write_s - 0.5));
+    if (run.checkpoint_every_s > 0.0 && in.elapsed_s - last_checkpoint_s_ >= run.checkpoint_every_s) {
+        d.checkpoint = true;
+        last_checkpoint_s_ = in.elapsed_s;
+    }
+    return d;
+}
+
+void RunController::fill_run_info(RunInfo& info) const {
+    for (std::size_t i = 0; i < status_.size(); ++i) {
+        info.target_labels.push_back(status_[i].label);
+        info.target_goals.push_back(status_[i].goal);
+    }
+    if (status_.empty())
+        for (const Target& t : scene_.run.targets) {
+            info.target_labels.push_back(t.on);
+            info.target_goals.push_back(t.relative_error + t.absolute_error + t.photons_received);
+        }
+}
+
+std::string RunController::progress_line() const {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%8.1f s %12.4g photons %10.3g/s  global %.2f%%", time_offset_s_ + elapsed_s_,
+                  static_cast<double>(photons_), rate_, 100.0 * global_.sigma_rel_quadratic);
+    std::string line = buf;
+    for (std::size_t i = 0; i < status_.size(); ++i) {
+        const TargetStatus& s = status_[i];
+        if (s.kind == TargetKind::photons_received)
+            std::snprintf(buf, sizeof buf, " | %s %.4g -> %.4g", s.label.c_str(), s.value, s.goal);
+        else if (s.kind == TargetKind::relative_error)
+            std::snprintf(buf, sizeof buf, " | %s %.3f%% -> %.3f%%", s.label.c_str(), 100.0 * s.value, 100.0 * s.goal);
+        else
+            std::snprintf(buf, sizeof buf, " | %s %.4g -> %.4g", s.label.c_str(), s.value, s.goal);
+        line += buf;
+        const Forecast& f = forecast_[i];
+        if (s.met) line += " met";
+        else if (f.valid) {
+            std::snprintf(buf, sizeof buf, " in %.0f s", std::max(0.0, f.time_s - elapsed_s_));
+            line += buf;
+        }
+    }
+    return line;
+}
+
+}  // namespace luxtrace

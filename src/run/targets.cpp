@@ -1,0 +1,51 @@
+#include "luxtrace/run/targets.hpp"
+
+#include "luxtrace/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxtrace {
+
+TargetKind kind_of(const Target& t) {
+    if (t.photons_received > 0.0) return TargetKind::photons_received;
+    if (t.absolute_error > 0.0) return TargetKind::absolute_error;
+    return TargetKind::relative_error;
+}
+
+TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
+                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                             const GlobalEstimate& g) {
+    TargetStatus s;
+    s.kind = kind_of(t);
+    const bool arith = t.averaging == Averaging::arithmetic;
+    s.label = t.on;
+    switch (s.kind) {
+    case TargetKind::relative_error: s.goal = t.relative_error; s.label += arith ? " rel(arith)" : " rel(quad)"; break;
+    case TargetKind::absolute_error: s.goal = t.absolute_error; s.label += " abs"; break;
+    case TargetKind::photons_received: s.goal = t.photons_received; s.label += " received"; break;
+    }
+    if (t.detector.empty()) {
+        s.value = s.kind == TargetKind::absolute_error ? g.sigma_lx
+                                                       : (arith ? g.sigma_rel_arithmetic : g.sigma_rel_quadratic);
+    } else {
+        const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
+                                     [&](const Detector& d) { return d.name == t.detector; });
+        const std::size_t di = static_cast<std::size_t>(it - scene.detectors.begin());
+        const DetectorEstimate e = estimate_detector(*it, di, layout, data, e0, photons, {t.i0, t.i1, t.j0, t.j1});
+        const bool whole = t.i0 == 0 && t.j0 == 0 && t.i1 == it->nx && t.j1 == it->ny;
+        switch (s.kind) {
+        case TargetKind::relative_error: s.value = arith ? e.sigma_rel_arithmetic : e.sigma_rel_quadratic; break;
+        case TargetKind::absolute_error: s.value = e.sigma_abs; break;
+        // A cell range counts registrations in its cells; the whole grid counts photons.
+        case TargetKind::photons_received:
+            s.value = static_cast<double>(whole ? e.photons_received : e.registrations);
+            break;
+        }
+    }
+    if (s.kind == TargetKind::photons_received) s.met = s.value >= s.goal;
+    else s.met = std::isfinite(s.value) && s.value > 0.0 && s.value <= s.goal;
+    return s;
+}
+
+}  // namespace luxtrace

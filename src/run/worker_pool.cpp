@@ -1,0 +1,70 @@
+#include "luxtrace/run/worker_pool.hpp"
+
+#include "luxtrace/sampler/sampler.hpp"
+
+namespace luxtrace {
+
+WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
+                       const TraceOptions& opt)
+    : scene_(scene), embree_(embree), store_(store), work_(work), opt_(opt) {
+    for (int i = 0; i < std::max(1, opt_.threads); ++i) threads_.emplace_back([this] { worker(); });
+}
+
+WorkerPool::~WorkerPool() { stop(); }
+
+void WorkerPool::worker() {
+    PhotonTracer tracer(scene_, embree_, store_.layout());
+    const auto sampler = make_sampler(opt_.sampler, opt_.seed);
+    TallyBuffer buffer(store_);
+    bool out_of_work = false;
+    while (true) {
+        {
+            std::unique_lock lock(mutex_);
+            if (pause_requested_ || out_of_work) {
+                // Park at a chunk boundary with everything flushed; an idle thread stays
+                // parked (and counted) until the pool stops.
+                buffer.flush();
+                ++parked_;
+                cv_main_.notify_all();
+                cv_workers_.wait(lock, [&] { return stop_requested_ || (!pause_requested_ && !out_of_work); });
+                --parked_;
+            }
+            if (stop_requested_) break;
+        }
+        PhotonRange chunk;
+        if (!work_.next_chunk(opt_.chunk, chunk)) {
+            out_of_work = true;
+            idle_.fetch_add(1);
+            continue;
+        }
+        for (std::uint64_t k = chunk.begin; k < chunk.end; ++k) tracer.trace(k, *sampler, buffer);
+        traced_.fetch_add(chunk.size(), std::memory_order_relaxed);
+    }
+    buffer.flush();
+}
+
+void WorkerPool::pause() {
+    std::unique_lock lock(mutex_);
+    pause_requested_ = true;
+    cv_main_.wait(lock, [&] { return parked_ == static_cast<int>(threads_.size()); });
+}
+
+void WorkerPool::resume() {
+    {
+        std::lock_guard lock(mutex_);
+        pause_requested_ = false;
+    }
+    cv_workers_.notify_all();
+}
+
+void WorkerPool::stop() {
+    {
+        std::lock_guard lock(mutex_);
+        stop_requested_ = true;
+    }
+    cv_workers_.notify_all();
+    for (std::thread& t : threads_)
+        if (t.joinable()) t.join();
+}
+
+}  // namespace luxtrace

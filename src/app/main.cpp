@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -59,13 +61,31 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
         if (a.sampler != "random") throw InputError("--sampler: '" + a.sampler + "' is not available yet (use random)");
         run.sampler = a.sampler;
     }
-    if (!a.checkpoint.empty() || !a.restart.empty())
-        throw InputError("--checkpoint/--restart: checkpoints are not available in this version");
+    if (!a.checkpoint.empty()) run.checkpoint = a.checkpoint;
+    if (!a.restart.empty()) {
+        // A restart continues the checkpoint's photon sequence: same seed and sampler, and
+        // by default the same budget.
+        const ResultReader ck(a.restart);
+        if (ck.attr_str("/", "format") != "luxtrace-checkpoint")
+            throw InputError(a.restart + ": not a checkpoint (a result file cannot be continued)");
+        const std::uint64_t seed = ck.attr_u64("/", "seed");
+        if (!a.seed.empty() && run.seed != seed)
+            throw InputError("--seed: the checkpoint " + a.restart + " was made with seed " + std::to_string(seed));
+        run.seed = seed;
+        run.sampler = ck.attr_str("/", "sampler");
+        if (a.photons.empty()) run.photons = ck.attr_u64("/checkpoint", "budget");
+    }
     const fs::path out(run.output);
     const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(dir)) throw InputError(run.output + ": output directory '" + dir.string() + "' does not exist");
     if (fs::is_directory(out)) throw InputError(run.output + ": output path is a directory");
 }
+
+// Set by SIGTERM / SIGUSR1 (a signal handler can only reach static storage); the run
+// checkpoints and stops at its next reduction.
+std::atomic<int> g_stop_signal{0};
+
+extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
 
 int cmd_run(const Communicator& comm, const RunArgs& a) {
     Scene scene = load_scene(a.scene);
@@ -74,6 +94,10 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     RunOptions opt;
     opt.threads = a.threads.value_or(0);
     opt.quiet = a.quiet;
+    opt.restart = a.restart;
+    opt.signal = &g_stop_signal;
+    std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGUSR1, on_stop_signal);
     if (comm.is_root() && !a.quiet)
         std::cout << "luxtrace: " << scene.file.string() << ": " << scene.triangle_count() << " triangles, "
                   << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on "
@@ -85,9 +109,13 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
             ResultReader r(s.output);
             print_result_summary(r, std::cout);
         }
+        if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
         std::cout << "result: " << fs::absolute(s.output).string() << '\n';
+        if (s.exit_code == 3)
+            std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run " << a.scene
+                      << " --restart " << s.checkpoint << '\n';
     }
-    return 0;
+    return s.exit_code;
 }
 
 int cmd_check(const std::string& path) {

@@ -22,9 +22,8 @@ double photon_rate(const std::vector<HistoryPoint>& h) {
 
 namespace {
 
-Forecast finish(const std::vector<HistoryPoint>& h, double photons_needed) {
+Forecast finish(const std::vector<HistoryPoint>& h, double photons_needed, double rate) {
     Forecast f;
-    const double rate = photon_rate(h);
     if (!(rate > 0.0) || !std::isfinite(photons_needed)) return f;
     f.valid = true;
     f.photons_needed = photons_needed;
@@ -34,7 +33,7 @@ Forecast finish(const std::vector<HistoryPoint>& h, double photons_needed) {
 
 }  // namespace
 
-Forecast forecast_error(const std::vector<HistoryPoint>& h, double goal) {
+Forecast forecast_error(const std::vector<HistoryPoint>& h, double goal, double rate) {
     if (h.empty() || !(goal > 0.0)) return {};
     const double n_last = h.back().photons;
     // log C = log(sigma) + log(N) / 2 for every point; average with weights N.
@@ -47,10 +46,10 @@ Forecast forecast_error(const std::vector<HistoryPoint>& h, double goal) {
     }
     if (sw <= 0.0) return {};
     const double c = std::exp(swl / sw);
-    return finish(h, (c / goal) * (c / goal));
+    return finish(h, (c / goal) * (c / goal), rate);
 }
 
-Forecast forecast_count(const std::vector<HistoryPoint>& h, double goal) {
+Forecast forecast_count(const std::vector<HistoryPoint>& h, double goal, double rate) {
     if (h.empty()) return {};
     double snn = 0.0, snv = 0.0;
     for (const HistoryPoint& p : h) {
@@ -58,7 +57,7 @@ Forecast forecast_count(const std::vector<HistoryPoint>& h, double goal) {
         snv += p.photons * p.value;
     }
     if (!(snv > 0.0)) return {};
-    return finish(h, goal * snn / snv);
+    return finish(h, goal * snn / snv, rate);
 }
 
 }  // namespace luxtrace

@@ -84,6 +84,14 @@ double ResultReader::attr_f64(const std::string& object, const std::string& name
     return v;
 }
 
+std::vector<double> ResultReader::f64_attr_array(const std::string& object, const std::string& name) const {
+    Closer a{open_attr(file_, object, name), H5Aclose};
+    Closer space{H5Aget_space(a.id), H5Sclose};
+    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id)));
+    if (!v.empty()) H5Aread(a.id, H5T_NATIVE_DOUBLE, v.data());
+    return v;
+}
+
 std::uint64_t ResultReader::attr_u64(const std::string& object, const std::string& name) const {
     Closer a{open_attr(file_, object, name), H5Aclose};
     std::uint64_t v = 0;

@@ -24,6 +24,8 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0);
     status_.clear();
     forecast_.clear();
+    rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
+    rate_ = photon_rate(rate_points_);
     HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.sigma_rel_quadratic, std::nan(""), {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
         status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
@@ -31,21 +33,14 @@ Decision RunController::after_reduction(const ReductionInput& in) {
         // Forecasts use this part of the run only: rates differ between parts.
         if (in.photons > photon_offset_ && std::isfinite(s.value))
             points_[i].push_back({in.elapsed_s, static_cast<double>(in.photons), s.value});
-        Forecast f = s.kind == TargetKind::photons_received ? forecast_count(points_[i], s.goal)
-                                                           : forecast_error(points_[i], s.goal);
+        Forecast f = s.kind == TargetKind::photons_received ? forecast_count(points_[i], s.goal, rate_)
+                                                           : forecast_error(points_[i], s.goal, rate_);
         forecast_.push_back(f);
         row.target_value.push_back(s.value);
         row.target_forecast_s.push_back(f.valid ? time_offset_s_ + f.time_s : std::nan(""));
     }
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
     history_.push_back(row);
-    if (!points_.empty()) rate_ = photon_rate(points_.front());
-    else {
-        std::vector<HistoryPoint> p;
-        for (const HistoryRow& r : history_)
-            if (r.time_s >= time_offset_s_) p.push_back({r.time_s - time_offset_s_, static_cast<double>(r.photons), 0});
-        rate_ = photon_rate(p);
-    }
 
     // Keep the tracing time lost to reductions under 1% of the run (the goal is 2%).
     period_s_ = std::max(period_s_, 100.0 * in.stall_s);

@@ -238,6 +238,22 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " % (eq. 9), "
             << r.attr_u64(g, "photons_received") << " photons received\n";
     }
+    if (r.has("/history/target_value")) {
+        std::vector<std::size_t> shape;
+        const std::vector<double> v = r.f64("/history/target_value", &shape);
+        const std::vector<std::string> labels = r.attr_strs("/history", "target_labels");
+        const std::vector<double> goals = r.f64_attr_array("/history", "target_goals");
+        const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
+        for (std::size_t i = 0; i < nt && i < labels.size() && shape[0] > 0; ++i) {
+            const double last = v[(shape[0] - 1) * nt + i];
+            const bool count = labels[i].find("received") != std::string::npos;
+            const bool rel = labels[i].find(" rel") != std::string::npos;
+            const bool met = count ? last >= goals[i] : (last > 0.0 && last <= goals[i]);
+            out << "target         " << labels[i] << ": " << std::setprecision(4) << (rel ? 100.0 * last : last)
+                << (rel ? " %" : "") << " (goal " << (rel ? 100.0 * goals[i] : goals[i]) << (rel ? " %" : "")
+                << ") at the last reduction, " << (met ? "met" : "not met") << '\n';
+        }
+    }
     out.flags(flags);
 }
 

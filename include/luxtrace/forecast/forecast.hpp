@@ -18,15 +18,16 @@ struct Forecast {
     double time_s = 0.0;          // wall time (since the run's start) at which it is reached
 };
 
-// Photon rate from the history: least-squares slope of photons against time over the
-// later half of the points (start-up excluded).
-double photon_rate(const std::vector<HistoryPoint>& history);
+// Photon rate from (time, photons) points of one part of a run: least-squares slope
+// over the later half of the points (start-up excluded).
+double photon_rate(const std::vector<HistoryPoint>& points);
 
 // Error target: fits value = C / sqrt(N) to the points with N >= N_last / 10, weighting
-// later points more (weights N), then solves C / sqrt(N) = goal.
-Forecast forecast_error(const std::vector<HistoryPoint>& history, double goal);
+// later points more (weights N), then solves C / sqrt(N) = goal; the wall time follows
+// at `rate` photons per second from the last point.
+Forecast forecast_error(const std::vector<HistoryPoint>& history, double goal, double rate);
 
 // Count target: fits value = a N (through the origin) and solves a N = goal.
-Forecast forecast_count(const std::vector<HistoryPoint>& history, double goal);
+Forecast forecast_count(const std::vector<HistoryPoint>& history, double goal, double rate);
 
 }  // namespace luxtrace

@@ -77,6 +77,7 @@ public:
     std::vector<std::uint64_t> u64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
     std::vector<double> f64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
     double attr_f64(const std::string& object, const std::string& name) const;
+    std::vector<double> f64_attr_array(const std::string& object, const std::string& name) const;
     std::uint64_t attr_u64(const std::string& object, const std::string& name) const;
     std::string attr_str(const std::string& object, const std::string& name) const;
     std::vector<std::string> attr_strs(const std::string& object, const std::string& name) const;

@@ -54,6 +54,7 @@ private:
     const TallyLayout& layout_;
     std::vector<HistoryRow> history_;           // stored: whole run including earlier parts
     std::vector<std::vector<HistoryPoint>> points_;  // per target, this part only
+    std::vector<HistoryPoint> rate_points_;          // (time, photons) of this part only
     double time_offset_s_;
     std::uint64_t photon_offset_;
     double last_checkpoint_s_ = 0.0;

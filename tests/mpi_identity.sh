@@ -6,7 +6,7 @@
 set -euo pipefail
 lux=$1 cmp=$2 mpiexec=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)
-scene=$here/../examples/office/office.toml
+scene=$here/data/run/room.toml
 mkdir -p "$work"
 mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tcp_if_include lo)
 common=(--photons 300000 --seed 7 --quiet)

@@ -27,7 +27,7 @@ constexpr int kExitBadInput = 2;
 struct RunArgs {
     std::string scene;
     std::string photons, seed;
-    std::optional<double> time_limit, target, report_every;
+    std::optional<double> time_limit, target, report_every, checkpoint_every;
     std::optional<int> threads;
     std::string output, checkpoint, restart, sampler;
     bool quiet = false;
@@ -49,6 +49,10 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
         run.time_limit_s = *a.time_limit;
     }
     if (a.report_every) run.report_every_s = *a.report_every;
+    if (a.checkpoint_every) {
+        if (!(*a.checkpoint_every >= 0.0)) throw InputError("--checkpoint-every: must not be negative");
+        run.checkpoint_every_s = *a.checkpoint_every;
+    }
     if (a.target) {
         if (!(*a.target > 0.0)) throw InputError("--target: must be positive");
         if (run.targets.empty()) run.targets.push_back(Target{});
@@ -149,6 +153,7 @@ int main(int argc, char** argv) {
     run->add_option("--threads", ra.threads, "threads per rank (default: all cores given to the rank)");
     run->add_option("--output", ra.output, "result file (.h5)");
     run->add_option("--checkpoint", ra.checkpoint, "checkpoint file");
+    run->add_option("--checkpoint-every", ra.checkpoint_every, "seconds between checkpoints");
     run->add_option("--restart", ra.restart, "continue from a checkpoint");
     run->add_option("--report-every", ra.report_every, "seconds between progress lines");
     run->add_option("--sampler", ra.sampler, "random | sobol");

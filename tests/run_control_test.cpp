@@ -1,0 +1,115 @@
+// Run control pieces without MPI: the work plan covers every photon exactly once on any
+// number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
+#include "luxtrace/forecast/forecast.hpp"
+#include "luxtrace/run/work_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace luxtrace;
+
+namespace {
+
+// Every photon of [0, budget) in exactly one item of exactly one rank.
+void expect_exact_cover(const WorkPlan& plan, std::uint64_t budget, const std::vector<PhotonRange>& done_before) {
+    std::vector<int> seen(budget, 0);
+    for (const PhotonRange& d : done_before)
+        for (std::uint64_t k = d.begin; k < d.end && k < budget; ++k) ++seen[k];
+    for (int r = 0; r < plan.ranks(); ++r)
+        for (std::uint64_t i = 0;; ++i) {
+            const PhotonRange it = plan.item(r, i);
+            if (it.empty()) break;
+            for (std::uint64_t k = it.begin; k < it.end; ++k) ++seen[k];
+        }
+    for (std::uint64_t k = 0; k < budget; ++k) ASSERT_EQ(seen[k], 1) << "photon " << k;
+}
+
+}  // namespace
+
+TEST(WorkPlan, CoversTheBudgetExactlyOnceForAnyRankCount) {
+    for (int ranks : {1, 2, 3, 7})
+        for (std::uint64_t budget : {1ull, 999ull, 10000ull, 12345ull}) {
+            const WorkPlan plan({}, budget, 1000, ranks);
+            expect_exact_cover(plan, budget, {});
+        }
+}
+
+TEST(WorkPlan, InterruptedProgressRestartsOnOtherRankCountsWithoutGapsOrRepeats) {
+    std::mt19937_64 g(3);
+    for (int trial = 0; trial < 50; ++trial) {
+        const std::uint64_t budget = 20000 + g() % 20000;
+        const int ranks = 1 + static_cast<int>(g() % 4);
+        const WorkPlan first({}, budget, 700, ranks);
+        // Random progress of each rank: some whole items, then a prefix of the next.
+        std::vector<RankProgress> progress;
+        for (int r = 0; r < ranks; ++r) {
+            RankProgress p{g() % 6, 0};
+            const PhotonRange next = first.item(r, p.items_done);
+            if (!next.empty()) p.prefix = g() % next.size();
+            progress.push_back(p);
+        }
+        const std::vector<PhotonRange> done = first.done_ranges(progress);
+        std::uint64_t expected = 0;
+        for (int r = 0; r < ranks; ++r) {
+            for (std::uint64_t i = 0; i < progress[r].items_done; ++i) expected += first.item(r, i).size();
+            expected += progress[r].prefix;
+        }
+        EXPECT_EQ(count_photons(done), expected);
+        const int new_ranks = 1 + static_cast<int>(g() % 4);
+        const WorkPlan second(done, budget, 500, new_ranks);
+        EXPECT_EQ(second.previously_done_count(), expected);
+        expect_exact_cover(second, budget, done);
+    }
+}
+
+TEST(WorkPlan, RankWorkHandsOutItsItemsInOrderAndReportsProgress) {
+    const WorkPlan plan({}, 10000, 1000, 3);
+    RankWork work(plan, 1);
+    PhotonRange c;
+    std::uint64_t total = 0;
+    ASSERT_TRUE(work.next_chunk(300, c));
+    EXPECT_EQ(c.begin, 1000u);  // rank 1's first item is global item 1
+    EXPECT_EQ(c.end, 1300u);
+    total += c.size();
+    while (work.next_chunk(300, c)) total += c.size();
+    // Items 1, 4, 7 of 10: 3000 photons.
+    EXPECT_EQ(total, 3000u);
+    const RankProgress p = work.progress();
+    EXPECT_EQ(p.items_done, 3u);
+    EXPECT_EQ(p.prefix, 0u);
+}
+
+TEST(Forecast, RecoversTheInverseSquareRootLawFromNoisyHistory) {
+    // sigma = C / sqrt(N) with 3% multiplicative noise; photons at a constant rate.
+    const double c = 40.0, rate = 2.0e5;
+    std::mt19937_64 g(11);
+    std::normal_distribution<double> noise(0.0, 0.03);
+    std::vector<HistoryPoint> h;
+    for (int i = 1; i <= 30; ++i) {
+        const double t = 0.5 * i, n = rate * t;
+        h.push_back({t, n, c / std::sqrt(n) * (1.0 + noise(g))});
+    }
+    const double goal = 0.01;
+    const Forecast f = forecast_error(h, goal, photon_rate(h));
+    ASSERT_TRUE(f.valid);
+    const double n_true = (c / goal) * (c / goal);
+    EXPECT_NEAR(f.photons_needed / n_true, 1.0, 0.03);
+    EXPECT_NEAR(f.time_s / (n_true / rate), 1.0, 0.03);
+    EXPECT_NEAR(photon_rate(h) / rate, 1.0, 1e-9);
+}
+
+TEST(Forecast, CountTargetsGrowLinearly) {
+    std::vector<HistoryPoint> h;
+    for (int i = 1; i <= 10; ++i) h.push_back({1.0 * i, 1000.0 * i, 0.25 * 1000.0 * i});
+    const Forecast f = forecast_count(h, 1e5, photon_rate(h));
+    ASSERT_TRUE(f.valid);
+    EXPECT_NEAR(f.photons_needed, 4e5, 1e-6);
+    EXPECT_NEAR(f.time_s, 400.0, 1e-6);
+}
+
+TEST(Forecast, NoForecastWithoutProgress) {
+    EXPECT_FALSE(forecast_error({}, 0.01, 1.0).valid);
+    EXPECT_FALSE(forecast_error({{1.0, 100.0, 0.5}}, 0.01, 0.0).valid);
+}

@@ -20,7 +20,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 "${mpi[@]}" -n 2 "$lux" run "$scene" "${common[@]}" --threads 1 --report-every 0.2 \
     --checkpoint-every 0.2 --output "$work/a.h5" --checkpoint "$work/a.ck.h5" &
 job=$!
-for _ in $(seq 200); do [ -f "$work/a.ck.h5" ] && break; sleep 0.05; done
+for _ in $(seq 1200); do [ -f "$work/a.ck.h5" ] && break; sleep 0.05; done
 [ -f "$work/a.ck.h5" ] || fail "no checkpoint appeared"
 sleep 0.5
 victim=$(pgrep -f "luxtrace run .*a.ck.h5" | grep -v "^$job$" | tail -1)

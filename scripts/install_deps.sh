@@ -8,6 +8,7 @@ packages=(
   libcli11-dev libglm-dev libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libassimp-dev librandom123-dev
   python3-h5py python3-numpy python3-matplotlib
+  slurm-wlm munge
 )
 missing=()
 for p in "${packages[@]}"; do

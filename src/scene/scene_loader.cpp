@@ -256,11 +256,16 @@ struct Loader {
                 const double mult = r.number("multiplier").value_or(1.0);
                 if (!(mult > 0.0)) r.fail("multiplier", "must be positive");
                 if (r.has("flux_lm")) r.fail("flux_lm", "with 'ies' the flux comes from the file (use 'multiplier')");
-                const IesPhotometry photometry = load_ies(resolve(*ies));
-                auto dist = std::make_shared<IesDistribution>(photometry);
-                l.flux_lm = dist->flux_lm() * mult;
+                IesPhotometry photometry;
+                try {
+                    photometry = load_ies(resolve(*ies));
+                } catch (const InputError& e) {  // say which scene entry named the file
+                    r.fail("ies", e.what());
+                }
+                // The file's own flux (exact for its interpolant), not the sampling table's.
+                l.flux_lm = photometry.flux_lm() * mult;
                 if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
-                l.ies = std::move(dist);
+                l.ies = std::make_shared<IesDistribution>(photometry);
             } else {
                 l.flux_lm = flux("flux_lm");
             }
@@ -320,6 +325,9 @@ struct Loader {
             }
             if (!(sum > 0.0)) r.fail("colour", "needs a positive share in some band");
         }
+        double share_sum = 0.0;  // Light::band_share is normalised
+        for (double c : l.band_share) share_sum += c;
+        for (double& c : l.band_share) c /= share_sum;
         r.finish();
         return l;
     }
@@ -421,9 +429,9 @@ struct Loader {
             if (br != std::string::npos) {
                 char close = 0;
                 std::istringstream in(rest.substr(br + 1));
-                char c1 = 0, c2 = 0, c3 = 0;
+                char c1 = 0, c2 = 0, c3 = 0, extra = 0;
                 if (!(in >> g.i0 >> c1 >> g.i1 >> c2 >> g.j0 >> c3 >> g.j1 >> close) || c1 != ':' ||
-                    c2 != ',' || c3 != ':' || close != ']')
+                    c2 != ',' || c3 != ':' || close != ']' || (in >> extra))
                     r.fail("on", "cell range must read [i0:i1,j0:j1]");
                 if (!(0 <= g.i0 && g.i0 < g.i1 && g.i1 <= det->nx && 0 <= g.j0 && g.j0 < g.j1 &&
                       g.j1 <= det->ny))
@@ -478,6 +486,12 @@ Scene load_scene(const fs::path& file) {
                          ": TOML syntax error: " + std::string(e.description()));
     }
     TableReader root(root_table, L.fname, "top level");
+    for (const auto& [key, node] : root_table) {
+        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run"};
+        if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
+            throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
+                             ": top level: unknown key '" + std::string(key.str()) + "'");
+    }
     L.scene.name = file.stem().string();
     L.parse_scene_table(root);
     {

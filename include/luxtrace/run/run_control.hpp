@@ -59,6 +59,7 @@ private:
     std::uint64_t photon_offset_;
     double last_checkpoint_s_ = 0.0;
     double period_s_;
+    std::vector<double> recent_stalls_;
     GlobalEstimate global_;
     std::vector<TargetStatus> status_;
     std::vector<Forecast> forecast_;

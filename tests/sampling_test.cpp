@@ -1,0 +1,482 @@
+// Chi-square tests of every emission sampling routine, driven by the production
+// PhiloxSampler, and tests of the sampler itself (range, order independence, seeds,
+// uniformity, pair correlation). Each chi-square test is rejected at p = 0.999.
+#include "luxtrace/light/ies.hpp"
+#include "luxtrace/light/light.hpp"
+#include "luxtrace/material/material.hpp"
+#include "luxtrace/sampler/sampler.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#ifndef LUXTRACE_EXAMPLES_DIR
+#error "define LUXTRACE_EXAMPLES_DIR (the examples folder)"
+#endif
+
+namespace luxtrace {
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+constexpr double kZ999 = 3.090232306167813;  // standard normal quantile at 0.999
+
+// Chi-square quantile by the Wilson-Hilferty cube-root normal approximation
+// (relative error well under 1% for the dof used here).
+double chi2_quantile(double dof, double z) {
+    const double a = 2.0 / (9.0 * dof);
+    const double c = 1.0 - a + z * std::sqrt(a);
+    return dof * c * c * c;
+}
+
+// Pearson chi-square of observed counts against (unnormalised) bin probabilities.
+// Bins whose expected count is below 5 are pooled into one bin; bins of probability
+// zero must stay empty. Returns the statistic so a caller can print it.
+double expect_chi_square(const std::vector<std::int64_t>& observed,
+                         const std::vector<double>& weight, const std::string& what) {
+    double wsum = 0.0;
+    std::int64_t n = 0;
+    for (double w : weight) wsum += w;
+    for (std::int64_t o : observed) n += o;
+    std::int64_t forbidden = 0, pooled_obs = 0;
+    double pooled_exp = 0.0, stat = 0.0;
+    int bins = 0;
+    for (std::size_t i = 0; i < observed.size(); ++i) {
+        const double e = static_cast<double>(n) * weight[i] / wsum;
+        if (weight[i] <= 0.0) {
+            forbidden += observed[i];
+        } else if (e < 5.0) {
+            pooled_obs += observed[i];
+            pooled_exp += e;
+        } else {
+            const double d = static_cast<double>(observed[i]) - e;
+            stat += d * d / e;
+            ++bins;
+        }
+    }
+    if (pooled_exp > 0.0) {
+        const double d = static_cast<double>(pooled_obs) - pooled_exp;
+        stat += d * d / pooled_exp;
+        ++bins;
+    }
+    const double limit = chi2_quantile(bins - 1, kZ999);
+    EXPECT_EQ(forbidden, 0) << what << ": samples in bins of zero probability";
+    EXPECT_LT(stat, limit) << what << ": chi-square " << stat << " over " << bins - 1
+                           << " dof (limit at p = 0.999: " << limit << ")";
+    std::printf("  %-40s chi2 = %8.2f  dof = %4d  limit = %8.2f\n", what.c_str(), stat,
+                bins - 1, limit);
+    return stat;
+}
+
+int bin_of(double x, int n) {  // x in [0,1] -> 0..n-1
+    return std::clamp(static_cast<int>(std::floor(x * n)), 0, n - 1);
+}
+
+// Orthonormal (t, b) around n built here by Gram-Schmidt, independent of luxtrace::Frame,
+// so azimuth bins test the library's frame rather than reuse it.
+struct Basis {
+    Vec3 t, b, n;
+    explicit Basis(const Vec3& axis) : n(glm::normalize(axis)) {
+        const Vec3 ref = std::abs(n.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+        t = glm::normalize(ref - glm::dot(ref, n) * n);
+        b = glm::cross(n, t);
+    }
+    double phi01(const Vec3& d) const {  // azimuth in [0, 1)
+        double p = std::atan2(glm::dot(d, b), glm::dot(d, t)) / (2.0 * kPi);
+        return p < 0.0 ? p + 1.0 : p;
+    }
+};
+
+TEST(Sampling, UniformSphereEqualSolidAngleBins) {
+    // Bins equal in cos(theta) and phi have equal solid angle.
+    constexpr int nz = 10, nphi = 20, N = 200000;
+    PhiloxSampler s(11);
+    std::vector<std::int64_t> obs(nz * nphi, 0);
+    int bad_length = 0;
+    const Basis axis(Vec3(0, 0, 1));
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        const double u1 = s.next(), u2 = s.next();
+        const Vec3 d = sample_uniform_sphere(u1, u2);
+        bad_length += std::abs(glm::length(d) - 1.0) > 1e-12;
+        obs[bin_of(0.5 * (d.z + 1.0), nz) * nphi + bin_of(axis.phi01(d), nphi)]++;
+    }
+    EXPECT_EQ(bad_length, 0);
+    expect_chi_square(obs, std::vector<double>(obs.size(), 1.0), "uniform sphere");
+}
+
+TEST(Sampling, CosineHemisphereUniformInCosSquared) {
+    // pdf cos(theta)/pi: d(cos^2 theta) is uniform, and phi is uniform. Two tilted
+    // normals, one below the horizon (the frame's sign branch).
+    for (const Vec3 normal : {Vec3(0.3, -0.5, 0.8), Vec3(-0.6, 0.2, -0.7)}) {
+        constexpr int nc = 10, nphi = 12, N = 120000;
+        const Basis axis(normal);
+        PhiloxSampler s(12);
+        std::vector<std::int64_t> obs(nc * nphi + 1, 0);  // last bin: below the surface
+        int bad_length = 0;
+        for (int k = 0; k < N; ++k) {
+            s.start_photon(k);
+            const double u1 = s.next(), u2 = s.next();
+            const Vec3 d = sample_cosine_hemisphere(axis.n, u1, u2);
+            bad_length += std::abs(glm::length(d) - 1.0) > 1e-12;
+            const double c = glm::dot(d, axis.n);
+            if (c < 0.0) obs.back()++;
+            else obs[bin_of(c * c, nc) * nphi + bin_of(axis.phi01(d), nphi)]++;
+        }
+        EXPECT_EQ(bad_length, 0);
+        std::vector<double> w(obs.size(), 1.0);
+        w.back() = 0.0;
+        expect_chi_square(obs, w, "cosine hemisphere n.z = " + std::to_string(axis.n.z));
+    }
+}
+
+TEST(Sampling, UniformConeInsideOnly) {
+    const double cos_max = std::cos(30.0 * kDeg);
+    constexpr int nc = 20, nphi = 12, N = 120000;
+    PhiloxSampler s(13);
+    const Basis axis(Vec3(0, 0, 1));
+    std::vector<std::int64_t> obs(nc * nphi + 1, 0);  // last bin: outside the cone
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        const double u1 = s.next(), u2 = s.next();
+        const Vec3 d = sample_uniform_cone(cos_max, u1, u2);
+        if (d.z < cos_max - 1e-12) obs.back()++;
+        else obs[bin_of((1.0 - d.z) / (1.0 - cos_max), nc) * nphi + bin_of(axis.phi01(d), nphi)]++;
+    }
+    std::vector<double> w(obs.size(), 1.0);
+    w.back() = 0.0;
+    expect_chi_square(obs, w, "uniform cone 30 deg");
+}
+
+TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
+    // A whole spot light, aimed off-axis, framed as the scene loader frames it.
+    for (const double half_deg : {25.0, 120.0}) {
+        Light l;
+        l.type = LightType::spot;
+        l.flux_lm = 100.0;
+        l.position = Vec3(1.0, 2.0, 3.0);
+        l.aim = glm::normalize(Vec3(1.0, 2.0, -3.0));
+        l.cos_half_angle = std::cos(half_deg * kDeg);
+        l.frame = Frame::around(l.aim);
+        const Basis axis(l.aim);
+        constexpr int nc = 20, nphi = 12, N = 120000;
+        PhiloxSampler s(half_deg < 90.0 ? 14 : 114);
+        std::vector<std::int64_t> obs(nc * nphi + 1, 0);
+        int off_origin = 0;
+        for (int k = 0; k < N; ++k) {
+            s.start_photon(k);
+            const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
+            const EmittedRay r = l.emit(a, b, c, d);
+            off_origin += glm::length(r.origin - l.position) > 0.0;
+            const double cz = glm::dot(r.direction, axis.n);
+            if (cz < l.cos_half_angle - 1e-12) obs.back()++;
+            else obs[bin_of((1.0 - cz) / (1.0 - l.cos_half_angle), nc) * nphi +
+                     bin_of(axis.phi01(r.direction), nphi)]++;
+        }
+        EXPECT_EQ(off_origin, 0);
+        std::vector<double> w(obs.size(), 1.0);
+        w.back() = 0.0;
+        expect_chi_square(obs, w, "spot light half angle " + std::to_string(int(half_deg)));
+    }
+}
+
+TEST(Sampling, IesPointLightFollowsIntensity) {
+    const IesPhotometry p =
+        load_ies(std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies");
+    Light l;
+    l.type = LightType::point;
+    l.position = Vec3(2.0, 2.0, 2.8);
+    // Tilted so far that Frame::around(aim) would put C0 27 deg away from the loader's
+    // C0: a light that ignored its frame would rotate the quadrant pattern visibly.
+    l.aim = glm::normalize(Vec3(0.6, 0.6, -0.3));
+    auto dist = std::make_shared<IesDistribution>(p);
+    l.flux_lm = dist->flux_lm();
+    l.ies = dist;
+    // The loader's frame: +z = nadir (aim), +x = C0 = scene +x projected off the aim
+    // (the loader uses +y instead when |aim.x| >= 0.9, not the case here).
+    ASSERT_LT(std::abs(l.aim.x), 0.9);
+    const Vec3 c0 = glm::normalize(Vec3(1, 0, 0) - l.aim.x * l.aim);
+    const Vec3 c90 = glm::cross(l.aim, c0);
+    l.frame = Frame{c0, c90, l.aim};
+
+    // Bins 5 deg in gamma over the whole sphere (the file stops at 90: the upper half
+    // must stay dark) and 22.5 deg in C, both aligned with the file's angles so the
+    // bilinear intensity is smooth inside a bin.
+    constexpr int ng = 36, ncp = 16, sub = 16, N = 1000000;
+    const double dg = kPi / ng, dc = 2.0 * kPi / ncp;
+    std::vector<double> w(ng * ncp, 0.0);
+    double total = 0.0;
+    for (int i = 0; i < ng; ++i)
+        for (int j = 0; j < ncp; ++j) {
+            double sum = 0.0;  // midpoint rule for the integral of I sin(g) dg dc
+            for (int a = 0; a < sub; ++a)
+                for (int b = 0; b < sub; ++b) {
+                    const double g = (i + (a + 0.5) / sub) * dg;
+                    const double c = (j + (b + 0.5) / sub) * dc;
+                    sum += p.intensity_cd(g, c) * std::sin(g);
+                }
+            w[i * ncp + j] = sum * (dg / sub) * (dc / sub);
+            total += w[i * ncp + j];
+        }
+    EXPECT_NEAR(total, p.flux_lm(), 1e-3 * p.flux_lm());  // the reference integral itself
+
+    PhiloxSampler s(15);
+    std::vector<std::int64_t> obs(w.size(), 0);
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
+        const Vec3 dir = l.emit(a, b, c, d).direction;
+        const double g = std::acos(std::clamp(glm::dot(dir, l.aim), -1.0, 1.0));
+        double cp = std::atan2(glm::dot(dir, c90), glm::dot(dir, c0));
+        if (cp < 0.0) cp += 2.0 * kPi;
+        obs[bin_of(g / kPi, ng) * ncp + bin_of(cp / (2.0 * kPi), ncp)]++;
+    }
+    expect_chi_square(obs, w, "IES point light (gamma, C)");
+}
+
+TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
+    // Two triangles of different area and orientation; normal = e1 x e2 as the loader.
+    struct Tri { Vec3 p0, e1, e2; };
+    const std::vector<Tri> tris = {{Vec3(0, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0)},
+                                   {Vec3(3, 0, 0), Vec3(0, 3, 0), Vec3(0.5, 0, 1)}};
+    Light l;
+    l.type = LightType::area;
+    l.flux_lm = 500.0;
+    EmitterSurface& surf = l.surface;
+    std::vector<double> area;
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+        const Vec3 cr = glm::cross(tris[t].e1, tris[t].e2);
+        area.push_back(0.5 * glm::length(cr));
+        surf.p0.push_back(tris[t].p0);
+        surf.e1.push_back(tris[t].e1);
+        surf.e2.push_back(tris[t].e2);
+        surf.normal.push_back(glm::normalize(cr));
+        surf.scene_triangle.push_back(10 + static_cast<int>(t));
+        surf.area_m2 += area.back();
+        surf.cdf.push_back(surf.area_m2);
+    }
+    for (double& c : surf.cdf) c /= surf.area_m2;
+    ASSERT_GT(std::abs(area[0] - area[1]), 0.5);
+
+    // Position bins: each triangle cut into m^2 equal sub-triangles in barycentric
+    // coordinates (cell (i,j), lower or upper half); cells past the hypotenuse are
+    // outside the triangle and get probability 0.
+    constexpr int m = 5, nc = 10, nphi = 8, N = 400000;
+    std::vector<std::int64_t> pos(2 * m * m * 2, 0);
+    std::vector<double> wpos(pos.size(), 0.0);
+    for (int t = 0; t < 2; ++t)
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < m; ++j) {
+                if (i + j <= m - 1) wpos[((t * m + i) * m + j) * 2 + 0] = area[t] / (m * m);
+                if (i + j <= m - 2) wpos[((t * m + i) * m + j) * 2 + 1] = area[t] / (m * m);
+            }
+    std::vector<std::int64_t> dir(nc * nphi + 1, 0);  // last bin: behind the front side
+    std::vector<double> wdir(dir.size(), 1.0);
+    wdir.back() = 0.0;
+    int off_plane = 0, bad_triangle = 0;
+    PhiloxSampler s(16);
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
+        const EmittedRay r = l.emit(a, b, c, d);
+        const int t = r.emitter_triangle - 10;
+        if (t < 0 || t > 1) { ++bad_triangle; continue; }
+        const Tri& tr = tris[t];
+        const Vec3 q = r.origin - tr.p0;
+        off_plane += std::abs(glm::dot(q, surf.normal[t])) > 1e-12;
+        // Barycentric (alpha, beta) from the 2x2 normal equations.
+        const double g11 = glm::dot(tr.e1, tr.e1), g12 = glm::dot(tr.e1, tr.e2),
+                     g22 = glm::dot(tr.e2, tr.e2), r1 = glm::dot(q, tr.e1), r2 = glm::dot(q, tr.e2);
+        const double det = g11 * g22 - g12 * g12;
+        const double al = (r1 * g22 - r2 * g12) / det, be = (r2 * g11 - r1 * g12) / det;
+        const int i = bin_of(al, m), j = bin_of(be, m);
+        const bool upper = (al * m - i) + (be * m - j) > 1.0;
+        pos[((t * m + i) * m + j) * 2 + (upper ? 1 : 0)]++;
+
+        const Basis axis(surf.normal[t]);
+        const double cz = glm::dot(r.direction, axis.n);
+        if (cz <= 0.0) dir.back()++;
+        else dir[bin_of(cz * cz, nc) * nphi + bin_of(axis.phi01(r.direction), nphi)]++;
+    }
+    EXPECT_EQ(bad_triangle, 0);
+    EXPECT_EQ(off_plane, 0);
+    expect_chi_square(pos, wpos, "area light positions by area");
+    expect_chi_square(dir, wdir, "area light cosine directions");
+}
+
+TEST(Sampling, LightSetPicksByFluxAndColourShare) {
+    // Colour shares as the loader stores them: not normalised, some bands dark.
+    const std::vector<double> flux = {100.0, 300.0, 50.0, 550.0};
+    const std::vector<std::vector<double>> share = {
+        {1, 1, 1}, {2, 1, 0}, {0, 0, 5}, {0.2, 0.3, 0.5}};
+    std::vector<Light> lights;
+    for (std::size_t i = 0; i < flux.size(); ++i) {
+        Light l;
+        l.flux_lm = flux[i];
+        l.band_share = share[i];
+        lights.push_back(l);
+    }
+    const LightSet set(lights);
+    EXPECT_NEAR(set.total_flux_lm(), 1000.0, 1e-9);
+    constexpr int N = 1000000;
+    std::vector<std::int64_t> obs(12, 0);
+    std::vector<double> w(12, 0.0);
+    for (int i = 0; i < 4; ++i) {
+        const double ssum = share[i][0] + share[i][1] + share[i][2];
+        for (int b = 0; b < 3; ++b) w[i * 3 + b] = flux[i] / 1000.0 * share[i][b] / ssum;
+    }
+    PhiloxSampler s(17);
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        const double u1 = s.next(), u2 = s.next();
+        const std::size_t li = set.pick_light(u1);
+        ASSERT_LT(li, 4u);
+        const int b = set.pick_band(li, u2);
+        ASSERT_GE(b, 0);
+        ASSERT_LT(b, 3);
+        obs[li * 3 + b]++;
+    }
+    expect_chi_square(obs, w, "light set (light, band)");
+}
+
+TEST(Philox, ValuesStrictlyInsideUnitIntervalAndUniform) {
+    constexpr int N = 100000, D = 10, nb = 1000, nb_dim = 50;
+    PhiloxSampler s(2024);
+    std::vector<std::int64_t> all(nb, 0);
+    std::vector<std::vector<std::int64_t>> per_dim(D, std::vector<std::int64_t>(nb_dim, 0));
+    int outside = 0;
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        for (int d = 0; d < D; ++d) {
+            const double u = s.next();
+            outside += !(u > 0.0 && u < 1.0);
+            all[bin_of(u, nb)]++;
+            per_dim[d][bin_of(u, nb_dim)]++;
+        }
+    }
+    EXPECT_EQ(outside, 0);
+    expect_chi_square(all, std::vector<double>(nb, 1.0), "philox 1D, all dimensions");
+    for (int d = 0; d < D; ++d)
+        expect_chi_square(per_dim[d], std::vector<double>(nb_dim, 1.0),
+                          "philox 1D, dimension " + std::to_string(d));
+}
+
+TEST(Philox, ValueDependsOnlyOnSeedPhotonAndDimension) {
+    const std::vector<std::uint64_t> photons = {0, 1, 7, 123456789, (1ull << 32) + 5,
+                                                (1ull << 40) + 3, UINT64_MAX};
+    constexpr std::uint32_t D = 13;  // spans several four-word blocks
+    PhiloxSampler ref(99);
+    std::vector<std::vector<double>> want;
+    for (std::uint64_t k : photons) {
+        ref.start_photon(k);
+        std::vector<double> v;
+        for (std::uint32_t d = 0; d < D; ++d) v.push_back(ref.next());
+        want.push_back(v);
+    }
+    // Photons in reverse order, dimensions in reverse by jumping.
+    PhiloxSampler rev(99);
+    for (std::size_t i = photons.size(); i-- > 0;) {
+        rev.start_photon(photons[i]);
+        for (std::uint32_t d = D; d-- > 0;) {
+            rev.set_dimension(d);
+            EXPECT_EQ(rev.next(), want[i][d]) << "photon " << photons[i] << " dim " << d;
+        }
+    }
+    // Interleaved: one dimension of every photon at a time, on a sampler that has been
+    // used for other photons before (no state may leak between photons).
+    PhiloxSampler mix(99);
+    mix.start_photon(42);
+    for (int i = 0; i < 9; ++i) mix.next();
+    for (std::uint32_t d = 0; d < D; ++d)
+        for (std::size_t i = 0; i < photons.size(); ++i) {
+            mix.start_photon(photons[i]);
+            mix.set_dimension(d);
+            EXPECT_EQ(mix.next(), want[i][d]) << "photon " << photons[i] << " dim " << d;
+        }
+}
+
+TEST(Philox, DistinctCountersGiveDistinctBlocks) {
+    // Each (photon, four-dimension block) is its own Philox counter: no two of them may
+    // yield the same four words (a collision of 128 random bits has probability ~1e-28,
+    // so any duplicate means counters alias, e.g. photon k+1 reusing photon k's block 1).
+    constexpr int N = 50000, blocks = 4;
+    PhiloxSampler s(5);
+    std::vector<std::array<double, 4>> seen;
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        for (int b = 0; b < blocks; ++b) seen.push_back({s.next(), s.next(), s.next(), s.next()});
+    }
+    std::sort(seen.begin(), seen.end());
+    EXPECT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end());
+}
+
+// Pearson correlation of paired samples; under independence r * sqrt(n) ~ N(0, 1).
+double correlation_z(const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = static_cast<double>(x.size());
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        sx += x[i]; sy += y[i];
+        sxx += x[i] * x[i]; syy += y[i] * y[i]; sxy += x[i] * y[i];
+    }
+    const double cov = sxy / n - sx / n * sy / n;
+    const double r = cov / std::sqrt((sxx / n - sx * sx / n / n) * (syy / n - sy * sy / n / n));
+    return r * std::sqrt(n);
+}
+
+TEST(Philox, DifferentSeedsGiveDifferentStreams) {
+    // Seeds differing in low bits, and only in the high 32 bits; photons differing only
+    // in the high 32 bits of k must differ too.
+    constexpr int N = 2000, D = 8;
+    auto stream = [&](std::uint64_t seed, std::uint64_t k0) {
+        PhiloxSampler s(seed);
+        std::vector<double> v;
+        for (int k = 0; k < N; ++k) {
+            s.start_photon(k0 + k);
+            for (int d = 0; d < D; ++d) v.push_back(s.next());
+        }
+        return v;
+    };
+    const auto a = stream(1, 0), b = stream(2, 0), c = stream(1 + (1ull << 32), 0),
+               e = stream(1, 1ull << 32);
+    for (const auto* other : {&b, &c, &e}) {
+        int equal = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) equal += a[i] == (*other)[i];
+        EXPECT_LE(equal, 1);  // each match has probability 2^-32
+        EXPECT_LT(std::abs(correlation_z(a, *other)), 4.0);  // 4 sigma
+    }
+}
+
+TEST(Philox, PairsOfDimensionsAndPhotonsAreIndependent) {
+    // 2D chi-square on (dim d, dim d+1) of one photon, including the pair that straddles
+    // a four-word block (3, 4), and on (photon k, photon k+1) at one dimension; plus
+    // the correlation coefficient within 4 sigma.
+    constexpr int N = 100000, nb = 16;
+    PhiloxSampler s(7);
+    std::vector<std::vector<double>> u(9, std::vector<double>(N));
+    for (int k = 0; k < N; ++k) {
+        s.start_photon(k);
+        for (int d = 0; d < 9; ++d) u[d][k] = s.next();
+    }
+    auto check = [&](const std::vector<double>& x, const std::vector<double>& y,
+                     const std::string& what) {
+        std::vector<std::int64_t> obs(nb * nb, 0);
+        for (std::size_t i = 0; i < x.size(); ++i) obs[bin_of(x[i], nb) * nb + bin_of(y[i], nb)]++;
+        expect_chi_square(obs, std::vector<double>(obs.size(), 1.0), what);
+        const double z = correlation_z(x, y);
+        EXPECT_LT(std::abs(z), 4.0) << what << ": correlation z = " << z;
+    };
+    for (int d = 0; d < 8; ++d)
+        check(u[d], u[d + 1], "philox pair dims " + std::to_string(d) + "," + std::to_string(d + 1));
+    const std::vector<double> x(u[0].begin(), u[0].end() - 1), y(u[0].begin() + 1, u[0].end());
+    check(x, y, "philox pair photons k, k+1");
+}
+
+}  // namespace
+}  // namespace luxtrace

@@ -1,0 +1,592 @@
+// Tests of load_scene (SPEC §2): every key of tests/data/scenes/every_key.toml lands
+// where it should; built-in shapes and transformed meshes have the right areas,
+// positions and front sides; and each class of bad input is an InputError whose
+// message names the scene file, the line (or key) and what is wrong.
+#include "luxtrace/scene/scene.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/light/ies.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#ifndef LUXTRACE_TEST_DATA_DIR
+#error "define LUXTRACE_TEST_DATA_DIR (the tests/data folder)"
+#endif
+
+namespace luxtrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path data(const std::string& rel) { return fs::path(LUXTRACE_TEST_DATA_DIR) / rel; }
+
+// Vertices are stored as floats: positions carry ~1e-7 relative rounding.
+constexpr double kPosTol = 1e-5;
+
+std::uint32_t material_id(const Scene& s, const std::string& name) {
+    for (std::size_t i = 0; i < s.materials.size(); ++i)
+        if (s.materials[i].name == name) return static_cast<std::uint32_t>(i);
+    ADD_FAILURE() << "no material " << name;
+    return UINT32_MAX;
+}
+
+std::vector<std::size_t> triangles_of(const Scene& s, const std::string& material) {
+    const std::uint32_t m = material_id(s, material);
+    std::vector<std::size_t> out;
+    for (std::size_t t = 0; t < s.triangle_count(); ++t)
+        if (s.triangle_material[t] == m) out.push_back(t);
+    return out;
+}
+
+double area_of(const Scene& s, const std::vector<std::size_t>& tris) {
+    double a = 0.0;
+    for (std::size_t t : tris) a += s.triangle_area_m2[t];
+    return a;
+}
+
+Vec3 centroid(const Scene& s, std::size_t t) {
+    const glm::uvec3 v = s.triangles[t];
+    return (Vec3(s.vertices[v.x]) + Vec3(s.vertices[v.y]) + Vec3(s.vertices[v.z])) / 3.0;
+}
+
+// Front sides face away from `center` (outward) or toward it (inward) for every triangle.
+void expect_facing(const Scene& s, const std::vector<std::size_t>& tris, const Vec3& center,
+                   bool inward) {
+    for (std::size_t t : tris) {
+        const double d = glm::dot(s.triangle_normal[t], centroid(s, t) - center);
+        EXPECT_TRUE(inward ? d < 0.0 : d > 0.0) << "triangle " << t << " faces the wrong way";
+    }
+}
+
+// Spread of the triangles' vertices along a unit axis.
+double extent_along(const Scene& s, const std::vector<std::size_t>& tris, const Vec3& axis) {
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t t : tris)
+        for (int k = 0; k < 3; ++k) {
+            const double p = glm::dot(Vec3(s.vertices[s.triangles[t][k]]), axis);
+            lo = std::min(lo, p);
+            hi = std::max(hi, p);
+        }
+    return hi - lo;
+}
+
+void expect_vec(const Vec3& got, const Vec3& want, double tol = 1e-12) {
+    EXPECT_NEAR(got.x, want.x, tol);
+    EXPECT_NEAR(got.y, want.y, tol);
+    EXPECT_NEAR(got.z, want.z, tol);
+}
+
+// ---------------------------------------------------------------------------------
+// The committed scene that uses every key once.
+
+class EveryKey : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { scene_ = new Scene(load_scene(data("scenes/every_key.toml"))); }
+    static void TearDownTestSuite() { delete scene_; }
+    static const Scene& s() { return *scene_; }
+    static Scene* scene_;
+};
+Scene* EveryKey::scene_ = nullptr;
+
+TEST_F(EveryKey, SceneTableAndMaterials) {
+    EXPECT_EQ(s().name, "every key");
+    EXPECT_EQ(s().bands, (std::vector<std::string>{"R", "G", "B"}));
+    ASSERT_EQ(s().materials.size(), 7u);
+    const auto& m = s().materials;
+    using V = std::vector<double>;
+    EXPECT_EQ(m[0].type, MaterialType::diffuse);
+    EXPECT_EQ(m[0].diffuse_reflectance, (V{0.5, 0.5, 0.5}));  // a scalar fills every band
+    EXPECT_EQ(m[1].diffuse_reflectance, (V{0.7, 0.2, 0.1}));
+    EXPECT_EQ(m[2].type, MaterialType::diffuse);                // the default type
+    EXPECT_EQ(m[2].diffuse_reflectance, (V{0.8, 0.8, 0.75}));
+    EXPECT_EQ(m[3].type, MaterialType::mirror);
+    EXPECT_EQ(m[3].specular_reflectance, (V{0.9, 0.85, 0.8}));
+    EXPECT_EQ(m[4].type, MaterialType::glass);
+    EXPECT_EQ(m[4].ior, 1.52);
+    EXPECT_EQ(m[4].transmittance, (V{0.92, 0.92, 0.92}));
+    EXPECT_EQ(m[5].type, MaterialType::general);
+    EXPECT_EQ(m[5].diffuse_reflectance, (V{0.2, 0.2, 0.2}));
+    EXPECT_EQ(m[5].specular_reflectance, (V{0.1, 0.2, 0.3}));
+    EXPECT_EQ(m[5].diffuse_transmittance, (V{0.15, 0.15, 0.15}));
+    EXPECT_EQ(m[5].specular_transmittance, (V{0.25, 0.25, 0.25}));
+    EXPECT_EQ(m[6].type, MaterialType::black);
+    EXPECT_EQ(m[6].name, "soot");
+}
+
+TEST_F(EveryKey, GeometryByMaterial) {
+    // Mesh 1: cube of side 2 (scale 2.0), default "grey"; its +-x faces say `usemtl red`.
+    // Mesh 2: cube scaled [1,2,-1], default "soot"; its +-x faces (2 m^2 each) are red.
+    // The `usemtl nosuch` faces match no [[material]] and keep the default.
+    EXPECT_NEAR(area_of(s(), triangles_of(s(), "grey")), 4 * 4.0, 1e-5);
+    EXPECT_NEAR(area_of(s(), triangles_of(s(), "red")), 2 * 4.0 + 2 * 2.0, 1e-5);
+    EXPECT_NEAR(area_of(s(), triangles_of(s(), "soot")), 2 * 2.0 + 2 * 1.0, 1e-5);
+    expect_facing(s(), triangles_of(s(), "grey"), Vec3(1, 1.5, 1), false);
+    expect_facing(s(), triangles_of(s(), "soot"), Vec3(-1.5, 0, 1), false);
+
+    // Panel: size [0.6, 0.3], up = +x, normal -z, so u = up x normal = +y carries 0.6.
+    const auto panel = triangles_of(s(), "mixed");
+    EXPECT_NEAR(area_of(s(), panel), 0.6 * 0.3, 1e-6);
+    EXPECT_NEAR(extent_along(s(), panel, Vec3(0, 1, 0)), 0.6, kPosTol);
+    EXPECT_NEAR(extent_along(s(), panel, Vec3(1, 0, 0)), 0.3, kPosTol);
+    for (std::size_t t : panel) expect_vec(s().triangle_normal[t], Vec3(0, 0, -1), 1e-6);
+
+    const auto room = triangles_of(s(), "silver");  // inward box 6 x 5 x 3
+    EXPECT_NEAR(area_of(s(), room), 2 * (6 * 5 + 5 * 3 + 3 * 6), 1e-4);
+    expect_facing(s(), room, Vec3(0, 0, 1.5), true);
+
+    const auto ball = triangles_of(s(), "pane");  // sphere r 0.4: inscribed, so a bit less
+    EXPECT_LT(area_of(s(), ball), 4 * kPi * 0.16);
+    EXPECT_GT(area_of(s(), ball), 0.98 * 4 * kPi * 0.16);
+    expect_facing(s(), ball, Vec3(2, -1.5, 0.5), false);
+
+    const auto disk = triangles_of(s(), "white");
+    EXPECT_LT(area_of(s(), disk), kPi * 0.25);
+    EXPECT_GT(area_of(s(), disk), 0.99 * kPi * 0.25);
+    for (std::size_t t : disk) expect_vec(s().triangle_normal[t], Vec3(0, 0, 1), 1e-6);
+
+    expect_vec(s().bounds_min, Vec3(-3, -2.5, 0), kPosTol);
+    expect_vec(s().bounds_max, Vec3(3, 2.5, 3), kPosTol);
+}
+
+TEST_F(EveryKey, Lights) {
+    const auto& L = s().lights.lights();
+    ASSERT_EQ(L.size(), 5u);
+    EXPECT_EQ(L[0].type, LightType::point);
+    expect_vec(L[0].position, Vec3(0, 0, 2.5));
+    EXPECT_EQ(L[0].flux_lm, 1200.0);
+    ASSERT_EQ(L[0].band_share.size(), 3u);  // colour [2,1,1], normalised
+    EXPECT_NEAR(L[0].band_share[0], 0.5, 1e-15);
+    EXPECT_NEAR(L[0].band_share[1], 0.25, 1e-15);
+    EXPECT_NEAR(L[0].band_share[2], 0.25, 1e-15);
+
+    // IES: the flux is the file's times the multiplier; +z of the frame is the aim.
+    ASSERT_NE(L[1].ies, nullptr);
+    const double file_flux = load_ies(data("ies/cosine.ies")).flux_lm();
+    EXPECT_NEAR(L[1].flux_lm, 2.5 * file_flux, 1e-12 * file_flux);
+    expect_vec(L[1].aim, Vec3(0, 0.6, -0.8));
+    expect_vec(L[1].frame.n, Vec3(0, 0.6, -0.8));
+    expect_vec(L[1].frame.t, Vec3(1, 0, 0));  // C0 plane: scene +x, already normal to the aim
+
+    EXPECT_EQ(L[2].type, LightType::spot);
+    EXPECT_EQ(L[2].flux_lm, 800.0);
+    expect_vec(L[2].aim, Vec3(0, 0, -1));  // direction [0,0,-2], normalised
+    EXPECT_NEAR(L[2].cos_half_angle, std::cos(30.0 * kPi / 180.0), 1e-15);
+
+    EXPECT_EQ(L[3].type, LightType::area);
+    EXPECT_EQ(L[3].flux_lm, 3000.0);
+    EXPECT_NEAR(L[3].surface.area_m2, 0.18, 1e-6);
+    for (const Vec3& n : L[3].surface.normal) expect_vec(n, Vec3(0, 0, -1), 1e-6);
+    const std::uint32_t mixed = material_id(s(), "mixed");
+    for (int t : L[3].surface.scene_triangle) EXPECT_EQ(s().triangle_material[t], mixed);
+    for (double share : L[3].band_share) EXPECT_NEAR(share, 1.0 / 3.0, 1e-15);
+
+    // Directional: flux = E * pi R^2 of a beam that covers every vertex of the scene.
+    const Light& d = L[4];
+    EXPECT_EQ(d.type, LightType::directional);
+    expect_vec(d.aim, glm::normalize(Vec3(1, 0, -1)));
+    EXPECT_EQ(d.illuminance_lx, 100.0);
+    EXPECT_NEAR(d.flux_lm, 100.0 * kPi * d.beam_radius * d.beam_radius, 1e-9 * d.flux_lm);
+    for (const glm::vec3& v : s().vertices) {
+        const Vec3 r = Vec3(v) - d.beam_center;
+        EXPECT_GT(glm::dot(r, d.aim), 0.0);
+        EXPECT_LE(glm::length(r - glm::dot(r, d.aim) * d.aim), d.beam_radius);
+    }
+    EXPECT_NEAR(s().lights.total_flux_lm(), 1200 + L[1].flux_lm + 800 + 3000 + d.flux_lm, 1e-9);
+}
+
+TEST_F(EveryKey, Detectors) {
+    ASSERT_EQ(s().detectors.size(), 2u);
+    const Detector& a = s().detectors[0];
+    EXPECT_EQ(a.name, "desk");
+    EXPECT_EQ(a.type, DetectorType::illuminance);
+    expect_vec(a.center, Vec3(0, 0, 0.76));
+    expect_vec(a.normal, Vec3(0, 0, 1));
+    expect_vec(a.up, Vec3(0, 1, 0));
+    expect_vec(a.u_axis, Vec3(1, 0, 0));  // up x normal
+    EXPECT_EQ(a.size_u, 1.2);
+    EXPECT_EQ(a.size_v, 0.8);
+    EXPECT_EQ(a.nx, 12);
+    EXPECT_EQ(a.ny, 8);
+
+    const Detector& b = s().detectors[1];
+    EXPECT_EQ(b.name, "wall_view");
+    EXPECT_EQ(b.type, DetectorType::luminance);
+    expect_vec(b.u_axis, Vec3(0, 1, 0));  // z x x
+    EXPECT_EQ(b.nx, 4);
+    EXPECT_EQ(b.ny, 2);
+    EXPECT_EQ(b.half_angle_deg, 10.0);
+    EXPECT_NEAR(b.cos_half_angle, std::cos(10.0 * kPi / 180.0), 1e-15);
+    // The view direction points into the wall; the cone leaves its front side.
+    expect_vec(b.cone_axis, Vec3(0.8, -0.6, 0), 1e-15);
+}
+
+TEST_F(EveryKey, RunTableAndTargets) {
+    const RunConfig& r = s().run;
+    EXPECT_EQ(r.seed, 42u);
+    EXPECT_EQ(r.photons, 100'000'000u);  // "100M"
+    EXPECT_EQ(r.time_limit_s, 600.0);
+    EXPECT_EQ(r.report_every_s, 5.0);
+    EXPECT_EQ(r.checkpoint_every_s, 120.0);
+    EXPECT_EQ(fs::path(r.output), data("scenes") / "results" / "every_key.h5");
+    EXPECT_EQ(fs::path(r.checkpoint), data("scenes") / "results" / "every_key.ckpt");
+    EXPECT_EQ(r.sampler, "sobol");
+    EXPECT_EQ(r.max_bounces, 500);
+    ASSERT_EQ(r.targets.size(), 3u);
+    const Target& g = r.targets[0];
+    EXPECT_TRUE(g.detector.empty());
+    EXPECT_EQ(g.relative_error, 0.02);
+    EXPECT_EQ(g.averaging, Averaging::arithmetic);
+    const Target& d = r.targets[1];
+    EXPECT_EQ(d.detector, "desk");
+    EXPECT_EQ(d.absolute_error, 5.0);
+    EXPECT_EQ(d.averaging, Averaging::quadratic);  // the default
+    EXPECT_EQ(std::vector<int>({d.i0, d.i1, d.j0, d.j1}), std::vector<int>({0, 12, 0, 8}));
+    const Target& c = r.targets[2];
+    EXPECT_EQ(c.detector, "wall_view");
+    EXPECT_EQ(std::vector<int>({c.i0, c.i1, c.j0, c.j1}), std::vector<int>({1, 3, 0, 2}));
+    EXPECT_EQ(c.photons_received, 1e6);
+    EXPECT_EQ(c.relative_error, 0.0);
+    EXPECT_EQ(c.averaging, Averaging::quadratic);
+}
+
+// ---------------------------------------------------------------------------------
+// Scenes written by the test into a fresh temporary folder.
+
+const std::string kMat = "[[material]]\nname = \"m\"\nreflectance = 0.5\n";
+const std::string kFloor = "[[shape]]\ntype = \"rectangle\"\nsize = [2, 2]\nmaterial = \"m\"\n";
+const std::string kLamp = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 100\n";
+const std::string kDesk =
+    "[[detector]]\nname = \"desk\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n";
+
+std::string cube_obj() { return data("scenes/cube.obj").string(); }
+
+class Loader : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("luxtrace_scene_test_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir_, ec);
+    }
+    fs::path write(const std::string& name, const std::string& text) const {
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    Scene load(const std::string& text) const { return load_scene(write("scene.toml", text)); }
+
+    // Loading must throw InputError naming scene.toml, at the line holding `at` (when
+    // given), and containing every fragment.
+    void expect_bad(const std::string& text, const std::string& at,
+                    const std::vector<std::string>& fragments) const {
+        const fs::path file = write("scene.toml", text);
+        std::string where = file.string();
+        if (!at.empty()) {
+            const std::size_t pos = text.find(at);
+            ASSERT_NE(pos, std::string::npos) << "test bug: '" << at << "' not in the scene";
+            const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n');
+            where.append(":").append(std::to_string(line)).append(":");
+        }
+        try {
+            (void)load_scene(file);
+            ADD_FAILURE() << "no InputError for:\n" << text;
+        } catch (const InputError& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find(where), std::string::npos) << "'" << where << "' not in: " << msg;
+            for (const std::string& f : fragments)
+                EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+        }
+    }
+    fs::path dir_;
+};
+
+TEST_F(Loader, DefaultsOfAMinimalScene) {
+    const Scene s = load(kMat + kFloor + kLamp);
+    EXPECT_EQ(s.name, "scene");  // the file's stem
+    EXPECT_EQ(s.bands, std::vector<std::string>{"Y"});
+    EXPECT_TRUE(s.detectors.empty());
+    EXPECT_TRUE(s.run.targets.empty());
+}
+
+TEST_F(Loader, PhotonCountForms) {
+    for (const auto& [text, want] : std::vector<std::pair<std::string, std::uint64_t>>{
+             {"5000", 5000}, {"1e6", 1'000'000}, {"\"100M\"", 100'000'000}, {"\"2.5k\"", 2500}}) {
+        const Scene s = load(kMat + kFloor + kLamp + "[run]\nphotons = " + text + "\n");
+        EXPECT_EQ(s.run.photons, want) << text;
+    }
+}
+
+TEST_F(Loader, MeshTransformScalesThenRotatesXYZThenTranslates) {
+    write("tri.obj", "v 1 0 0\nv 0 2 0\nv 0 0 3\nf 1 2 3\n");
+    const Scene s = load(kMat + kLamp +
+                         "[[mesh]]\nfile = \"tri.obj\"\nmaterial = \"m\"\ntransform = { translate = "
+                         "[10, 20, 30], rotate_deg = [90, 90, 90], scale = [2, 3, 4] }\n");
+    // By hand: (1,0,0) -> (2,0,0) -> Rx (2,0,0) -> Ry (0,0,-2) -> Rz (0,0,-2);
+    // (0,2,0) -> (0,6,0) -> (0,0,6) -> (6,0,0) -> (0,6,0); (0,0,3) -> (0,0,12) ->
+    // (0,-12,0) -> (0,-12,0) -> (12,0,0); all right-handed, then + (10,20,30).
+    const std::vector<Vec3> want{{10, 20, 28}, {10, 26, 30}, {22, 20, 30}};
+    ASSERT_EQ(s.triangle_count(), 1u);
+    for (int k = 0; k < 3; ++k) expect_vec(Vec3(s.vertices[s.triangles[0][k]]), want[k], kPosTol);
+    const Vec3 n = glm::normalize(glm::cross(want[1] - want[0], want[2] - want[0]));
+    expect_vec(s.triangle_normal[0], n, 1e-6);
+}
+
+TEST_F(Loader, MirroringScaleKeepsTheFrontSideOutward) {
+    // A mirror image of a closed outward cube is still outward, whatever the scale's signs.
+    for (const std::string scale : {"-1.0", "[1, 1, -1]", "[-2, 3, 0.5]", "[-1, -1, 1]", "[-1, -2, -3]"}) {
+        const Scene s = load(kMat + kLamp + "[[mesh]]\nfile = \"" + cube_obj() +
+                             "\"\nmaterial = \"m\"\ntransform = { translate = [5, 6, 7], scale = " +
+                             scale + " }\n");
+        std::vector<std::size_t> all(s.triangle_count());
+        for (std::size_t t = 0; t < all.size(); ++t) all[t] = t;
+        SCOPED_TRACE(scale);
+        EXPECT_EQ(all.size(), 12u);
+        expect_facing(s, all, Vec3(5, 6, 7), false);
+    }
+}
+
+TEST_F(Loader, RectangleAreaNormalAndAxes) {
+    const Scene s = load(kMat + kLamp +
+                         "[[shape]]\ntype = \"rectangle\"\ncenter = [1, 2, 3]\nnormal = [1, 1, 0]\n"
+                         "up = [0, 0, 1]\nsize = [3, 1.5]\nsubdivisions = 5\nmaterial = \"m\"\n");
+    const auto tris = triangles_of(s, "m");
+    EXPECT_NEAR(area_of(s, tris), 3 * 1.5, 1e-6);
+    const Vec3 n = glm::normalize(Vec3(1, 1, 0));
+    for (std::size_t t : tris) expect_vec(s.triangle_normal[t], n, 1e-6);
+    const Vec3 u = glm::cross(Vec3(0, 0, 1), n);  // up x normal carries size[0]
+    EXPECT_NEAR(extent_along(s, tris, u), 3.0, kPosTol);
+    EXPECT_NEAR(extent_along(s, tris, Vec3(0, 0, 1)), 1.5, kPosTol);
+    EXPECT_NEAR(extent_along(s, tris, n), 0.0, kPosTol);
+}
+
+TEST_F(Loader, BoxAreaAndSides) {
+    for (const bool inward : {false, true}) {
+        const Scene s = load(kMat + kLamp + "[[shape]]\ntype = \"box\"\ncenter = [1, 2, 3]\n"
+                             "size = [1, 2, 3]\nsubdivisions = 2\nmaterial = \"m\"\ninward = " +
+                             std::string(inward ? "true" : "false") + "\n");
+        const auto tris = triangles_of(s, "m");
+        EXPECT_NEAR(area_of(s, tris), 2 * (1 * 2 + 2 * 3 + 3 * 1), 1e-5);
+        expect_facing(s, tris, Vec3(1, 2, 3), inward);
+        EXPECT_NEAR(extent_along(s, tris, Vec3(1, 0, 0)), 1.0, kPosTol);
+        EXPECT_NEAR(extent_along(s, tris, Vec3(0, 1, 0)), 2.0, kPosTol);
+        EXPECT_NEAR(extent_along(s, tris, Vec3(0, 0, 1)), 3.0, kPosTol);
+    }
+}
+
+// Inscribed triangulations: the area grows toward pi r^2 / 4 pi r^2 from below.
+TEST_F(Loader, DiskAndSphereAreasApproachTheCircleFromBelow) {
+    const double r = 0.7;
+    double last_disk = 0.0, last_sphere = 0.0;
+    for (const int sub : {3, 4, 8, 16, 32}) {  // spheres use at least 3 stacks
+        const std::string n = std::to_string(sub);
+        const Scene d = load(kMat + kLamp + "[[shape]]\ntype = \"disk\"\ncenter = [0, 1, 2]\n"
+                             "normal = [0, -1, 1]\nradius = 0.7\nmaterial = \"m\"\nsubdivisions = " + n + "\n");
+        const double ad = d.total_area_m2();
+        EXPECT_LT(ad, kPi * r * r) << sub;
+        EXPECT_GT(ad, last_disk) << sub;
+        last_disk = ad;
+        // Within 0.1 degree: the tiny central triangles carry the float vertices' rounding.
+        for (const Vec3& nt : d.triangle_normal)
+            EXPECT_GT(glm::dot(nt, glm::normalize(Vec3(0, -1, 1))), std::cos(0.1 * kPi / 180));
+        for (const bool inward : {false, true}) {
+            const Scene s = load(kMat + kLamp + "[[shape]]\ntype = \"sphere\"\ncenter = [0, 1, 2]\n"
+                                 "radius = 0.7\nmaterial = \"m\"\ninward = " +
+                                 (inward ? "true" : "false") + "\nsubdivisions = " + n + "\n");
+            const double as = s.total_area_m2();
+            EXPECT_LT(as, 4 * kPi * r * r) << sub;
+            if (inward) EXPECT_DOUBLE_EQ(as, last_sphere) << sub;
+            else EXPECT_GT(as, last_sphere) << sub;
+            last_sphere = as;
+            std::vector<std::size_t> all(s.triangle_count());
+            for (std::size_t t = 0; t < all.size(); ++t) all[t] = t;
+            expect_facing(s, all, Vec3(0, 1, 2), inward);
+        }
+    }
+    EXPECT_GT(last_disk, 0.999 * kPi * r * r);
+    EXPECT_GT(last_sphere, 0.995 * 4 * kPi * r * r);
+}
+
+TEST_F(Loader, LuminanceViewDirectionOfEitherSign) {
+    for (const std::string vd : {"[0.6, 0, 0.8]", "[-0.6, 0, -0.8]"}) {
+        const Scene s = load(kMat + kFloor + kLamp +
+                             "[[detector]]\nname = \"l\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
+                             "size = [1, 1]\nview_direction = " + vd + "\nhalf_angle_deg = 3\n");
+        ASSERT_EQ(s.detectors.size(), 1u);
+        expect_vec(s.detectors[0].cone_axis, Vec3(0.6, 0, 0.8), 1e-15);
+        EXPECT_NEAR(s.detectors[0].cos_half_angle, std::cos(3 * kPi / 180), 1e-15);
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// Bad input: one test per class.
+
+TEST_F(Loader, TomlSyntaxError) {
+    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\nsize = [2, 2]\n" + kLamp,
+               "type = \"rectangle", {"TOML syntax error"});
+}
+
+TEST_F(Loader, UnknownKeys) {
+    expect_bad("bogus = 1\n" + kMat + kFloor + kLamp, "bogus", {"unknown key 'bogus'"});
+    // A misspelt table must not be hidden behind "no lights".
+    expect_bad(kMat + kFloor + "[[lights]]\ntype = \"point\"\n", "[[lights]]", {"unknown key 'lights'"});
+    expect_bad(kMat + "colour = 0.3\n" + kFloor + kLamp, "colour", {"[[material]] #1 'm'", "unknown key 'colour'"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"x.obj\"\ntransform = { translate = [0, 0, 0], spin = 3 }\n",
+               "spin", {"transform", "unknown key 'spin'"});
+    expect_bad(kMat + kFloor + kLamp + "[[run.target]]\nrelative_error = 0.1\ntolerance = 2\n",
+               "tolerance", {"[[run.target]] #1", "unknown key 'tolerance'"});
+}
+
+TEST_F(Loader, MissingRequiredKey) {
+    expect_bad("[[material]]\nname = \"m\"\ntype = \"mirror\"\n" + kFloor + kLamp, "[[material]]",
+               {"needs 'specular_reflectance'"});
+    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\"\nmaterial = \"m\"\n" + kLamp, "[[shape]]",
+               {"needs 'size'"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\nflux_lm = 1\n",
+               "[[light]]", {"needs 'half_angle_deg'"});
+}
+
+TEST_F(Loader, WrongType) {
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = \"bright\"\n",
+               "flux_lm", {"key 'flux_lm'", "expected a finite number"});
+    expect_bad(kMat + "[[shape]]\ntype = \"box\"\nsize = [1, 1, 1]\nmaterial = \"m\"\ninward = 1\n" + kLamp,
+               "inward", {"key 'inward'", "expected true or false"});
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0]\nsize = [1, 1]\n",
+               "center", {"key 'center'", "expected an array of 3 numbers"});
+}
+
+TEST_F(Loader, NegativeFlux) {
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = -5\n",
+               "flux_lm", {"key 'flux_lm'", "must be positive"});
+}
+
+TEST_F(Loader, ZeroFlux) {
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nilluminance_lx = 0\n",
+               "illuminance_lx", {"key 'illuminance_lx'", "must be positive"});
+}
+
+TEST_F(Loader, ReflectanceOutsideZeroOne) {
+    for (const std::string v : {"1.2", "-0.1"})
+        expect_bad("[[material]]\nname = \"m\"\nreflectance = " + v + "\n" + kFloor + kLamp,
+                   "reflectance", {"key 'reflectance'", "must lie in [0, 1]"});
+}
+
+TEST_F(Loader, GeneralMaterialSummingOverOne) {
+    expect_bad("[scene]\nbands = [\"R\", \"G\"]\n[[material]]\nname = \"m\"\ntype = \"general\"\n"
+               "diffuse_reflectance = 0.5\nspecular_transmittance = [0.4, 0.6]\n" + kFloor + kLamp,
+               "[[material]]", {"sum to", "> 1 in band 'G'"});
+}
+
+TEST_F(Loader, PerBandArrayOfWrongLength) {
+    expect_bad("[scene]\nbands = [\"R\", \"G\", \"B\"]\n[[material]]\nname = \"m\"\nreflectance = [0.5, 0.5]\n" +
+               kFloor + kLamp, "reflectance", {"key 'reflectance'", "one value per band (3), got 2"});
+}
+
+TEST_F(Loader, UnknownMaterialReference) {
+    expect_bad(kMat + "[[shape]]\ntype = \"disk\"\nradius = 1\nmaterial = \"nosuch\"\n" + kLamp,
+               "material = \"nosuch\"", {"key 'material'", "no [[material]] is named 'nosuch'"});
+    // A mesh without a default whose file material matches nothing.
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"" + cube_obj() + "\"\n", "[[mesh]]",
+               {"no default 'material'"});
+}
+
+TEST_F(Loader, UnknownTypes) {
+    expect_bad("[[material]]\nname = \"m\"\ntype = \"plastic\"\n" + kFloor + kLamp, "plastic",
+               {"unknown material type 'plastic'"});
+    expect_bad(kMat + "[[shape]]\ntype = \"cone\"\nmaterial = \"m\"\n" + kLamp, "cone",
+               {"unknown shape type 'cone'"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"laser\"\n", "laser", {"unknown light type 'laser'"});
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ntype = \"radiance\"\n", "radiance",
+               {"unknown detector type 'radiance'"});
+}
+
+TEST_F(Loader, DuplicateNames) {
+    // The second definition's name line carries "# again": the message must point there.
+    auto again = [](std::string block) { return block.insert(block.find('\n', block.find("name")), " # again"); };
+    expect_bad(kMat + again(kMat) + kFloor + kLamp, "# again", {"key 'name'", "material 'm' is defined twice"});
+    const std::string named = "[[shape]]\ntype = \"disk\"\nradius = 1\nmaterial = \"m\"\nname = \"lamp\"\n";
+    expect_bad(kMat + named + again(named) + kLamp, "# again", {"key 'name'", "shape 'lamp' is defined twice"});
+    expect_bad(kMat + kFloor + kLamp + kDesk + again(kDesk), "# again",
+               {"key 'name'", "detector 'desk' is defined twice"});
+}
+
+TEST_F(Loader, ZeroAreaDetector) {
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [0, 1]\n",
+               "size = [0, 1]", {"key 'size'", "zero or negative area"});
+}
+
+TEST_F(Loader, DetectorUpParallelToNormal) {
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+               "normal = [0, 0, 1]\nup = [0, 0, -2]\n", "up =", {"key 'up'", "parallel to 'normal'"});
+}
+
+TEST_F(Loader, MissingMeshFile) {
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"absent.obj\"\nmaterial = \"m\"\n", "file =",
+               {"absent.obj", "does not exist"});
+}
+
+TEST_F(Loader, UnreadableMesh) {
+    // Assimp's OBJ reader skips lines it does not know: garbage yields no triangles.
+    write("garbage.obj", "this is not\x01\x02 a mesh { f f f\n");
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"garbage.obj\"\nmaterial = \"m\"\n", "file =",
+               {"[[mesh]] #1", "garbage.obj", "has no triangles"});
+    write("broken.stl", "solid x\nfacet normal 0 0 1\n outer loop\n vertex 0 0");
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"broken.stl\"\nmaterial = \"m\"\n", "file =",
+               {"[[mesh]] #1", "cannot read mesh", "broken.stl"});
+}
+
+TEST_F(Loader, MissingIesFile) {
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"absent.ies\"\n",
+               "ies =", {"key 'ies'", "absent.ies", "cannot open"});
+}
+
+TEST_F(Loader, BadIesFile) {
+    const std::string ies = data("ies/bad_truncated.ies").string();
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"" + ies + "\"\n",
+               "ies =", {"key 'ies'", ies + ":", "unexpected end of file"});
+}
+
+TEST_F(Loader, AreaLightNamingAnUnknownShape) {
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"area\"\nflux_lm = 10\nshape = \"panel\"\n", "shape =",
+               {"key 'shape'", "no [[shape]] is named 'panel'"});
+}
+
+TEST_F(Loader, BadTargetRange) {
+    const std::string head = kMat + kFloor + kLamp + kDesk + "[[run.target]]\nrelative_error = 0.1\non = ";
+    for (const std::string on : {"\"detector:desk[0:2]\"", "\"detector:desk[0:2,0:1\"",
+                                 "\"detector:desk[0-2,0:1]\"", "\"detector:desk[0:2,0:1]x\"",
+                                 "\"detector:[0:2,0:1]\"", "\"detectors:desk\""})
+        expect_bad(head + on + "\n", "on = \"", {"key 'on'"});
+    expect_bad(head + "\"detector:desk[0:2,0:1]x\"\n", "on = \"", {"cell range must read [i0:i1,j0:j1]"});
+    for (const std::string on : {"\"detector:desk[0:5,0:1]\"", "\"detector:desk[0:2,1:4]\"",
+                                 "\"detector:desk[2:2,0:1]\"", "\"detector:desk[-1:2,0:1]\""})
+        expect_bad(head + on + "\n", "on = \"", {"key 'on'", "outside the 4 x 3 grid or is empty"});
+}
+
+TEST_F(Loader, BadPhotonCounts) {
+    expect_bad(kMat + kFloor + kLamp + "[run]\nphotons = 0\n", "photons", {"key 'photons'", "must be positive"});
+    expect_bad(kMat + kFloor + kLamp + "[run]\nphotons = \"12X\"\n", "photons",
+               {"key 'photons'", "expected a non-negative whole count"});
+}
+
+TEST_F(Loader, SceneWithNoLights) {
+    expect_bad(kMat + kFloor, "", {"no [[light]]"});
+}
+
+TEST_F(Loader, SceneWithNoSurfaces) {
+    expect_bad(kMat + kLamp, "", {"no surfaces"});
+}
+
+}  // namespace
+}  // namespace luxtrace

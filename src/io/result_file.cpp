@@ -259,6 +259,9 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "stop_reason", info.stop_reason);
         attr_strings(file, "bands", scene.bands, false);
         attr(file, "sampler", info.sampler);
+        attr(file, "reductions", info.reductions);
+        attr(file, "reduction_stall_s", info.reduction_stall_s);
+        attr(file, "reduction_wait_s", info.reduction_wait_s);
         write_surface(file, scene, layout, tallies, info, global);
         write_detectors(file, scene, layout, tallies, detectors);
         write_history(file, history, info);

@@ -69,6 +69,13 @@ bool ResultReader::has(const std::string& object) const {
     return ok > 0;
 }
 
+bool ResultReader::has_attr(const std::string& object, const std::string& name) const {
+    htri_t ok = 0;
+    H5E_BEGIN_TRY { ok = H5Aexists_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT); }
+    H5E_END_TRY;
+    return ok > 0;
+}
+
 std::vector<std::uint64_t> ResultReader::u64(const std::string& name, std::vector<std::size_t>* shape) const {
     return read_dataset<std::uint64_t>(file_, name, H5T_NATIVE_UINT64, shape);
 }

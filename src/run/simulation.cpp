@@ -149,6 +149,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
 
     double period = std::clamp(run.report_every_s > 0.0 ? run.report_every_s : 2.0, 0.05, 60.0);
     double stall_s = 0.0, write_s = 0.0;
+    // Overhead accounting: tracing time lost to pauses, and the main thread's wait for
+    // reductions (the workers trace meanwhile).
+    double stall_total_s = 0.0, reduce_total_s = 0.0;
+    std::uint64_t reductions = 0;
     std::vector<double> decision(4, 0.0);
     while (true) {
         const double due = comm.wtime() + period;
@@ -157,8 +161,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         const double s0 = comm.wtime();
         take_snapshot();
         stall_s = comm.wtime() - s0;
+        stall_total_s += stall_s;
+        ++reductions;
+        const double r0 = comm.wtime();
         PendingReduce pending = comm.ireduce_sum_to_root(snapshot, reduced);
         while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+        reduce_total_s += comm.wtime() - r0;
         if (comm.is_root()) {
             ReductionInput in;
             in.tallies = std::span<const std::uint64_t>(reduced.data(), S);
@@ -197,6 +205,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     snapshot[S + 2 * comm.rank() + 1] = p.prefix;
     comm.ireduce_sum_to_root(snapshot, reduced).wait();
     const double elapsed = comm.allreduce_max(comm.wtime() - t0);
+    info.reductions = reductions;
+    info.reduction_stall_s = comm.allreduce_max(stall_total_s);
+    info.reduction_wait_s = comm.allreduce_max(reduce_total_s);
     summary.elapsed_s = elapsed_before + elapsed;
     summary.exit_code = static_cast<int>(decision[2]);
     std::vector<double> reason_code{0.0};
@@ -221,6 +232,11 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         << " thread(s), stopped by: " << r.attr_str("/", "stop_reason") << '\n'
         << "photons        " << photons << " in " << std::fixed << std::setprecision(2) << elapsed << " s ("
         << std::scientific << std::setprecision(3) << (elapsed > 0 ? photons / elapsed : 0.0) << " photons/s)\n";
+    if (r.has_attr("/", "reductions"))
+        out << "reductions     " << r.attr_u64("/", "reductions") << ", tracing stalled " << std::fixed
+            << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s ("
+            << std::setprecision(2) << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0)
+            << " % of the run)\n";
     out << std::defaultfloat << std::setprecision(6);
     out << "flux           " << r.attr_f64("/", "total_flux_lm") << " lm, " << r.attr_f64("/", "flux_per_photon_lm")
         << " lm per photon\n";

@@ -34,6 +34,9 @@ struct RunInfo {
     double elapsed_s = 0.0;
     std::string stop_reason;
     std::string sampler;
+    std::uint64_t reductions = 0;
+    double reduction_stall_s = 0.0;  // tracing time lost to snapshots (max over ranks)
+    double reduction_wait_s = 0.0;   // main thread's wait for reductions (tracing goes on)
     std::vector<std::string> target_labels;
     std::vector<double> target_goals;
 };
@@ -74,6 +77,7 @@ public:
     ResultReader& operator=(const ResultReader&) = delete;
 
     bool has(const std::string& object) const;
+    bool has_attr(const std::string& object, const std::string& name) const;
     std::vector<std::uint64_t> u64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
     std::vector<double> f64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
     double attr_f64(const std::string& object, const std::string& name) const;

@@ -1,0 +1,43 @@
+#!/usr/bin/python3
+"""Forecast accuracy of finished luxtrace runs (Debian's /usr/bin/python3 with h5py).
+
+For each result file of a run that stopped on a target, compare the forecast finishing
+time made at 5%, 10%, 25% and 50% of the run with the time the target was actually met
+(the last reduction). Usage: scripts/forecast_accuracy.py RESULT.h5 [...]
+"""
+import sys
+
+import h5py
+import numpy as np
+
+
+def accuracy(path, fractions=(0.05, 0.10, 0.25, 0.50)):
+    with h5py.File(path, "r") as f:
+        h = f["history"]
+        t = h["time_s"][:]
+        forecast = h["target_forecast_s"][:, 0]
+        label = h.attrs["target_labels"][0]
+        reason = f.attrs["stop_reason"]
+    actual = t[-1]
+    rows = []
+    for frac in fractions:
+        i = int(np.searchsorted(t, frac * actual))
+        if i >= len(t) - 1 or not np.isfinite(forecast[i]):
+            rows.append((frac, float("nan"), float("nan"), float("nan")))
+            continue
+        rows.append((frac, t[i], forecast[i], (forecast[i] - actual) / actual))
+    return label, reason, actual, len(t), rows
+
+
+def main(paths):
+    for p in paths:
+        label, reason, actual, n, rows = accuracy(p)
+        print(f"{p}: target {label}, stopped by {reason}, met at {actual:.1f} s, {n} reductions")
+        for frac, t, fc, err in rows:
+            print(f"  at {100 * frac:4.0f}% ({t:7.2f} s): forecast {fc:8.2f} s, error {100 * err:+6.2f}%")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    main(sys.argv[1:])

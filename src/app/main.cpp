@@ -7,6 +7,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
+#include "commands.hpp"
 #include "scene_summary.hpp"
 
 #include <CLI/CLI.hpp>
@@ -164,6 +165,28 @@ int main(int argc, char** argv) {
     auto* info = app.add_subcommand("info", "print the stored summary of a result file");
     info->add_option("result", info_path, "result file (.h5)")->required();
 
+    RenderArgs rd;
+    auto* render = app.add_subcommand("render", "pictures of a result: a rendered view and/or detector images");
+    render->add_option("result", rd.result, "result file (.h5)")->required();
+    render->add_option("--camera", rd.camera, "position,target[,up] as 6 or 9 comma-separated numbers");
+    render->add_option("--view", rd.camera_name, "name of a [[camera]] in the scene file");
+    render->add_option("--fov", rd.fov_deg, "horizontal field of view in degrees");
+    render->add_option("--size", rd.size, "image size WxH, e.g. 800x600");
+    render->add_option("-o,--output", rd.output, "image file (.png; luminance also as .exr)");
+    render->add_option("--tonemap", rd.tonemap, "auto | exposure | falsecolour");
+    render->add_option("--exposure", rd.exposure, "exposure mapping: luminance (cd/m^2) shown as white");
+    render->add_option("--gamma", rd.gamma, "display gamma of the exposure mapping");
+    render->add_option("--falsecolour-max", rd.falsecolour_max, "top of the false-colour scale (cd/m^2)");
+    render->add_option("--samples", rd.samples, "rays per pixel");
+    render->add_option("--detector", rd.detectors, "detector pictures for this detector (repeatable)");
+    render->add_option("--cell", rd.cell, "i,j: the cell the detector sections go through");
+    render->add_option("--out-dir", rd.out_dir, "folder for detector pictures");
+    render->add_option("--threads", rd.threads, "threads (default: all cores)");
+    std::string xdmf_result, xdmf_output;
+    auto* xdmf = app.add_subcommand("export-xdmf", "write the ParaView/VisIt companion (.xdmf) of a result");
+    xdmf->add_option("result", xdmf_result, "result file (.h5)")->required();
+    xdmf->add_option("-o,--output", xdmf_output, "XDMF file (default: RESULT.xdmf)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -177,6 +200,8 @@ int main(int argc, char** argv) {
         if (*run) return cmd_run(comm, ra);
         if (*check) return comm.is_root() ? cmd_check(check_path) : 0;
         if (*info) return comm.is_root() ? cmd_info(info_path) : 0;
+        if (*render) return comm.is_root() ? cmd_render(rd) : 0;
+        if (*xdmf) return comm.is_root() ? cmd_export_xdmf(xdmf_result, xdmf_output) : 0;
     } catch (const InputError& e) {
         // Every rank reads the same input and fails the same way; one message is enough.
         if (comm.is_root()) std::cerr << "luxtrace: error: " << e.what() << '\n';

@@ -378,6 +378,36 @@ struct Loader {
         scene.detectors.push_back(d);
     }
 
+    void parse_camera(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("camera", i, t));
+        Camera c;
+        const auto name = r.string("name");
+        if (!name || name->empty()) r.fail_entry("needs a 'name'");
+        for (const Camera& other : scene.cameras)
+            if (other.name == *name) r.fail("name", "camera '" + *name + "' is defined twice");
+        c.name = *name;
+        const auto pos = r.vec3("position");
+        const auto target = r.vec3("target");
+        if (!pos || !target) r.fail_entry("needs 'position' and 'target'");
+        c.position = *pos;
+        c.target = *target;
+        if (glm::length(c.target - c.position) < 1e-9) r.fail("target", "must differ from 'position'");
+        c.up = unit(r, "up", r.vec3("up").value_or(Vec3(0, 0, 1)));
+        if (glm::length(glm::cross(c.up, c.target - c.position)) < 1e-9 * glm::length(c.target - c.position))
+            r.fail("up", "must not be parallel to the viewing direction");
+        c.fov_deg = r.number("fov_deg").value_or(60.0);
+        if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) r.fail("fov_deg", "must lie in (0, 180)");
+        if (const auto size = r.numbers("size", 2)) {
+            const double w = (*size)[0], h = (*size)[1];
+            if (!(w >= 1 && h >= 1 && w <= 16384 && h <= 16384 && w == std::floor(w) && h == std::floor(h)))
+                r.fail("size", "expected two whole numbers of pixels [width, height] up to 16384");
+            c.width = static_cast<int>(w);
+            c.height = static_cast<int>(h);
+        }
+        r.finish();
+        scene.cameras.push_back(c);
+    }
+
     void parse_run(TableReader& root) {
         RunConfig& run = scene.run;
         run.output = (fs::path(file.stem().string() + ".h5")).string();
@@ -487,7 +517,7 @@ Scene load_scene(const fs::path& file) {
     }
     TableReader root(root_table, L.fname, "top level");
     for (const auto& [key, node] : root_table) {
-        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run"};
+        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run", "camera"};
         if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
             throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
                              ": top level: unknown key '" + std::string(key.str()) + "'");
@@ -519,6 +549,8 @@ Scene load_scene(const fs::path& file) {
     L.scene.lights = LightSet(std::move(lights));
     const auto detector_tables = L.tables_of(root, "detector");
     for (std::size_t i = 0; i < detector_tables.size(); ++i) L.parse_detector(*detector_tables[i], i);
+    const auto camera_tables = L.tables_of(root, "camera");
+    for (std::size_t i = 0; i < camera_tables.size(); ++i) L.parse_camera(*camera_tables[i], i);
     L.parse_run(root);
     root.finish();
     return std::move(L.scene);

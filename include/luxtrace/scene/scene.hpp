@@ -15,6 +15,14 @@
 
 namespace luxtrace {
 
+// A named view for `luxtrace render` ([[camera]] in the scene file).
+struct Camera {
+    std::string name;
+    Vec3 position{0.0}, target{0, 1, 0}, up{0, 0, 1};
+    double fov_deg = 60.0;  // horizontal field of view
+    int width = 800, height = 600;
+};
+
 struct Scene {
     std::filesystem::path file;
     std::string name;
@@ -28,6 +36,7 @@ struct Scene {
     std::vector<Vec3> triangle_normal;  // unit geometric normal (front side)
     LightSet lights;
     std::vector<Detector> detectors;
+    std::vector<Camera> cameras;
     RunConfig run;
     std::vector<std::string> warnings;
     Vec3 bounds_min{0.0}, bounds_max{0.0};

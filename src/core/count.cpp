@@ -1,5 +1,6 @@
 #include "luxtrace/core/count.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
@@ -7,6 +8,13 @@ namespace luxtrace {
 
 std::optional<std::uint64_t> parse_count(const std::string& text) {
     if (text.empty()) return std::nullopt;
+    // Plain digits exactly (a double would round counts above 2^53).
+    if (text.find_first_not_of("0123456789") == std::string::npos) {
+        errno = 0;
+        const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+        if (errno == ERANGE) return std::nullopt;
+        return static_cast<std::uint64_t>(v);
+    }
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (end == text.c_str()) return std::nullopt;

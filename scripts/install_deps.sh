@@ -9,7 +9,7 @@ packages=(
   libtomlplusplus-dev libassimp-dev librandom123-dev
   python3-h5py python3-numpy python3-matplotlib
   slurm-wlm munge
-  libcairo2-dev libpng-dev libopenexr-dev fonts-dejavu-core
+  libcairo2-dev libpng-dev libopenexr-dev fonts-dejavu-core libxml2-utils
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -110,12 +111,24 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
                   << " thread(s)\n" << std::flush;
     const RunSummary s = run_simulation(scene, comm, opt, std::cout);
     if (comm.is_root()) {
+        // The ParaView/VisIt companion (here, not in luxtrace_run, which does not link the
+        // render library). The result is written already: a failure only warns.
+        fs::path xdmf_path = fs::path(s.output).replace_extension(".xdmf");
+        if (xdmf_path == fs::path(s.output)) xdmf_path += ".xdmf";  // never over the result
+        bool xdmf_written = false;
+        try {
+            write_xdmf(s.output, xdmf_path);
+            xdmf_written = true;
+        } catch (const std::exception& e) {
+            std::cerr << "luxtrace: warning: " << xdmf_path.string() << " not written: " << e.what() << '\n';
+        }
         if (!a.quiet) {
             ResultReader r(s.output);
             print_result_summary(r, std::cout);
         }
         if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
         std::cout << "result: " << fs::absolute(s.output).string() << '\n';
+        if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';
         if (s.exit_code == 3)
             std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run " << a.scene
                       << " --restart " << s.checkpoint << '\n';

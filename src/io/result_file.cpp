@@ -147,6 +147,17 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
         }
     dataset(glob, "illuminance", {T, B}, e.data());
     dataset(glob, "illuminance_direct", {T, B}, direct.data());
+    // E_odd - E_even per triangle, band-summed (the terms of eq. 5): a float map the
+    // XDMF companion can show as it is.
+    std::vector<double> odd_even(T);
+    for (std::size_t t = 0; t < T; ++t) {
+        double d = 0.0;
+        for (std::size_t b = 0; b < B; ++b)
+            d += static_cast<double>(data[L.surface(t, b, TallyLayout::kCountOdd)]) -
+                 static_cast<double>(data[L.surface(t, b, TallyLayout::kCountEven)]);
+        odd_even[t] = 2.0 * d * info.flux_per_photon_lm / scene.triangle_area_m2[t];
+    }
+    dataset(glob, "odd_even_difference_lx", {T}, odd_even.data());
     attr(glob, "sigma_lx", g.sigma_lx);
     attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
     attr(glob, "sigma_rel_quadratic", g.sigma_rel_quadratic);

@@ -85,10 +85,8 @@ std::vector<double> ResultReader::f64(const std::string& name, std::vector<std::
 }
 
 double ResultReader::attr_f64(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(file_, object, name), H5Aclose};
-    double v = 0.0;
-    H5Aread(a.id, H5T_NATIVE_DOUBLE, &v);
-    return v;
+    const std::vector<double> v = f64_attr_array(object, name);
+    return v.empty() ? 0.0 : v[0];
 }
 
 std::vector<double> ResultReader::f64_attr_array(const std::string& object, const std::string& name) const {
@@ -101,9 +99,11 @@ std::vector<double> ResultReader::f64_attr_array(const std::string& object, cons
 
 std::uint64_t ResultReader::attr_u64(const std::string& object, const std::string& name) const {
     Closer a{open_attr(file_, object, name), H5Aclose};
-    std::uint64_t v = 0;
-    H5Aread(a.id, H5T_NATIVE_UINT64, &v);
-    return v;
+    Closer space{H5Aget_space(a.id), H5Sclose};
+    // Read every element (an array attribute must not overrun a scalar), return the first.
+    std::vector<std::uint64_t> v(static_cast<std::size_t>(std::max<hssize_t>(1, H5Sget_simple_extent_npoints(space.id))));
+    H5Aread(a.id, H5T_NATIVE_UINT64, v.data());
+    return v[0];
 }
 
 std::vector<std::string> ResultReader::attr_strs(const std::string& object, const std::string& name) const {

@@ -1,11 +1,178 @@
+// XDMF companion of a result file. Every attribute is a reference into the HDF5 file
+// (Format="HDF"), so ParaView/VisIt read the maps in place; per-band columns of the [T,B]
+// maps are picked with HyperSlab items, the secondary part is a Function "$0 - $1".
+// Checked with ParaView 5.11's "XDMF Reader" (all attributes, values equal to the
+// datasets); its Xdmf3 readers load the mesh and the plain datasets but skip the
+// HyperSlab and Function attributes.
 #include "luxtrace/io/xdmf.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 namespace luxtrace {
 
-void write_xdmf(const std::filesystem::path& result, const std::filesystem::path&) {
-    throw InputError(result.string() + ": XDMF export is not implemented yet");
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string xml_escape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        case '\'': out += "&apos;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+// Writes the DataItems of one document; `h5` is the file reference as it appears
+// before the ':' of each HDF DataItem.
+class XdmfWriter {
+public:
+    XdmfWriter(std::ostream& out, std::string h5, std::size_t triangles, std::size_t bands)
+        : out_(out), h5_(xml_escape(h5)), T_(triangles), B_(bands) {}
+
+    // A whole dataset: `dims` as XDMF writes them ("T 3"), type "Float"/"UInt", bytes.
+    void hdf(const std::string& indent, const std::string& path, const std::string& dims, const char* type,
+             int precision) {
+        out_ << indent << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"" << type << "\" Precision=\""
+             << precision << "\" Format=\"HDF\">" << h5_ << ':' << path << "</DataItem>\n";
+    }
+    // Column `band` of a float64 [T,B] map as a [T,1] item (the dataset itself when B = 1).
+    void band_column(const std::string& indent, const std::string& path, std::size_t band) {
+        if (B_ == 1) {
+            hdf(indent, path, dims(T_, 1), "Float", 8);
+            return;
+        }
+        out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims(T_, 1)
+             << "\" Type=\"HyperSlab\">\n"
+             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << band
+             << " 1 1 " << T_ << " 1</DataItem>\n";
+        hdf(indent + "  ", path, dims(T_, B_), "Float", 8);
+        out_ << indent << "</DataItem>\n";
+    }
+    void open_attribute(const std::string& name) {
+        out_ << "      <Attribute Name=\"" << xml_escape(name)
+             << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+    }
+    void close_attribute() { out_ << "      </Attribute>\n"; }
+
+    static std::string dims(std::size_t a, std::size_t b) { return std::to_string(a) + ' ' + std::to_string(b); }
+
+private:
+    std::ostream& out_;
+    std::string h5_;
+    std::size_t T_, B_;
+};
+
+}  // namespace
+
+void write_xdmf(const fs::path& result, const fs::path& xdmf) {
+    std::error_code ec;
+    if (fs::exists(xdmf, ec) && fs::equivalent(result, xdmf, ec))
+        throw InputError(xdmf.string() + ": the XDMF file would replace the result file");
+    const ResultReader r(result);
+    std::vector<std::size_t> vshape, tshape, eshape;
+    // Only small datasets are read, for their shapes: the maps stay where they are.
+    r.f64("/mesh/vertices", &vshape);
+    r.f64("/mesh/area", &tshape);
+    if (!r.has("/global/illuminance") || !r.has("/global/illuminance_direct") || vshape.size() != 2 ||
+        tshape.size() != 1)
+        throw InputError(result.string() + ": not a complete luxtrace result (mesh or /global maps missing)");
+    const std::size_t V = vshape[0], T = tshape[0];
+    std::vector<std::string> bands = r.attr_strs("/", "bands");
+    if (bands.empty()) bands.push_back("Y");
+    const std::size_t B = bands.size();
+    std::string scene = r.has_attr("/", "scene_name") ? r.attr_str("/", "scene_name") : std::string();
+    if (scene.empty()) scene = result.stem().string();
+
+    // Same folder: the bare file name, so the pair can be moved together; otherwise absolute.
+    const fs::path xdir = fs::absolute(xdmf).parent_path();
+    const fs::path rabs = fs::absolute(result);
+    const std::string h5 = rabs.parent_path().lexically_normal() == xdir.lexically_normal()
+                               ? rabs.filename().string()
+                               : rabs.lexically_normal().string();
+
+    std::ostringstream out;
+    XdmfWriter w(out, h5, T, B);
+    out << "<?xml version=\"1.0\" ?>\n"
+        << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+        << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+        << "  <Domain>\n"
+        << "    <Grid Name=\"" << xml_escape(scene) << "\" GridType=\"Uniform\">\n";
+    if (r.has("/mesh/material_names")) {
+        std::string names;
+        for (const std::string& n : r.attr_strs("/mesh", "material_names")) {
+            if (!names.empty()) names += ',';
+            names += n;
+        }
+        out << "      <Information Name=\"material_names\" Value=\"" << xml_escape(names) << "\"/>\n";
+    }
+    out << "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << T << "\">\n";
+    w.hdf("        ", "/mesh/triangles", XdmfWriter::dims(T, 3), "UInt", 4);
+    out << "      </Topology>\n"
+        << "      <Geometry GeometryType=\"XYZ\">\n";
+    w.hdf("        ", "/mesh/vertices", XdmfWriter::dims(V, 3), "Float", 8);
+    out << "      </Geometry>\n";
+
+    const std::string in = "        ";
+    for (std::size_t b = 0; b < B; ++b) {
+        const std::string suffix = B == 1 ? "" : "_" + bands[b];
+        w.open_attribute("illuminance" + suffix + "_lx");
+        w.band_column(in, "/global/illuminance", b);
+        w.close_attribute();
+        w.open_attribute("direct" + suffix + "_lx");
+        w.band_column(in, "/global/illuminance_direct", b);
+        w.close_attribute();
+        // Secondary (interreflected) light: all arrivals minus first hits.
+        w.open_attribute("secondary" + suffix + "_lx");
+        out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\""
+            << XdmfWriter::dims(T, 1) << "\">\n";
+        w.band_column(in + "  ", "/global/illuminance", b);
+        w.band_column(in + "  ", "/global/illuminance_direct", b);
+        out << in << "</DataItem>\n";
+        w.close_attribute();
+    }
+    // Older result files lack it; the rest of the companion is still useful.
+    if (r.has("/global/odd_even_difference_lx")) {
+        w.open_attribute("odd_even_difference_lx");
+        w.hdf(in, "/global/odd_even_difference_lx", std::to_string(T), "Float", 8);
+        w.close_attribute();
+    }
+    w.open_attribute("area_m2");
+    w.hdf(in, "/mesh/area", std::to_string(T), "Float", 8);
+    w.close_attribute();
+    w.open_attribute("material");
+    w.hdf(in, "/mesh/material", std::to_string(T), "UInt", 4);
+    w.close_attribute();
+    out << "    </Grid>\n"
+        << "  </Domain>\n"
+        << "</Xdmf>\n";
+
+    // Atomic: a temporary file beside the target, then rename.
+    std::string tmp_name = xdmf.filename().string();
+    tmp_name.insert(tmp_name.begin(), '.');
+    tmp_name += ".tmp." + std::to_string(::getpid());
+    const fs::path tmp = xdir / tmp_name;
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        f << out.str();
+        f.close();
+        if (!f) {
+            fs::remove(tmp, ec);
+            throw InputError(xdmf.string() + ": cannot write the XDMF file");
+        }
+    }
+    fs::rename(tmp, xdmf);
 }
 
 }  // namespace luxtrace

@@ -42,11 +42,13 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
     history_.push_back(row);
 
-    // Keep the tracing time lost to reductions under 1% of the run (the goal is 2%). A
-    // stall can be inflated by a descheduled thread: use the least of the last three.
+    // Keep the tracing time lost to reductions under 2% of the run. A stall can be
+    // inflated by a descheduled thread on a busy machine: use the median of the last five.
     recent_stalls_.push_back(in.stall_s);
-    if (recent_stalls_.size() > 3) recent_stalls_.erase(recent_stalls_.begin());
-    period_s_ = std::max(period_s_, 100.0 * *std::min_element(recent_stalls_.begin(), recent_stalls_.end()));
+    if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
+    std::vector<double> sorted = recent_stalls_;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    period_s_ = std::max(period_s_, 50.0 * sorted[sorted.size() / 2]);
     Decision d;
     d.next_period_s = period_s_;
     bool error_targets_unmet = false;

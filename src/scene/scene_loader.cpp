@@ -266,6 +266,7 @@ struct Loader {
                 l.flux_lm = photometry.flux_lm() * mult;
                 if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
                 l.ies = std::make_shared<IesDistribution>(photometry);
+                l.photometry = std::make_shared<const IesPhotometry>(std::move(photometry));
             } else {
                 l.flux_lm = flux("flux_lm");
             }

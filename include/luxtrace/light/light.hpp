@@ -37,6 +37,9 @@ struct Light {
     Vec3 aim{0.0, 0.0, -1.0};        // point+IES: photometric nadir; spot: axis
     double cos_half_angle = 1.0;     // spot
     std::shared_ptr<const IesDistribution> ies;  // point with photometry
+    // The same photometry as read (intensities for the renderer's exact direct light);
+    // intensity toward a direction = photometry->intensity_cd(...) * flux_lm / photometry->flux_lm().
+    std::shared_ptr<const IesPhotometry> photometry;
     Frame frame = Frame::around(Vec3(0, 0, -1));  // local +z = aim, +x = C0 (IES)
     // area
     EmitterSurface surface;

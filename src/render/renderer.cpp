@@ -1,0 +1,357 @@
+#include "luxtrace/render/renderer.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/material/material.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+namespace luxtrace {
+
+namespace fs = std::filesystem;
+
+// SplitMix64: each pixel's random numbers depend only on (seed, pixel), never on the thread.
+struct Renderer::Rng {
+    std::uint64_t state;
+    explicit Rng(std::uint64_t s) : state(s) {}
+    std::uint64_t next_u64() {
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    double next() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
+};
+
+namespace {
+
+using Weights = double[Renderer::kMaxBands];
+
+Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2.0 * glm::dot(d, n) * n; }
+
+double radical_inverse2(std::uint32_t i) {
+    i = (i << 16) | (i >> 16);
+    i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+    i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+    i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+    i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+    return static_cast<double>(i) * 0x1.0p-32;
+}
+
+// Start of a ray leaving a surface (unit normal n) along dir: on the ray's own line, at
+// height eps above the surface, so reflected and refracted rays stay exact (the distance
+// along the ray is capped for grazing directions).
+Vec3 leave(const Vec3& p, const Vec3& n, const Vec3& dir, double eps) {
+    const double c = std::abs(glm::dot(dir, n));
+    return p + std::min(eps / std::max(c, 1e-12), 100.0 * eps) * dir;
+}
+
+double band_value(const std::vector<double>& v, int b) { return v.empty() ? 0.0 : v[static_cast<std::size_t>(b)]; }
+
+bool any_positive(const std::vector<double>& v) {
+    return std::any_of(v.begin(), v.end(), [](double x) { return x > 0.0; });
+}
+
+// Intensity (cd) of a point or spot light toward unit direction `out` (from the light).
+double intensity_cd(const Light& l, const Vec3& out) {
+    if (l.type == LightType::spot) {
+        if (glm::dot(out, l.aim) < l.cos_half_angle) return 0.0;
+        return l.flux_lm / (2.0 * kPi * (1.0 - l.cos_half_angle));
+    }
+    if (!l.ies) return l.flux_lm / (4.0 * kPi);
+    if (!l.photometry) throw std::logic_error(l.label + ": IES light without its photometry");
+    // Luminaire frame: +z the photometric nadir, +x the plane C = 0.
+    const Vec3 local = l.frame.to_local(out);
+    const double gamma = std::acos(std::clamp(local.z, -1.0, 1.0));
+    double c = std::atan2(local.y, local.x);
+    if (c < 0.0) c += 2.0 * kPi;
+    return l.photometry->intensity_cd(gamma, c) * (l.flux_lm / l.photometry->flux_lm());
+}
+
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx)
+    : scene_(scene), embree_(embree), bands_(scene.band_count()), eps_(4.0 * scene.ray_epsilon_m()) {
+    if (bands_ > kMaxBands)
+        throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
+    const std::size_t T = scene.triangle_count(), B = static_cast<std::size_t>(bands_);
+    if (!secondary_lx.empty() && secondary_lx.size() != T * B)
+        throw std::invalid_argument("Renderer: secondary map has the wrong size");
+    // Per-vertex values: area-weighted mean over the triangles sharing the vertex index.
+    if (!secondary_lx.empty()) {
+        std::vector<double> area(scene.vertices.size(), 0.0);
+        vertex_secondary_.assign(scene.vertices.size() * B, 0.0);
+        for (std::size_t t = 0; t < T; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::size_t v = scene.triangles[t][k];
+                area[v] += scene.triangle_area_m2[t];
+                for (std::size_t b = 0; b < B; ++b)
+                    vertex_secondary_[v * B + b] += scene.triangle_area_m2[t] * std::max(0.0, secondary_lx[t * B + b]);
+            }
+        for (std::size_t v = 0; v < area.size(); ++v)
+            if (area[v] > 0.0)
+                for (std::size_t b = 0; b < B; ++b) vertex_secondary_[v * B + b] /= area[v];
+    }
+    emitter_of_.assign(T, -1);
+    const auto& lights = scene.lights.lights();
+    emitted_radiance_.assign(lights.size() * B, 0.0);
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const Light& l = lights[i];
+        if (l.type != LightType::area || !(l.surface.area_m2 > 0.0)) continue;
+        for (int t : l.surface.scene_triangle) emitter_of_[static_cast<std::size_t>(t)] = static_cast<int>(i);
+        for (std::size_t b = 0; b < B; ++b)  // Lambertian: L = M / pi, M = flux / area
+            emitted_radiance_[i * B + b] = l.flux_lm * l.band_share[b] / (kPi * l.surface.area_m2);
+    }
+}
+
+bool Renderer::occluded(const Vec3& o, const Vec3& d, double t_far) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay ray;
+    ray.org_x = static_cast<float>(o.x);
+    ray.org_y = static_cast<float>(o.y);
+    ray.org_z = static_cast<float>(o.z);
+    ray.dir_x = static_cast<float>(d.x);
+    ray.dir_y = static_cast<float>(d.y);
+    ray.dir_z = static_cast<float>(d.z);
+    ray.tnear = 0.0f;
+    ray.tfar = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
+    ray.time = 0.0f;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(embree_.handle(), &ctx, &ray);
+    return ray.tfar < 0.0f;  // Embree marks a found occluder with tfar = -inf
+}
+
+void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
+    const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
+    for (const Light& l : scene_.lights.lights()) {
+        switch (l.type) {
+        case LightType::point:
+        case LightType::spot: {
+            // Geometry at the hit point itself; only the shadow ray starts off the surface.
+            const Vec3 v = l.position - p;
+            const double dist = glm::length(v);
+            if (!(dist > 2.0 * eps_)) break;
+            const Vec3 dir = v / dist;
+            const double cos_s = glm::dot(n, dir);
+            if (cos_s <= 0.0) break;
+            const double i_cd = intensity_cd(l, -dir);
+            if (!(i_cd > 0.0) || occluded(o, dir, glm::length(l.position - o) - eps_)) break;
+            const double ev = i_cd * cos_s / (dist * dist);
+            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            break;
+        }
+        case LightType::directional: {
+            const double cos_s = -glm::dot(n, l.aim);
+            if (cos_s <= 0.0 || occluded(o, -l.aim, std::numeric_limits<double>::infinity())) break;
+            for (int b = 0; b < bands_; ++b) e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
+            break;
+        }
+        case LightType::area: {
+            // Stratified points on the emitter, uniform in area:
+            // E = sum (M/pi) cos_s cos_e / d^2 * A / N over unshadowed points.
+            const EmitterSurface& s = l.surface;
+            const int count = std::max(1, opt.area_light_samples);
+            double sum = 0.0;
+            for (int k = 0; k < count; ++k) {
+                const double u = (k + rng.next()) / count;
+                const std::size_t i = sample_cdf(s.cdf, u);
+                const double lo = i == 0 ? 0.0 : s.cdf[i - 1];
+                const double width = s.cdf[i] - lo;
+                double a = width > 0.0 ? std::clamp((u - lo) / width, 0.0, 1.0) : 0.5;
+                double c = rng.next();
+                if (a + c > 1.0) { a = 1.0 - a; c = 1.0 - c; }
+                const Vec3 q = s.p0[i] + a * s.e1[i] + c * s.e2[i];
+                const Vec3 v = q - p;
+                const double d2 = glm::dot(v, v);
+                if (!(d2 > 4.0 * eps_ * eps_)) continue;
+                const double dist = std::sqrt(d2);
+                const Vec3 dir = v / dist;
+                const double cos_s = glm::dot(n, dir), cos_e = -glm::dot(s.normal[i], dir);
+                if (cos_s <= 0.0 || cos_e <= 0.0 || occluded(o, dir, glm::length(q - o) - 2.0 * eps_)) continue;
+                sum += cos_s * cos_e / d2;
+            }
+            const double ev = l.flux_lm / kPi * sum / count;  // (F / (pi A)) * A / N * sum
+            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            break;
+        }
+        }
+    }
+}
+
+std::vector<double> Renderer::secondary_at(std::size_t tri, const Vec3& p) const {
+    std::vector<double> e(static_cast<std::size_t>(bands_), 0.0);
+    add_secondary(tri, p, e.data());
+    return e;
+}
+
+void Renderer::add_secondary(std::size_t tri, const Vec3& p, double* e) const {
+    if (vertex_secondary_.empty()) return;
+    const glm::uvec3 t = scene_.triangles[tri];
+    const Vec3 a(scene_.vertices[t.x]), b(scene_.vertices[t.y]), c(scene_.vertices[t.z]);
+    // Barycentric coordinates of p (projected onto the triangle's plane).
+    const Vec3 e1 = b - a, e2 = c - a, w = p - a;
+    const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const double w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
+    const double det = d11 * d22 - d12 * d12;
+    double beta = det > 0.0 ? (d22 * w1 - d12 * w2) / det : 1.0 / 3.0;
+    double gamma = det > 0.0 ? (d11 * w2 - d12 * w1) / det : 1.0 / 3.0;
+    beta = std::clamp(beta, 0.0, 1.0);
+    gamma = std::clamp(gamma, 0.0, 1.0 - beta);
+    const double alpha = 1.0 - beta - gamma;
+    const std::size_t B = static_cast<std::size_t>(bands_);
+    for (std::size_t k = 0; k < B; ++k)
+        e[k] += alpha * vertex_secondary_[t.x * B + k] + beta * vertex_secondary_[t.y * B + k] +
+                gamma * vertex_secondary_[t.z * B + k];
+}
+
+void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng,
+                     const RenderOptions& opt, double* out) const {
+    const Hit hit = embree_.intersect(o, d);
+    if (!hit.found) return;  // leaves the scene: black
+    const std::size_t tri = hit.triangle;
+    const Vec3 p = o + static_cast<double>(hit.t) * d;
+    const Vec3& ng = scene_.triangle_normal[tri];
+    const bool front = glm::dot(d, ng) < 0.0;
+    const Vec3 n = front ? ng : -ng;  // the normal on the viewer's side
+    const Material& m = scene_.materials[scene_.triangle_material[tri]];
+
+    if (front && emitter_of_[tri] >= 0) {
+        const double* le = &emitted_radiance_[static_cast<std::size_t>(emitter_of_[tri]) * bands_];
+        for (int b = 0; b < bands_; ++b) out[b] += weight[b] * le[b];
+    }
+    // Lambertian part: rho / pi times the illuminance on side `side` of the surface.
+    auto lambertian = [&](const std::vector<double>& rho, const Vec3& side, bool with_secondary) {
+        if (!any_positive(rho)) return;
+        Weights e{};
+        direct(p, side, rng, opt, e);
+        if (with_secondary) add_secondary(tri, p, e);
+        for (int b = 0; b < bands_; ++b) out[b] += weight[b] * band_value(rho, b) / kPi * e[b];
+    };
+    // A specular branch with per-band factor k (or the scalar k0 when k is empty).
+    auto follow = [&](const std::vector<double>* k, double k0, const Vec3& dir) {
+        if (depth + 1 >= opt.max_depth) return;
+        Weights w{};
+        double wmax = 0.0;
+        for (int b = 0; b < bands_; ++b) {
+            w[b] = weight[b] * k0 * (k != nullptr ? band_value(*k, b) : 1.0);
+            wmax = std::max(wmax, w[b]);
+        }
+        if (wmax < opt.min_weight) return;
+        shade(leave(p, n, dir, eps_), dir, w, depth + 1, rng, opt, out);
+    };
+
+    switch (m.type) {
+    case MaterialType::black:
+        break;
+    case MaterialType::diffuse:
+        lambertian(m.diffuse_reflectance, n, true);
+        break;
+    case MaterialType::general:
+        lambertian(m.diffuse_reflectance, n, true);
+        // Light through a thin diffuser: only its exact direct part from behind (the
+        // stored map does not tell the sides apart and is used once, above).
+        lambertian(m.diffuse_transmittance, -n, false);
+        if (any_positive(m.specular_reflectance)) follow(&m.specular_reflectance, 1.0, reflect(d, n));
+        if (any_positive(m.specular_transmittance)) follow(&m.specular_transmittance, 1.0, d);
+        break;
+    case MaterialType::mirror:
+        follow(&m.specular_reflectance, 1.0, reflect(d, n));
+        break;
+    case MaterialType::glass: {
+        const double eta = front ? 1.0 / m.ior : m.ior;  // entering through the front side
+        const double cos_i = -glm::dot(d, n);
+        const double r = fresnel_dielectric(cos_i, eta);
+        follow(nullptr, r, reflect(d, n));
+        if (r < 1.0) {
+            const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+            const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
+            const Vec3 refracted = glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
+            follow(m.transmittance.empty() ? nullptr : &m.transmittance, 1.0 - r, refracted);
+        }
+        break;
+    }
+    }
+}
+
+std::vector<double> Renderer::trace(const Vec3& origin, const Vec3& d, std::uint64_t seed,
+                                    const RenderOptions& opt) const {
+    Rng rng(seed);
+    Weights one{}, out{};
+    for (int b = 0; b < bands_; ++b) one[b] = 1.0;
+    shade(origin, glm::normalize(d), one, 0, rng, opt, out);
+    return std::vector<double>(out, out + bands_);
+}
+
+LuminanceImage Renderer::render(const PinholeCamera& camera, const RenderOptions& opt) const {
+    const int w = camera.width(), h = camera.height();
+    LuminanceImage image(w, h, scene_.bands);
+    const int samples = std::max(1, opt.samples);
+    std::atomic<int> next_row{0};
+    auto worker = [&] {
+        Weights one{};
+        for (int b = 0; b < bands_; ++b) one[b] = 1.0;
+        for (int y = next_row.fetch_add(1); y < h; y = next_row.fetch_add(1))
+            for (int x = 0; x < w; ++x) {
+                Rng rng(opt.seed * 0x2545F4914F6CDD1Dull ^ (static_cast<std::uint64_t>(y) * w + x));
+                rng.next_u64();
+                // Hammersley points in the pixel with a random (Cranley-Patterson) shift.
+                const double sx = rng.next(), sy = rng.next();
+                Weights sum{};
+                for (int i = 0; i < samples; ++i) {
+                    const double jx = std::fmod((i + 0.5) / samples + sx, 1.0);
+                    const double jy = std::fmod(radical_inverse2(static_cast<std::uint32_t>(i)) + sy, 1.0);
+                    shade(camera.position(), camera.direction(x + jx, y + jy), one, 0, rng, opt, sum);
+                }
+                for (int b = 0; b < bands_; ++b) image.at(x, y, b) = static_cast<float>(sum[b] / samples);
+            }
+    };
+    const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+        worker();
+    }
+    return image;
+}
+
+RenderInput load_render_input(const fs::path& result) {
+    const ResultReader r(result);
+    const std::string name = result.string();
+    if (!r.has_attr("/", "scene_file") || r.attr_str("/", "scene_file").empty())
+        throw InputError(name + ": the result names no scene file (root attribute scene_file), so its scene "
+                                "cannot be reloaded for rendering");
+    const fs::path scene_file = r.attr_str("/", "scene_file");
+    if (!fs::is_regular_file(scene_file))
+        throw InputError(name + ": its scene file " + scene_file.string() + " does not exist any more");
+    for (const char* ds : {"/global/illuminance", "/global/illuminance_direct", "/mesh/vertices"})
+        if (!r.has(ds)) throw InputError(name + ": has no dataset " + std::string(ds));
+    RenderInput in{load_scene(scene_file), {}};
+    const Scene& s = in.scene;
+    std::vector<std::size_t> shape, vshape;
+    const std::vector<double> all = r.f64("/global/illuminance", &shape);
+    const std::vector<double> direct = r.f64("/global/illuminance_direct");
+    const std::vector<double> vertices = r.f64("/mesh/vertices", &vshape);
+    bool same = shape.size() == 2 && shape[0] == s.triangle_count() && shape[1] == s.bands.size() &&
+                direct.size() == all.size() && vshape.size() == 2 && vshape[0] == s.vertices.size();
+    for (std::size_t v = 0; same && v < s.vertices.size(); ++v)
+        for (int k = 0; k < 3; ++k)
+            same = same && std::abs(vertices[3 * v + k] - static_cast<double>(s.vertices[v][k])) <=
+                               1e-5 * (1.0 + std::abs(vertices[3 * v + k]));
+    if (same && r.has_attr("/", "bands")) same = r.attr_strs("/", "bands") == s.bands;
+    if (!same)
+        throw InputError(name + ": the scene file " + scene_file.string() +
+                         " has changed since the run (its mesh or bands differ from the result's)");
+    in.secondary_lx.resize(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) in.secondary_lx[i] = std::max(0.0, all[i] - direct[i]);
+    return in;
+}
+
+}  // namespace luxtrace

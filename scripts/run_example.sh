@@ -14,4 +14,12 @@ echo
 mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/office/office.toml" \
   --threads 1 --output "$out/office.h5"
 echo
-echo "Result file: $out/office.h5   (luxtrace info $out/office.h5; read it with h5py)"
+# Pictures: the room as seen by the scene's "overview" camera (global illumination from
+# the stored maps), and the desk detector (value, error, histogram, sections).
+"$lux" render "$out/office.h5" --view overview -o "$out/office_view.png"
+"$lux" render "$out/office.h5" --detector desk --detector west_wall --out-dir "$out"
+echo
+echo "Result file:   $out/office.h5   (luxtrace info $out/office.h5; read it with h5py)"
+echo "ParaView:      $out/office.xdmf"
+echo "Rendered view: $out/office_view.png (luminance in $out/office_view.exr)"
+echo "Desk pictures: $out/desk_value.png, desk_error.png, desk_error_hist.png, desk_sections.png"

@@ -188,11 +188,21 @@ TEST_F(Stop, ForecastIsSaneAndErrorsFallAsInverseSquareRoot) {
         const double ci = s[i] * std::sqrt(static_cast<double>(n[i]));
         EXPECT_NEAR(ci / c0, 1.0, 0.25) << "row " << i;
     }
-    // From a quarter of the run on, the forecast finishing time is within 30% of the
-    // actual one (a loaded test machine changes the photon rate; docs/ has the precise figures).
-    for (std::size_t i = 0; i + 1 < t.size(); ++i)
+    // From a quarter of the run on, the forecast of the photons needed agrees within 12%
+    // with what the final, best-determined constant of sigma = C / sqrt(N) implies
+    // (N = (C_final / goal)^2): a statistical property, independent of the machine. The
+    // forecast time also depends on the photon rate, which a loaded test machine changes;
+    // it must be finite and positive (docs/RUN_CONTROL.md has measured time figures).
+    const auto fp = r.f64("/history/target_forecast_photons");
+    const auto v = r.f64("/history/target_value");
+    const double goal = r.f64_attr_array("/history", "target_goals").at(0);
+    const double c_final = v.back() * std::sqrt(static_cast<double>(n.back()));
+    const double n_ref = (c_final / goal) * (c_final / goal);
+    for (std::size_t i = 0; i + 1 < t.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(f[i]) && std::isfinite(fp[i])) << "row " << i;
+        EXPECT_GT(f[i], 0.0) << "row " << i;
         if (t[i] >= 0.25 * finish) {
-            ASSERT_TRUE(std::isfinite(f[i])) << "row " << i;
-            EXPECT_NEAR(f[i] / finish, 1.0, 0.3) << "row " << i << " at " << t[i] << " s";
+            EXPECT_NEAR(fp[i] / n_ref, 1.0, 0.12) << "row " << i << " at " << t[i] << " s";
         }
+    }
 }

@@ -213,15 +213,17 @@ void write_history(hid_t file, const std::vector<HistoryRow>& history, const Run
     H5Id h(group(file, "history"), H5Gclose, "group /history");
     // Per-target columns: [rows, targets].
     const std::size_t nt = info.target_labels.size();
-    std::vector<double> tv, tf;
+    std::vector<double> tv, tf, tp;
     for (const HistoryRow& r : history)
         for (std::size_t i = 0; i < nt; ++i) {
             tv.push_back(i < r.target_value.size() ? r.target_value[i] : std::nan(""));
             tf.push_back(i < r.target_forecast_s.size() ? r.target_forecast_s[i] : std::nan(""));
+            tp.push_back(i < r.target_forecast_photons.size() ? r.target_forecast_photons[i] : std::nan(""));
         }
     if (nt > 0) {
         dataset(h, "target_value", {history.size(), nt}, tv.data());
         dataset(h, "target_forecast_s", {history.size(), nt}, tf.data());
+        dataset(h, "target_forecast_photons", {history.size(), nt}, tp.data());
         attr_strings(h, "target_labels", info.target_labels, false);
         attr(h, "target_goals", info.target_goals);
     }

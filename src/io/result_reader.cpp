@@ -4,6 +4,7 @@
 
 #include <hdf5.h>
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -167,17 +168,19 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         const auto g = r.f64("/history/sigma_rel_global");
         const auto f = r.f64("/history/forecast_s");
         std::vector<std::size_t> shape;
-        std::vector<double> tv, tf;
+        std::vector<double> tv, tf, tp;
         if (r.has("/history/target_value")) {
             tv = r.f64("/history/target_value", &shape);
             tf = r.f64("/history/target_forecast_s");
+            if (r.has("/history/target_forecast_photons")) tp = r.f64("/history/target_forecast_photons");
         }
         const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
         for (std::size_t i = 0; i < t.size(); ++i) {
-            HistoryRow row{t[i], p[i], g[i], f[i], {}, {}};
+            HistoryRow row{t[i], p[i], g[i], f[i], {}, {}, {}};
             for (std::size_t j = 0; j < nt; ++j) {
                 row.target_value.push_back(tv[i * nt + j]);
                 row.target_forecast_s.push_back(tf[i * nt + j]);
+                row.target_forecast_photons.push_back(tp.empty() ? std::nan("") : tp[i * nt + j]);
             }
             s.history.push_back(std::move(row));
         }

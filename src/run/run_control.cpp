@@ -26,7 +26,7 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     forecast_.clear();
     rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
     rate_ = photon_rate(rate_points_);
-    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.sigma_rel_quadratic, std::nan(""), {}, {}};
+    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.sigma_rel_quadratic, std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
         status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
         const TargetStatus& s = status_.back();
@@ -38,6 +38,7 @@ Decision RunController::after_reduction(const ReductionInput& in) {
         forecast_.push_back(f);
         row.target_value.push_back(s.value);
         row.target_forecast_s.push_back(f.valid ? time_offset_s_ + f.time_s : std::nan(""));
+        row.target_forecast_photons.push_back(f.valid ? f.photons_needed : std::nan(""));
     }
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
     history_.push_back(row);

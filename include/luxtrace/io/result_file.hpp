@@ -21,6 +21,7 @@ struct HistoryRow {
     double forecast_s = 0.0;                // of the first target; NaN if none
     std::vector<double> target_value;       // per target: its error or count
     std::vector<double> target_forecast_s;  // per target: forecast wall time to meet it
+    std::vector<double> target_forecast_photons;  // per target: forecast photons to meet it
 };
 
 struct RunInfo {

@@ -3,7 +3,9 @@
 
 For each result file of a run that stopped on a target, compare the forecast finishing
 time made at 5%, 10%, 25% and 50% of the run with the time the target was actually met
-(the last reduction). Usage: scripts/forecast_accuracy.py RESULT.h5 [...]
+(the last reduction), and the forecast photon count with the photons the target needs
+according to the final constant of sigma = C / sqrt(N) (the time forecast adds the photon
+rate, which other load on the machine changes; the photon forecast does not depend on it). Usage: scripts/forecast_accuracy.py RESULT.h5 [...]
 """
 import sys
 
@@ -16,16 +18,25 @@ def accuracy(path, fractions=(0.05, 0.10, 0.25, 0.50)):
         h = f["history"]
         t = h["time_s"][:]
         forecast = h["target_forecast_s"][:, 0]
-        label = h.attrs["target_labels"][0]
+        photons = h["photons"][:]
+        fphotons = h["target_forecast_photons"][:, 0] if "target_forecast_photons" in h else None
+        label = np.atleast_1d(h.attrs["target_labels"])[0]
         reason = f.attrs["stop_reason"]
     actual = t[-1]
+    # Photons the target needed, from the final (best) constant of sigma = C/sqrt(N).
+    with h5py.File(path, "r") as f:
+        h = f["history"]
+        v = h["target_value"][:, 0]
+        goal = np.atleast_1d(h.attrs["target_goals"])[0]
+    n_needed = (v[-1] * np.sqrt(photons[-1]) / goal) ** 2
     rows = []
     for frac in fractions:
         i = int(np.searchsorted(t, frac * actual))
         if i >= len(t) - 1 or not np.isfinite(forecast[i]):
-            rows.append((frac, float("nan"), float("nan"), float("nan")))
+            rows.append((frac, float("nan"), float("nan"), float("nan"), float("nan")))
             continue
-        rows.append((frac, t[i], forecast[i], (forecast[i] - actual) / actual))
+        perr = (fphotons[i] - n_needed) / n_needed if fphotons is not None else float("nan")
+        rows.append((frac, t[i], forecast[i], (forecast[i] - actual) / actual, perr))
     return label, reason, actual, len(t), rows
 
 
@@ -33,8 +44,9 @@ def main(paths):
     for p in paths:
         label, reason, actual, n, rows = accuracy(p)
         print(f"{p}: target {label}, stopped by {reason}, met at {actual:.1f} s, {n} reductions")
-        for frac, t, fc, err in rows:
-            print(f"  at {100 * frac:4.0f}% ({t:7.2f} s): forecast {fc:8.2f} s, error {100 * err:+6.2f}%")
+        for frac, t, fc, err, perr in rows:
+            print(f"  at {100 * frac:4.0f}% ({t:7.2f} s): forecast {fc:8.2f} s, time error {100 * err:+6.2f}%,"
+                  f" photon forecast error {100 * perr:+6.2f}%")
 
 
 if __name__ == "__main__":

@@ -2,6 +2,8 @@
 // input, `check` and `info` summaries, count forms.
 #include "luxtrace/io/result_file.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -14,21 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-    int code;
-    std::string out;
-};
-
-Outcome run(const std::string& args) {
-    const fs::path log = fs::temp_directory_path() / ("luxtrace_cli_" + std::to_string(::getpid()) + ".log");
-    const std::string cmd = std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    fs::remove(log);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+using Outcome = luxtrace::test_support::CommandOutcome;
+Outcome run(const std::string& args) { return luxtrace::test_support::run_luxtrace(args); }
 
 class Cli : public ::testing::Test {
 protected:

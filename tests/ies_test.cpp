@@ -4,6 +4,8 @@
 
 #include "luxtrace/core/error.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -156,12 +158,7 @@ TEST(IesFlux, DistributionMatchesPhotometry) {
 
 constexpr int kBinsG = 9, kBinsC = 8;
 
-// Upper p-quantile of chi-square with k degrees of freedom (Wilson-Hilferty), z = N(0,1)
-// quantile of p.
-double chi2_quantile(int k, double z) {
-    const double a = 2.0 / (9.0 * k);
-    return k * std::pow(1.0 - a + z * std::sqrt(a), 3);
-}
+using luxtrace::test_support::chi2_quantile;
 
 // Expected probability of each (gamma, c) bin: midpoint rule on a sub-grid that is not
 // aligned with IesDistribution's grid, with exact solid angles of the sub-cells.
@@ -231,7 +228,7 @@ ChiSquare chi_square(const IesDistribution& d, const std::vector<double>& prob, 
 }
 
 constexpr long kSamples = 200000;
-constexpr double kZ999 = 3.090232306167813;  // N(0,1) quantile of 0.999
+using luxtrace::test_support::kZ999;
 
 void expect_passes(const std::filesystem::path& f, std::uint64_t seed) {
     const IesPhotometry p = load_ies(f);

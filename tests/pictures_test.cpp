@@ -6,6 +6,8 @@
 
 #include <cairo/cairo.h>
 #include <dlfcn.h>
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,19 +26,8 @@ using luxtrace::ResultReader;
 
 namespace {
 
-struct Outcome {
-    int code;
-    std::string out;
-};
-
-Outcome run(const std::string& args) {
-    const fs::path log = fs::temp_directory_path() / ("luxtrace_pictures_" + std::to_string(::getpid()) + ".log");
-    const int status = std::system((std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
-    std::stringstream ss;
-    ss << std::ifstream(log).rdbuf();
-    fs::remove(log);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+using Outcome = luxtrace::test_support::CommandOutcome;
+Outcome run(const std::string& args) { return luxtrace::test_support::run_luxtrace(args); }
 
 // ------------------------------------------------------------------ a minimal XML reader
 // Enough for XDMF: elements, attributes, text, <?..?>, <!..>, comments. Fails on

@@ -6,6 +6,8 @@
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/sampler.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,15 +28,8 @@ namespace luxtrace {
 namespace {
 
 constexpr double kDeg = kPi / 180.0;
-constexpr double kZ999 = 3.090232306167813;  // standard normal quantile at 0.999
-
-// Chi-square quantile by the Wilson-Hilferty cube-root normal approximation
-// (relative error well under 1% for the dof used here).
-double chi2_quantile(double dof, double z) {
-    const double a = 2.0 / (9.0 * dof);
-    const double c = 1.0 - a + z * std::sqrt(a);
-    return dof * c * c * c;
-}
+using luxtrace::test_support::chi2_quantile;
+using luxtrace::test_support::kZ999;
 
 // Pearson chi-square of observed counts against (unnormalised) bin probabilities.
 // Bins whose expected count is below 5 are pooled into one bin; bins of probability

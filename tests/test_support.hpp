@@ -1,0 +1,42 @@
+#pragma once
+// Helpers shared by the tests: running the luxtrace binary, chi-square limits.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace luxtrace::test_support {
+
+struct CommandOutcome {
+    int code;          // exit code, -1 if the process did not exit normally
+    std::string out;   // stdout and stderr together
+};
+
+// Runs `LUXTRACE_BINARY args` and captures what it prints.
+inline CommandOutcome run_luxtrace(const std::string& args) {
+    static int serial = 0;
+    const std::filesystem::path log = std::filesystem::temp_directory_path() /
+        ("luxtrace_test_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) + ".log");
+    const std::string cmd = std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::stringstream ss;
+    ss << std::ifstream(log).rdbuf();
+    std::filesystem::remove(log);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+inline constexpr double kZ999 = 3.090232306167813;  // standard normal quantile at 0.999
+
+// Upper quantile of chi-square with `dof` degrees of freedom for the standard normal
+// quantile z (Wilson-Hilferty cube-root approximation; well under 1% off for dof >= 5).
+inline double chi2_quantile(double dof, double z) {
+    const double a = 2.0 / (9.0 * dof);
+    const double c = 1.0 - a + z * std::sqrt(a);
+    return dof * c * c * c;
+}
+
+}  // namespace luxtrace::test_support

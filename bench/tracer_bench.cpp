@@ -1,13 +1,14 @@
 // tracer_bench: how close the photon tracer comes to Embree's raw incoherent ray rate.
 //
-// In one run, on one scene and one EmbreeScene, for each thread count:
+// In one run, on one scene and one EmbreeScene, for each repeat and thread count:
 //   raw    - rtcIntersect1 on pre-generated rays that start at random points of the
 //            scene's surfaces (area-weighted triangle, uniform point, offset by the
 //            scene's ray epsilon along the normal) with cosine-distributed directions;
 //   tracer - luxtrace::trace_photons over a photon budget; its rays are the
 //            intersections it performed, recovered from the tallies (see count_rays).
-// Raw and tracer measurements alternate within each repeat, so that load from other
-// processes on the machine hits both alike; medians over the repeats are reported.
+// Raw and tracer measurements alternate, and so do the thread counts within each repeat,
+// so that load from other processes on the machine hits all alike; medians over the
+// repeats are reported.
 // Every tracer run must give bit-identical tallies (same seed, any thread count).
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <iostream>
 #include <limits>
@@ -39,6 +41,14 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// CPU time of the whole process: CPU time / (wall time x threads) tells whether the
+// threads really had their cores (other load on the machine shows as < 100%).
+double process_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 double median(std::vector<double> v) {
@@ -79,7 +89,7 @@ std::vector<RawRay> make_surface_rays(const Scene& scene, std::uint64_t n, std::
 }
 
 struct RawResult {
-    double seconds = 0.0;
+    double seconds = 0.0, cpu_seconds = 0.0;
     std::uint64_t hits = 0;
 };
 
@@ -120,16 +130,17 @@ RawResult run_raw(const EmbreeScene& embree, const std::vector<RawRay>& rays, in
         hits += my_hits;
     };
     const auto t0 = Clock::now();
+    const double c0 = process_cpu_seconds();
     {
         std::vector<std::jthread> pool;
         for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
         worker();
     }
-    return {seconds_since(t0), hits.load()};
+    return {seconds_since(t0), process_cpu_seconds() - c0, hits.load()};
 }
 
 struct TracerResult {
-    double seconds = 0.0;
+    double seconds = 0.0, cpu_seconds = 0.0;
     std::uint64_t rays = 0, arrivals = 0, escaped = 0, absorbed = 0, truncated = 0;
     std::uint64_t checksum = 0;
 };
@@ -162,9 +173,11 @@ TracerResult run_tracer(const Scene& scene, const EmbreeScene& embree, std::uint
     opt.seed = seed;
     opt.threads = threads;
     const auto t0 = Clock::now();
+    const double c0 = process_cpu_seconds();
     trace_photons(scene, embree, store, 0, photons, opt);
     TracerResult r;
     r.seconds = seconds_since(t0);
+    r.cpu_seconds = process_cpu_seconds() - c0;
     count_rays(store, r);
     if (r.escaped + r.absorbed + r.truncated != photons)
         throw std::runtime_error("photon fates do not add up to the photon budget");
@@ -194,56 +207,88 @@ std::uint64_t count_arg(const std::string& opt, const std::string& text) {
 struct Row {
     int threads = 0;
     double raw = 0.0, tracer = 0.0;  // median rays/s
+    double paired = 0.0;             // median of tracer/raw within each repeat
+    double busy = 0.0;               // median CPU time / (wall time x threads), both kinds
     double raw_lo = 0.0, raw_hi = 0.0, tracer_lo = 0.0, tracer_hi = 0.0;
 };
 
-int run(const std::string& scene_file, const std::string& threads_text, const std::string& photons_text,
-        const std::string& rays_text, int repeats, std::uint64_t seed, bool verbose) {
-    const std::vector<int> thread_counts = parse_threads(threads_text);
-    const std::uint64_t photons = count_arg("--photons", photons_text);
-    const std::uint64_t n_rays = count_arg("--rays", rays_text);
-    if (repeats < 1) throw InputError("--repeats: must be at least 1");
+struct Settings {
+    std::string scene_file, threads = "1,2", photons = "auto", rays = "auto";
+    int repeats = 5;
+    double seconds = 1.5;  // auto sizing: length of one single-thread measurement
+    std::uint64_t seed = 1;
+    bool verbose = false;
+};
+
+// "auto": the count that makes one measurement at `rate` per second last `seconds`.
+std::uint64_t size_for(const std::string& text, const char* opt, double rate, double seconds,
+                       std::uint64_t lo) {
+    if (text != "auto") return count_arg(opt, text);
+    return std::max<std::uint64_t>(lo, static_cast<std::uint64_t>(rate * seconds));
+}
+
+int run(const Settings& set) {
+    const std::vector<int> thread_counts = parse_threads(set.threads);
+    if (set.repeats < 1) throw InputError("--repeats: must be at least 1");
+    if (!(set.seconds > 0.0)) throw InputError("--seconds: must be positive");
+    if (set.photons != "auto") count_arg("--photons", set.photons);  // fail before loading
+    if (set.rays != "auto") count_arg("--rays", set.rays);
+    const int repeats = set.repeats;
+    const std::uint64_t seed = set.seed;
+    const bool verbose = set.verbose;
 
     auto t0 = Clock::now();
-    const Scene scene = load_scene(scene_file);
+    const Scene scene = load_scene(set.scene_file);
     const double t_load = seconds_since(t0);
+    if (scene.triangle_count() == 0) throw InputError(set.scene_file + ": the scene has no triangles");
     t0 = Clock::now();
     const EmbreeScene embree(scene);
     const double t_build = seconds_since(t0);
+
+    // Warm-up (pages in the BVH and the code paths) and, for "auto", rate estimates.
+    constexpr std::uint64_t kProbeRays = 200000, kProbePhotons = 50000;
+    const RawResult probe_raw = run_raw(embree, make_surface_rays(scene, kProbeRays, seed + 1), 1);
+    const TracerResult probe_tr = run_tracer(scene, embree, kProbePhotons, 1, seed + 1);
+    const std::uint64_t n_rays =
+        size_for(set.rays, "--rays", double(kProbeRays) / probe_raw.seconds, set.seconds, 100000);
+    const std::uint64_t photons =
+        size_for(set.photons, "--photons", double(kProbePhotons) / probe_tr.seconds, set.seconds, 10000);
+
     t0 = Clock::now();
     const std::vector<RawRay> rays = make_surface_rays(scene, n_rays, seed);
     const double t_gen = seconds_since(t0);
     std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n",
-                scene_file.c_str(), scene.triangle_count(), scene.lights.lights().size(),
+                set.scene_file.c_str(), scene.triangle_count(), scene.lights.lights().size(),
                 scene.detectors.size(), scene.run.max_bounces);
     std::printf("load %.2f s, BVH build %.2f s, %llu raw rays pre-generated in %.2f s\n", t_load, t_build,
                 static_cast<unsigned long long>(n_rays), t_gen);
     std::printf("photons %llu per tracer run, seed %llu, %d repeats, medians [min..max]\n\n",
                 static_cast<unsigned long long>(photons), static_cast<unsigned long long>(seed), repeats);
 
-    // Warm-up: page in the BVH and the tallies' code paths before timing.
-    {
-        const std::vector<RawRay> few(rays.begin(), rays.begin() + std::min<std::size_t>(rays.size(), 100000));
-        run_raw(embree, few, 1);
-        run_tracer(scene, embree, std::min<std::uint64_t>(photons, 20000), 1, seed);
-    }
-
-    std::vector<Row> rows;
+    // Per thread count, one entry per repeat. Repeats are the outer loop, so every thread
+    // count is measured in each stretch of time and the speed-ups can be paired too.
+    struct Series { std::vector<double> raw, tracer, paired, busy; };
+    std::vector<Series> series(thread_counts.size());
     TracerResult reference;
     bool have_reference = false;
     std::uint64_t raw_hits = 0;
-    for (int threads : thread_counts) {
-        std::vector<double> raw_rate, tracer_rate;
-        for (int rep = 0; rep < repeats; ++rep) {
+    for (int rep = 0; rep < repeats; ++rep)
+        for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+            const int threads = thread_counts[ti];
+            Series& se = series[ti];
             const RawResult raw = run_raw(embree, rays, threads);
             const TracerResult tr = run_tracer(scene, embree, photons, threads, seed);
             raw_hits = raw.hits;
-            raw_rate.push_back(static_cast<double>(n_rays) / raw.seconds);
-            tracer_rate.push_back(static_cast<double>(tr.rays) / tr.seconds);
+            se.raw.push_back(static_cast<double>(n_rays) / raw.seconds);
+            se.tracer.push_back(static_cast<double>(tr.rays) / tr.seconds);
+            se.paired.push_back(se.tracer.back() / se.raw.back());
+            se.busy.push_back(raw.cpu_seconds / (raw.seconds * threads));
+            se.busy.push_back(tr.cpu_seconds / (tr.seconds * threads));
             if (verbose)
-                std::printf("  threads %d repeat %d: raw %.3f Mrays/s (%.2f s), tracer %.3f Mrays/s (%.2f s)\n",
-                            threads, rep, raw_rate.back() * 1e-6, raw.seconds, tracer_rate.back() * 1e-6,
-                            tr.seconds);
+                std::printf("  repeat %d threads %d: raw %.3f Mrays/s (%.2f s, busy %.0f%%), "
+                            "tracer %.3f Mrays/s (%.2f s, busy %.0f%%)\n",
+                            rep, threads, se.raw.back() * 1e-6, raw.seconds, 100.0 * se.busy[se.busy.size() - 2],
+                            se.tracer.back() * 1e-6, tr.seconds, 100.0 * se.busy.back());
             if (!have_reference) {
                 reference = tr;
                 have_reference = true;
@@ -251,14 +296,19 @@ int run(const std::string& scene_file, const std::string& threads_text, const st
                 throw std::runtime_error("tracer tallies differ between runs with the same seed");
             }
         }
+    std::vector<Row> rows;
+    for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+        const Series& se = series[ti];
         Row row;
-        row.threads = threads;
-        row.raw = median(raw_rate);
-        row.tracer = median(tracer_rate);
-        row.raw_lo = *std::min_element(raw_rate.begin(), raw_rate.end());
-        row.raw_hi = *std::max_element(raw_rate.begin(), raw_rate.end());
-        row.tracer_lo = *std::min_element(tracer_rate.begin(), tracer_rate.end());
-        row.tracer_hi = *std::max_element(tracer_rate.begin(), tracer_rate.end());
+        row.threads = thread_counts[ti];
+        row.raw = median(se.raw);
+        row.tracer = median(se.tracer);
+        row.paired = median(se.paired);
+        row.busy = median(se.busy);
+        row.raw_lo = *std::min_element(se.raw.begin(), se.raw.end());
+        row.raw_hi = *std::max_element(se.raw.begin(), se.raw.end());
+        row.tracer_lo = *std::min_element(se.tracer.begin(), se.tracer.end());
+        row.tracer_hi = *std::max_element(se.tracer.begin(), se.tracer.end());
         rows.push_back(row);
     }
 
@@ -272,16 +322,28 @@ int run(const std::string& scene_file, const std::string& threads_text, const st
                 100.0 * double(reference.truncated) / ph);
     std::printf("tally checksum %016llx (identical in all %zu tracer runs)\n\n",
                 static_cast<unsigned long long>(reference.checksum), thread_counts.size() * repeats);
-    std::printf("threads | raw Mrays/s            | tracer Mrays/s         | tracer/raw\n");
-    std::printf("--------+------------------------+------------------------+-----------\n");
+    // tracer/raw: ratio of the medians; paired: median over repeats of the ratio of the
+    // two adjacent measurements, less sensitive to other load on the machine. busy: CPU
+    // time / (wall x threads); well below 100% means other processes took the cores.
+    std::printf("threads | raw Mrays/s            | tracer Mrays/s         | tracer/raw | paired | busy\n");
+    std::printf("--------+------------------------+------------------------+------------+--------+-----\n");
     for (const Row& r : rows)
-        std::printf("%7d | %6.3f [%6.3f..%6.3f] | %6.3f [%6.3f..%6.3f] | %8.1f%%\n", r.threads, r.raw * 1e-6,
-                    r.raw_lo * 1e-6, r.raw_hi * 1e-6, r.tracer * 1e-6, r.tracer_lo * 1e-6, r.tracer_hi * 1e-6,
-                    100.0 * r.tracer / r.raw);
-    // Speed-ups relative to the first thread count given (1 by default).
-    for (std::size_t i = 1; i < rows.size(); ++i)
-        std::printf("speed-up %d/%d threads: tracer %.2fx, raw %.2fx\n", rows[i].threads, rows[0].threads,
-                    rows[i].tracer / rows[0].tracer, rows[i].raw / rows[0].raw);
+        std::printf("%7d | %6.3f [%6.3f..%6.3f] | %6.3f [%6.3f..%6.3f] | %9.1f%% | %5.1f%% | %3.0f%%\n",
+                    r.threads, r.raw * 1e-6, r.raw_lo * 1e-6, r.raw_hi * 1e-6, r.tracer * 1e-6,
+                    r.tracer_lo * 1e-6, r.tracer_hi * 1e-6, 100.0 * r.tracer / r.raw, 100.0 * r.paired,
+                    100.0 * r.busy);
+    // Speed-ups relative to the first thread count given (1 by default): ratio of the
+    // medians, and paired (median over repeats of the ratio within the same repeat).
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        std::vector<double> tr_pair, raw_pair;
+        for (int rep = 0; rep < repeats; ++rep) {
+            tr_pair.push_back(series[i].tracer[rep] / series[0].tracer[rep]);
+            raw_pair.push_back(series[i].raw[rep] / series[0].raw[rep]);
+        }
+        std::printf("speed-up %d/%d threads: tracer %.2fx (paired %.2fx), raw %.2fx (paired %.2fx)\n",
+                    rows[i].threads, rows[0].threads, rows[i].tracer / rows[0].tracer, median(tr_pair),
+                    rows[i].raw / rows[0].raw, median(raw_pair));
+    }
     return 0;
 }
 
@@ -289,20 +351,19 @@ int run(const std::string& scene_file, const std::string& threads_text, const st
 
 int main(int argc, char** argv) {
     CLI::App app{"tracer_bench: photon tracer ray rate vs raw Embree incoherent ray rate"};
-    std::string scene_file, threads_text = "1,2", photons_text = "1M", rays_text = "4M";
-    int repeats = 5;
-    std::uint64_t seed = 1;
-    bool verbose = false;
-    app.add_option("scene", scene_file, "scene file (TOML)")->required();
-    app.add_option("--threads-list", threads_text, "comma-separated thread counts")->capture_default_str();
-    app.add_option("--photons", photons_text, "photons per tracer run")->capture_default_str();
-    app.add_option("--rays", rays_text, "pre-generated raw rays per raw run")->capture_default_str();
-    app.add_option("--repeats", repeats, "measurements per thread count")->capture_default_str();
-    app.add_option("--seed", seed, "seed of the tracer and of the raw rays")->capture_default_str();
-    app.add_flag("--verbose", verbose, "print every measurement");
+    Settings set;
+    app.add_option("scene", set.scene_file, "scene file (TOML)")->required();
+    app.add_option("--threads-list", set.threads, "comma-separated thread counts")->capture_default_str();
+    app.add_option("--photons", set.photons, "photons per tracer run, or auto")->capture_default_str();
+    app.add_option("--rays", set.rays, "pre-generated raw rays per raw run, or auto")->capture_default_str();
+    app.add_option("--repeats", set.repeats, "measurements per thread count")->capture_default_str();
+    app.add_option("--seconds", set.seconds, "auto: single-thread length of one measurement")
+        ->capture_default_str();
+    app.add_option("--seed", set.seed, "seed of the tracer and of the raw rays")->capture_default_str();
+    app.add_flag("--verbose", set.verbose, "print every measurement");
     CLI11_PARSE(app, argc, argv);
     try {
-        return run(scene_file, threads_text, photons_text, rays_text, repeats, seed, verbose);
+        return run(set);
     } catch (const InputError& e) {
         std::cerr << "tracer_bench: " << e.what() << "\n";
         return 2;

@@ -36,6 +36,8 @@ struct Loader {
     Scene scene;
     std::map<std::string, std::uint32_t> material_index;
     std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;  // triangle range
+    std::map<std::string, std::pair<std::shared_ptr<const IesPhotometry>, std::shared_ptr<const IesDistribution>>>
+        ies_cache;  // by canonical file path
 
     fs::path resolve(const std::string& p) const {
         const fs::path path(p);
@@ -256,17 +258,26 @@ struct Loader {
                 const double mult = r.number("multiplier").value_or(1.0);
                 if (!(mult > 0.0)) r.fail("multiplier", "must be positive");
                 if (r.has("flux_lm")) r.fail("flux_lm", "with 'ies' the flux comes from the file (use 'multiplier')");
-                IesPhotometry photometry;
-                try {
-                    photometry = load_ies(resolve(*ies));
-                } catch (const InputError& e) {  // say which scene entry named the file
-                    r.fail("ies", e.what());
+                // Lights sharing a file share its photometry and sampling table (about
+                // 1 MB each: one copy keeps it in cache).
+                const std::string key = fs::weakly_canonical(resolve(*ies)).string();
+                auto cached = ies_cache.find(key);
+                if (cached == ies_cache.end()) {
+                    IesPhotometry photometry;
+                    try {
+                        photometry = load_ies(resolve(*ies));
+                    } catch (const InputError& e) {  // say which scene entry named the file
+                        r.fail("ies", e.what());
+                    }
+                    auto dist = std::make_shared<const IesDistribution>(photometry);
+                    cached = ies_cache.emplace(key, std::make_pair(std::make_shared<const IesPhotometry>(std::move(photometry)),
+                                                                   std::move(dist))).first;
                 }
+                l.photometry = cached->second.first;
+                l.ies = cached->second.second;
                 // The file's own flux (exact for its interpolant), not the sampling table's.
-                l.flux_lm = photometry.flux_lm() * mult;
+                l.flux_lm = l.photometry->flux_lm() * mult;
                 if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
-                l.ies = std::make_shared<IesDistribution>(photometry);
-                l.photometry = std::make_shared<const IesPhotometry>(std::move(photometry));
             } else {
                 l.flux_lm = flux("flux_lm");
             }

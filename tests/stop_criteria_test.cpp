@@ -172,7 +172,11 @@ TEST_F(Stop, FirstTargetMetEndsTheRun) {
 }
 
 TEST_F(Stop, ForecastIsSaneAndErrorsFallAsInverseSquareRoot) {
-    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 0.006\n", "--photons 1e9"), 0) << log();
+    // A detector target: eq. (9) averages many well-filled cells, so its constant is well
+    // determined early (the global odd/even error of this 530-triangle room fluctuates by
+    // several percent between reductions: docs/RUN_CONTROL.md).
+    ASSERT_EQ(run("[[run.target]]\non = \"detector:table\"\nrelative_error = 0.022\naveraging = \"arithmetic\"\n",
+                  "--photons 1e9"), 0) << log();
     const ResultReader r(dir / "r.h5");
     const auto t = r.f64("/history/time_s");
     const auto n = r.u64("/history/photons");
@@ -188,7 +192,7 @@ TEST_F(Stop, ForecastIsSaneAndErrorsFallAsInverseSquareRoot) {
         const double ci = s[i] * std::sqrt(static_cast<double>(n[i]));
         EXPECT_NEAR(ci / c0, 1.0, 0.25) << "row " << i;
     }
-    // From a quarter of the run on, the forecast of the photons needed agrees within 12%
+    // From a quarter of the run on, the forecast of the photons needed agrees within 5%
     // with what the final, best-determined constant of sigma = C / sqrt(N) implies
     // (N = (C_final / goal)^2): a statistical property, independent of the machine. The
     // forecast time also depends on the photon rate, which a loaded test machine changes;
@@ -202,7 +206,7 @@ TEST_F(Stop, ForecastIsSaneAndErrorsFallAsInverseSquareRoot) {
         ASSERT_TRUE(std::isfinite(f[i]) && std::isfinite(fp[i])) << "row " << i;
         EXPECT_GT(f[i], 0.0) << "row " << i;
         if (t[i] >= 0.25 * finish) {
-            EXPECT_NEAR(fp[i] / n_ref, 1.0, 0.12) << "row " << i << " at " << t[i] << " s";
+            EXPECT_NEAR(fp[i] / n_ref, 1.0, 0.05) << "row " << i << " at " << t[i] << " s";
         }
     }
 }

@@ -133,19 +133,24 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     };
 
     WorkerPool pool(scene, embree, store, work, topt);
-    auto take_snapshot = [&] {
-        // Threads park at chunk boundaries with their buffers flushed: the copy holds
-        // exactly the photons handed out so far.
-        pool.pause();
+    // The message: this rank's tallies, its progress and its flags. Call only while no
+    // thread traces (paused or stopped), so the copy and the progress agree exactly.
+    auto fill_snapshot = [&](bool signalled, bool idle) {
         std::copy(store.data().begin(), store.data().end(), snapshot.begin());
-        const RankProgress p = work.progress();
-        pool.resume();
         std::fill(snapshot.begin() + static_cast<std::ptrdiff_t>(S), snapshot.end(), 0);
+        const RankProgress p = work.progress();
         snapshot[S + 2 * comm.rank()] = p.items_done;
         snapshot[S + 2 * comm.rank() + 1] = p.prefix;
-        snapshot[kSignal] = opt.signal != nullptr && opt.signal->load() != 0 ? 1 : 0;
-        snapshot[kIdle] = pool.exhausted() ? 1 : 0;
+        snapshot[kSignal] = signalled ? 1 : 0;
+        snapshot[kIdle] = idle ? 1 : 0;
     };
+    auto take_snapshot = [&] {
+        // Threads park at chunk boundaries with their buffers flushed.
+        pool.pause();
+        fill_snapshot(opt.signal != nullptr && opt.signal->load() != 0, pool.exhausted());
+        pool.resume();
+    };
+    const bool tty = show && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr;
 
     double period = std::clamp(run.report_every_s > 0.0 ? run.report_every_s : 2.0, 0.05, 60.0);
     double stall_s = 0.0, write_s = 0.0;
@@ -178,7 +183,6 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             in.write_s = write_s;
             const Decision d = control->after_reduction(in);
             if (show) {
-                const bool tty = ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr;
                 out << (tty ? "\r" : "") << control->progress_line() << (tty ? "\033[K" : "\n") << std::flush;
             }
             decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code), d.next_period_s};
@@ -195,14 +199,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         period = decision[3];
         if (decision[0] != 0.0) break;
     }
-    if (show && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr) out << '\n';
+    if (tty) out << '\n';
     // Final exact reduction: the threads finish their chunks and flush.
     pool.stop();
-    std::fill(snapshot.begin(), snapshot.end(), 0);
-    std::copy(store.data().begin(), store.data().end(), snapshot.begin());
-    const RankProgress p = work.progress();
-    snapshot[S + 2 * comm.rank()] = p.items_done;
-    snapshot[S + 2 * comm.rank() + 1] = p.prefix;
+    fill_snapshot(false, false);
     comm.ireduce_sum_to_root(snapshot, reduced).wait();
     const double elapsed = comm.allreduce_max(comm.wtime() - t0);
     info.reductions = reductions;

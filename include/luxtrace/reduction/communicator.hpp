@@ -35,8 +35,6 @@ public:
     int size() const { return size_; }
     bool is_root() const { return rank_ == 0; }
 
-    // Element-wise sum of `data` over all ranks into rank 0's `data` (exact: integers).
-    void reduce_sum_to_root(std::vector<std::uint64_t>& data) const;
     // Non-blocking: `recv` (rank 0 only, resized there) receives the element-wise sum of
     // every rank's `send`, which must stay untouched until the reduction completes.
     PendingReduce ireduce_sum_to_root(const std::vector<std::uint64_t>& send,
@@ -45,8 +43,6 @@ public:
     void broadcast(std::vector<double>& values) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;
     double allreduce_max(double v) const;
-    int broadcast(int v) const;
-    void barrier() const;
     double wtime() const;
     // Ends every rank at once (after an error that only this rank saw).
     [[noreturn]] void abort(int code) const;

@@ -1,12 +1,21 @@
 // Run control pieces without MPI: the work plan covers every photon exactly once on any
 // number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/forecast/forecast.hpp"
+#include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/simulation.hpp"
 #include "luxtrace/run/work_plan.hpp"
+#include "luxtrace/run/worker_pool.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <sstream>
+#include <unistd.h>
 
 using namespace luxtrace;
 
@@ -112,4 +121,48 @@ TEST(Forecast, CountTargetsGrowLinearly) {
 TEST(Forecast, NoForecastWithoutProgress) {
     EXPECT_FALSE(forecast_error({}, 0.01, 1.0).valid);
     EXPECT_FALSE(forecast_error({{1.0, 100.0, 0.5}}, 0.01, 0.0).valid);
+}
+
+// A fault inside a tracing thread reaches the main thread as the exception it was, and
+// the pool still pauses and stops (it must never end in std::terminate). A sampler the
+// loader would refuse is the fault: it can only get here by bypassing the loader.
+TEST(WorkerPool, AThreadsExceptionIsKeptAndThePoolStillPausesAndStops) {
+    Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+    const EmbreeScene embree(scene);
+    TallyStore store{TallyLayout(scene)};
+    const WorkPlan plan({}, 100000, 4096, 1);
+    RankWork work(plan, 0);
+    TraceOptions opt;
+    opt.sampler = "sobol";
+    opt.threads = 2;
+    WorkerPool pool(scene, embree, store, work, opt);
+    pool.pause();  // returns: failed threads park
+    EXPECT_TRUE(pool.failed());
+    EXPECT_TRUE(pool.exhausted());
+    ASSERT_TRUE(pool.error());
+    EXPECT_THROW(std::rethrow_exception(pool.error()), InputError);
+    pool.resume();
+    pool.stop();
+}
+
+// The same fault in a whole run: exit code 2, the message, and no file written.
+TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
+    static Communicator comm(nullptr, nullptr);  // MPI is initialised once per process
+    Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("luxtrace_fault_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    scene.run.sampler = "sobol";
+    scene.run.photons = 100000;
+    scene.run.output = (dir / "r.h5").string();
+    RunOptions opt;
+    opt.threads = 2;
+    opt.quiet = true;
+    std::ostringstream out;
+    const RunSummary s = run_simulation(scene, comm, opt, out);
+    EXPECT_TRUE(s.failed);
+    EXPECT_EQ(s.exit_code, 2);
+    EXPECT_NE(s.error.find("'sobol' is not available"), std::string::npos) << s.error;
+    EXPECT_TRUE(std::filesystem::is_empty(dir)) << "a failed run must write nothing";
+    std::filesystem::remove_all(dir);
 }

@@ -5,6 +5,7 @@
 #include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
@@ -23,8 +24,6 @@ namespace fs = std::filesystem;
 using namespace luxtrace;
 
 namespace {
-
-constexpr int kExitBadInput = 2;
 
 struct RunArgs {
     std::string scene;
@@ -64,7 +63,7 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
     }
     if (!a.output.empty()) run.output = a.output;
     if (!a.sampler.empty()) {
-        if (a.sampler != "random") throw InputError("--sampler: '" + a.sampler + "' is not available yet (use random)");
+        if (const std::string why = sampler_unavailable(a.sampler); !why.empty()) throw InputError("--sampler: " + why);
         run.sampler = a.sampler;
     }
     if (!a.checkpoint.empty()) run.checkpoint = a.checkpoint;
@@ -110,6 +109,15 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
                   << comm.size() << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores())
                   << " thread(s)\n" << std::flush;
     const RunSummary s = run_simulation(scene, comm, opt, std::cout);
+    if (s.failed) {
+        // Raised after parsing, inside a tracing thread: the rank that saw it says what.
+        if (!s.error.empty()) {
+            if (s.exit_code == kExitBadInput || s.exit_code == kExitWriteFailed)
+                std::cerr << "luxtrace: error: " << s.error << '\n';
+            else std::cerr << "luxtrace: internal error on rank " << comm.rank() << ": " << s.error << '\n';
+        }
+        return s.exit_code;
+    }
     if (comm.is_root()) {
         // The ParaView/VisIt companion (here, not in luxtrace_run, which does not link the
         // render library). The result is written already: a failure only warns.

@@ -1,14 +1,15 @@
 #include "luxtrace/io/result_file.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include <hdf5.h>
 
 #include <stdexcept>
+#include <cstdlib>
+#include <cstring>
 #include <cmath>
-#include <fcntl.h>
-#include <unistd.h>
 
 namespace luxtrace {
 
@@ -23,7 +24,14 @@ public:
     H5Id(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
         if (id_ < 0) throw std::runtime_error("HDF5: " + what + " failed");
     }
-    ~H5Id() { if (id_ >= 0) close_(id_); }
+    ~H5Id() { close(); }
+    void close() {
+        if (id_ >= 0 && close_(id_) < 0) {
+            id_ = -1;
+            throw std::runtime_error("HDF5: close failed");
+        }
+        id_ = -1;
+    }
     H5Id(const H5Id&) = delete;
     H5Id& operator=(const H5Id&) = delete;
     operator hid_t() const { return id_; }
@@ -32,6 +40,65 @@ private:
     hid_t id_;
     Closer close_;
 };
+
+// The core driver's buffer, kept when HDF5 lets go of it at file close.
+struct MemoryImage {
+    void* ptr = nullptr;
+    std::size_t size = 0;
+    std::vector<char> bytes;
+
+    static H5FD_file_image_callbacks_t callbacks(MemoryImage* m) {
+        H5FD_file_image_callbacks_t c{};
+        c.image_malloc = [](std::size_t n, H5FD_file_image_op_t, void* u) -> void* {
+            auto* self = static_cast<MemoryImage*>(u);
+            self->ptr = std::malloc(n);
+            self->size = n;
+            return self->ptr;
+        };
+        c.image_memcpy = [](void* dst, const void* src, std::size_t n, H5FD_file_image_op_t, void*) -> void* {
+            return std::memcpy(dst, src, n);
+        };
+        c.image_realloc = [](void* p, std::size_t n, H5FD_file_image_op_t, void* u) -> void* {
+            auto* self = static_cast<MemoryImage*>(u);
+            void* q = std::realloc(p, n);
+            if (q != nullptr) {
+                self->ptr = q;
+                self->size = n;
+            }
+            return q;
+        };
+        c.image_free = [](void* p, H5FD_file_image_op_t op, void* u) -> herr_t {
+            auto* self = static_cast<MemoryImage*>(u);
+            if (p != nullptr && p == self->ptr && op == H5FD_FILE_IMAGE_OP_FILE_CLOSE) {
+                const char* b = static_cast<const char*>(p);
+                self->bytes.assign(b, b + self->size);
+            }
+            if (p == self->ptr) self->ptr = nullptr;
+            std::free(p);
+            return 0;
+        };
+        // The property list is copied into the file: all copies share this one object.
+        c.udata_copy = [](void* u) -> void* { return u; };
+        c.udata_free = [](void*) -> herr_t { return 0; };
+        c.udata = m;
+        return c;
+    }
+};
+
+// Length of the HDF5 file in `image`: the "end of file address" of its version 2/3
+// superblock (HDF5 File Format Specification, section II.A), which H5F_LIBVER_V18
+// selects: signature (8 bytes), versions and sizes (4), base address (8), extension
+// address (8), end of file address (8, little-endian).
+std::size_t file_length(const std::vector<char>& image) {
+    static const unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+    if (image.size() < 48 || std::memcmp(image.data(), kSignature, 8) != 0 || (image[8] != 2 && image[8] != 3) ||
+        image[9] != 8)
+        throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
+    std::uint64_t eof = 0;
+    for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(image[28 + i]);
+    if (eof < 48 || eof > image.size()) throw std::runtime_error("HDF5: the in-memory file image is incomplete");
+    return static_cast<std::size_t>(eof);
+}
 
 void check(herr_t status, const std::string& what) {
     if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
@@ -66,6 +133,7 @@ void dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& 
         check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "chunk");
         check(H5Pset_shuffle(plist), "shuffle");
         check(H5Pset_deflate(plist, 1), "deflate");
+        check(H5Pset_fletcher32(plist), "checksum");  // a damaged chunk fails to read
     }
     H5Id ds(H5Dcreate2(parent, name.c_str(), file_type<T>(), space, H5P_DEFAULT, plist, H5P_DEFAULT),
             H5Dclose, "create dataset " + name);
@@ -248,15 +316,22 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
                   const std::vector<std::uint64_t>& tallies, const RunInfo& info,
                   const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
                   const std::vector<HistoryRow>& history, const CheckpointData* checkpoint) {
-    const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    // Hidden temporary name beside the target, so the rename stays within one file system.
-    std::string tmp_name = path.filename().string();
-    tmp_name.insert(0, 1, '.');
-    tmp_name += ".tmp." + std::to_string(::getpid());
-    const fs::path tmp = dir / tmp_name;
-    try {
-        H5Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-                  "create " + tmp.string());
+    std::vector<char> image;
+    // HDF5 builds the file in memory (core driver, no backing store) and never touches
+    // the disk: writing it is then plain POSIX I/O whose errors name the OS's reason, and
+    // HDF5's own error stack stays silent.
+    H5E_BEGIN_TRY {
+        H5Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access list");
+        check(H5Pset_fapl_core(fapl, 1 << 20, 0), "core driver");
+        // The image is taken when HDF5 frees it at close, after the superblock is final
+        // (H5Fget_file_image on an open file has stale checksums in this format).
+        MemoryImage captured;
+        H5FD_file_image_callbacks_t callbacks = MemoryImage::callbacks(&captured);
+        check(H5Pset_file_image_callbacks(fapl, &callbacks), "file image callbacks");
+        // Format of HDF5 1.8 and later: every metadata block carries a checksum, so a
+        // damaged file is refused by the reader instead of being misread.
+        check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST), "format bounds");
+        H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "create in memory");
         attr(file, "format", checkpoint != nullptr ? "luxtrace-checkpoint" : "luxtrace-result");
         attr(file, "format_version", std::uint64_t{1});
         attr(file, "luxtrace_version", info.luxtrace_version);
@@ -288,23 +363,12 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
             attr(ck, "bands", static_cast<std::uint64_t>(layout.bands()));
         }
         check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
-    } catch (...) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw;
+        file.close();
+        image = std::move(captured.bytes);
+        image.resize(file_length(image));  // the driver's buffer grows in whole increments
     }
-    // Data on disk before the rename: a crash leaves either the old file or the new one.
-    const int fd = ::open(tmp.c_str(), O_RDONLY);
-    if (fd >= 0) {
-        ::fsync(fd);
-        ::close(fd);
-    }
-    fs::rename(tmp, path);
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-    if (dfd >= 0) {
-        ::fsync(dfd);
-        ::close(dfd);
-    }
+    H5E_END_TRY;
+    write_file_atomically(path, image);
 }
 
 }  // namespace luxtrace

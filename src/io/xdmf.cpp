@@ -7,6 +7,7 @@
 #include "luxtrace/io/xdmf.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/result_file.hpp"
 
 #include <fstream>
@@ -158,21 +159,8 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
         << "  </Domain>\n"
         << "</Xdmf>\n";
 
-    // Atomic: a temporary file beside the target, then rename.
-    std::string tmp_name = xdmf.filename().string();
-    tmp_name.insert(tmp_name.begin(), '.');
-    tmp_name += ".tmp." + std::to_string(::getpid());
-    const fs::path tmp = xdir / tmp_name;
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        f << out.str();
-        f.close();
-        if (!f) {
-            fs::remove(tmp, ec);
-            throw InputError(xdmf.string() + ": cannot write the XDMF file");
-        }
-    }
-    fs::rename(tmp, xdmf);
+    const std::string text = out.str();
+    write_file_atomically(xdmf, text);
 }
 
 }  // namespace luxtrace

@@ -1,6 +1,7 @@
 #include "luxtrace/run/simulation.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/run_control.hpp"
 #include "luxtrace/run/work_plan.hpp"
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
+#include <iostream>
 #include <ostream>
 #include <thread>
 
@@ -28,6 +30,30 @@
 #endif
 
 namespace luxtrace {
+
+namespace {
+
+bool is_input_error(const std::exception_ptr& e) {
+    try {
+        std::rethrow_exception(e);
+    } catch (const InputError&) {
+        return true;
+    } catch (...) {
+        return false;
+    }
+}
+
+std::string describe(const std::exception_ptr& e) {
+    try {
+        std::rethrow_exception(e);
+    } catch (const std::exception& x) {
+        return x.what();
+    } catch (...) {
+        return "unknown exception";
+    }
+}
+
+}  // namespace
 
 int available_cores() {
     cpu_set_t set;
@@ -80,8 +106,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
 
     // The reduced message: the tallies, then per-rank progress and control flags.
     const std::size_t S = layout.size();
-    const std::size_t kSignal = S + 2 * R, kIdle = kSignal + 1;
-    std::vector<std::uint64_t> snapshot(S + 2 * R + 2, 0), reduced;
+    // Faults: ranks whose tracing threads threw an InputError / anything else.
+    const std::size_t kSignal = S + 2 * R, kIdle = kSignal + 1, kInputFault = kIdle + 1, kInternalFault = kIdle + 2;
+    std::vector<std::uint64_t> snapshot(S + 2 * R + 4, 0), reduced;
     std::optional<RunController> control;
     if (comm.is_root()) control.emplace(scene, layout, history_before, elapsed_before, photons_before);
     const bool show = comm.is_root() && !opt.quiet;
@@ -132,6 +159,43 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         summary.detectors = dets;
     };
 
+    // The latest checkpoint written by this run (root only), for messages after a failed write.
+    std::string latest_checkpoint;
+    std::uint64_t latest_checkpoint_photons = 0;
+    auto latest_checkpoint_note = [&]() -> std::string {
+        if (latest_checkpoint.empty()) return "no checkpoint of this run was written before";
+        return "the latest checkpoint " + latest_checkpoint + " (" + std::to_string(latest_checkpoint_photons) +
+               " photons) is kept";
+    };
+    // write(), turning a failure to write the file into its message (empty: written).
+    auto attempt_write = [&](const std::string& path, const std::vector<std::uint64_t>& msg, double elapsed,
+                             const std::string& reason, bool as_checkpoint) -> std::string {
+        try {
+            write(path, msg, elapsed, reason, as_checkpoint);
+        } catch (const IoError& e) {
+            return e.what();
+        }
+        if (as_checkpoint) {
+            latest_checkpoint = path;
+            latest_checkpoint_photons = summary.photons;
+        }
+        return {};
+    };
+    // Where the run will write, checked before any photon is traced (bad input: exit 2).
+    std::vector<double> writable{1.0};
+    std::string not_writable;
+    if (comm.is_root()) {
+        try {
+            check_writable(run.output, "result file");
+            check_writable(checkpoint_path, "checkpoint");
+        } catch (const IoError& e) {
+            not_writable = e.what();
+            writable[0] = 0.0;
+        }
+    }
+    comm.broadcast(writable);
+    if (writable[0] == 0.0) throw InputError(not_writable);
+
     WorkerPool pool(scene, embree, store, work, topt);
     // The message: this rank's tallies, its progress and its flags. Call only while no
     // thread traces (paused or stopped), so the copy and the progress agree exactly.
@@ -143,6 +207,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         snapshot[S + 2 * comm.rank() + 1] = p.prefix;
         snapshot[kSignal] = signalled ? 1 : 0;
         snapshot[kIdle] = idle ? 1 : 0;
+        if (pool.failed()) snapshot[is_input_error(pool.error()) ? kInputFault : kInternalFault] = 1;
     };
     auto take_snapshot = [&] {
         // Threads park at chunk boundaries with their buffers flushed.
@@ -161,7 +226,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     std::vector<double> decision(4, 0.0);
     while (true) {
         const double due = comm.wtime() + period;
-        while (comm.wtime() < due && !pool.exhausted() && !(opt.signal != nullptr && opt.signal->load() != 0))
+        while (comm.wtime() < due && !pool.exhausted() && !pool.failed() &&
+               !(opt.signal != nullptr && opt.signal->load() != 0))
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         const double s0 = comm.wtime();
         take_snapshot();
@@ -172,7 +238,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         PendingReduce pending = comm.ireduce_sum_to_root(snapshot, reduced);
         while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
         reduce_total_s += comm.wtime() - r0;
-        if (comm.is_root()) {
+        if (comm.is_root() && (reduced[kInputFault] > 0 || reduced[kInternalFault] > 0)) {
+            // A rank could not trace: its tallies are incomplete, nothing is written.
+            decision = {1.0, 0.0, reduced[kInternalFault] > 0 ? 1.0 : 2.0, period};
+            summary.stop_reason = "error";
+        } else if (comm.is_root()) {
             ReductionInput in;
             in.tallies = std::span<const std::uint64_t>(reduced.data(), S);
             in.photons = count_photons(done_ranges_of(reduced));
@@ -191,7 +261,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             // from the final reduction below, which holds more photons.
             if (d.checkpoint && !d.stop) {
                 const double w0 = comm.wtime();
-                write(checkpoint_path, reduced, in.elapsed_s, "checkpoint", true);
+                // A failed periodic checkpoint leaves the previous one intact: warn, go on.
+                if (const std::string err = attempt_write(checkpoint_path, reduced, in.elapsed_s, "checkpoint", true);
+                    !err.empty())
+                    std::cerr << "luxtrace: warning: checkpoint not written: " << err << "; "
+                              << latest_checkpoint_note() << "; the run goes on\n" << std::flush;
                 write_s = comm.wtime() - w0;
             }
         }
@@ -202,6 +276,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     if (tty) out << '\n';
     // Final exact reduction: the threads finish their chunks and flush.
     pool.stop();
+    if (decision[2] == 1.0 || decision[2] == 2.0) {
+        summary.exit_code = static_cast<int>(decision[2]);
+        summary.failed = true;
+        if (pool.failed()) summary.error = describe(pool.error());
+        return summary;
+    }
     fill_snapshot(false, false);
     comm.ireduce_sum_to_root(snapshot, reduced).wait();
     const double elapsed = comm.allreduce_max(comm.wtime() - t0);
@@ -211,13 +291,40 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     summary.elapsed_s = elapsed_before + elapsed;
     summary.exit_code = static_cast<int>(decision[2]);
     std::vector<double> reason_code{0.0};
+    std::vector<double> final_code{static_cast<double>(summary.exit_code)};
     if (comm.is_root()) {
-        write(run.output, reduced, elapsed, summary.stop_reason, false);
-        if (summary.exit_code == 3 || decision[1] != 0.0) {
-            write(checkpoint_path, reduced, elapsed, summary.stop_reason, true);
+        const std::string result_err = attempt_write(run.output, reduced, elapsed, summary.stop_reason, false);
+        // A result that cannot be written: keep the tallies in a checkpoint instead.
+        std::string ck_err;
+        if (summary.exit_code == 3 || decision[1] != 0.0 || !result_err.empty())
+            ck_err = attempt_write(checkpoint_path, reduced, elapsed, summary.stop_reason, true);
+        if (ck_err.empty() && (summary.exit_code == 3 || decision[1] != 0.0 || !result_err.empty()))
             summary.checkpoint = checkpoint_path;
+        if (!result_err.empty() || !ck_err.empty()) {
+            summary.exit_code = kExitWriteFailed;
+            summary.failed = true;
+            const std::string restart = "luxtrace run " + scene.file.string() + " --restart ";
+            if (!result_err.empty()) {
+                summary.error = "the result was not written: " + result_err + "\n";
+                if (ck_err.empty())
+                    summary.error += "luxtrace: the run's tallies (" + std::to_string(summary.photons) +
+                                     " photons) are kept in the checkpoint " + checkpoint_path +
+                                     "; write the result from it with: " + restart + checkpoint_path +
+                                     " [--output OTHER.h5]";
+                else
+                    summary.error += "luxtrace: the checkpoint was not written either: " + ck_err + "\nluxtrace: " +
+                                     latest_checkpoint_note();
+            } else {
+                summary.error = "the result " + run.output + " was written, but the checkpoint to continue from was not: " +
+                                ck_err + "\nluxtrace: " + latest_checkpoint_note();
+            }
         }
+        final_code[0] = summary.exit_code;
     }
+    // Every rank ends with rank 0's verdict on the writes.
+    comm.broadcast(final_code);
+    summary.exit_code = static_cast<int>(final_code[0]);
+    summary.failed = summary.failed || summary.exit_code == kExitWriteFailed;
     return summary;
 }
 

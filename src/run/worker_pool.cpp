@@ -13,6 +13,25 @@ WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore
 WorkerPool::~WorkerPool() { stop(); }
 
 void WorkerPool::worker() {
+    try {
+        trace_until_stopped();
+    } catch (...) {
+        {
+            std::lock_guard lock(mutex_);
+            if (!error_) error_ = std::current_exception();
+        }
+        failed_.store(true);
+        // Park as an idle thread until the pool stops, so pause() and stop() return.
+        idle_.fetch_add(1);
+        std::unique_lock lock(mutex_);
+        ++parked_;
+        cv_main_.notify_all();
+        cv_workers_.wait(lock, [&] { return stop_requested_; });
+        --parked_;
+    }
+}
+
+void WorkerPool::trace_until_stopped() {
     PhotonTracer tracer(scene_, embree_, store_.layout());
     const auto sampler = make_sampler(opt_.sampler, opt_.seed);
     TallyBuffer buffer(store_);
@@ -41,6 +60,11 @@ void WorkerPool::worker() {
         traced_.fetch_add(chunk.size(), std::memory_order_relaxed);
     }
     buffer.flush();
+}
+
+std::exception_ptr WorkerPool::error() const {
+    std::lock_guard lock(mutex_);
+    return error_;
 }
 
 void WorkerPool::pause() {

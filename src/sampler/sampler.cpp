@@ -36,9 +36,15 @@ double PhiloxSampler::next() {
     return (static_cast<double>(w) + 0.5) * 0x1p-32;
 }
 
+std::string sampler_unavailable(const std::string& kind) {
+    if (kind == "random") return {};
+    if (kind == "sobol") return "'sobol' is not available in this build (it has: random)";
+    return "unknown sampler '" + kind + "' (this build has: random)";
+}
+
 std::unique_ptr<Sampler> make_sampler(const std::string& kind, std::uint64_t seed) {
-    if (kind == "random") return std::make_unique<PhiloxSampler>(seed);
-    throw InputError("--sampler: '" + kind + "' is not available (this build has: random)");
+    if (const std::string why = sampler_unavailable(kind); !why.empty()) throw InputError("sampler: " + why);
+    return std::make_unique<PhiloxSampler>(seed);
 }
 
 }  // namespace luxtrace

@@ -1,6 +1,7 @@
 // Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
 // thrown as an InputError naming the file, the line and the key.
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/scene/shapes.hpp"
@@ -29,6 +30,15 @@ double Scene::ray_epsilon_m() const {
 }
 
 namespace {
+
+constexpr double kMaxDetectorCells = 1e8;
+
+std::string fmt_count(double v) {
+    std::ostringstream os;
+    os.precision(15);
+    os << v;
+    return os.str();
+}
 
 struct Loader {
     fs::path file;
@@ -372,8 +382,14 @@ struct Loader {
         d.size_v = (*size)[1];
         if (const auto cells = r.numbers("cells", 2)) {
             const double nx = (*cells)[0], ny = (*cells)[1];
-            if (!(nx >= 1 && ny >= 1 && nx == std::floor(nx) && ny == std::floor(ny) && nx * ny <= 1e8))
+            if (!(nx >= 1 && ny >= 1 && nx == std::floor(nx) && ny == std::floor(ny)))
                 r.fail("cells", "expected two positive whole numbers [nx, ny]");
+            // Every cell costs 16 bytes per band in each copy of the tallies (the rank's
+            // store, the reduction message, rank 0's reduced copy).
+            if (nx * ny > kMaxDetectorCells)
+                r.fail("cells", fmt_count(nx) + " x " + fmt_count(ny) + " = " + fmt_count(nx * ny) +
+                                    " cells; a detector may have at most " + fmt_count(kMaxDetectorCells) +
+                                    " (e.g. 10000 x 10000)");
             d.nx = static_cast<int>(nx);
             d.ny = static_cast<int>(ny);
         }
@@ -440,8 +456,7 @@ struct Loader {
         if (auto o = r.string("output")) run.output = resolve(*o).string();
         if (auto c = r.string("checkpoint")) run.checkpoint = resolve(*c).string();
         run.sampler = r.string("sampler").value_or(run.sampler);
-        if (run.sampler != "random" && run.sampler != "sobol")
-            r.fail("sampler", "expected 'random' or 'sobol'");
+        if (const std::string why = sampler_unavailable(run.sampler); !why.empty()) r.fail("sampler", why);
         if (const auto mb = r.integer("max_bounces")) {
             if (*mb < 1) r.fail("max_bounces", "must be at least 1");
             run.max_bounces = static_cast<int>(*mb);

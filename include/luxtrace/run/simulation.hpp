@@ -23,7 +23,11 @@ struct RunOptions {
 };
 
 struct RunSummary {
-    int exit_code = 0;   // 0 finished, 3 stopped early after writing a checkpoint
+    // 0 finished, 3 stopped early after writing a checkpoint; 2 or 1 when tracing failed
+    // on some rank (an InputError, or an internal fault): then nothing was written.
+    int exit_code = 0;
+    bool failed = false;
+    std::string error;  // this rank's failure, empty if this rank traced fine
     std::string stop_reason;
     std::string checkpoint;  // written checkpoint, if any
     std::string output;

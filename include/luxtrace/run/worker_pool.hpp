@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -31,20 +32,28 @@ public:
     bool exhausted() const { return idle_.load() == static_cast<int>(threads_.size()); }
     // Photons traced so far by this rank's threads (for progress; exact when paused).
     std::uint64_t photons_traced() const { return traced_.load(std::memory_order_relaxed); }
+    // A tracing thread threw. The thread parks as if out of work (so pause() and stop()
+    // still return) and keeps the first exception for the main thread; the tallies are
+    // then incomplete and must not be written.
+    bool failed() const { return failed_.load(); }
+    std::exception_ptr error() const;
 
 private:
     void worker();
+    void trace_until_stopped();
     const Scene& scene_;
     const EmbreeScene& embree_;
     TallyStore& store_;
     RankWork& work_;
     TraceOptions opt_;
-    std::mutex mutex_;
+    mutable std::mutex mutex_;
     std::condition_variable cv_main_, cv_workers_;
     bool pause_requested_ = false, stop_requested_ = false;
     int parked_ = 0;
     std::atomic<int> idle_{0};
     std::atomic<std::uint64_t> traced_{0};
+    std::atomic<bool> failed_{false};
+    std::exception_ptr error_;  // guarded by mutex_
     std::vector<std::thread> threads_;
 };
 

@@ -38,7 +38,13 @@ private:
     std::uint32_t words_[4] = {};
 };
 
-// Factory by the name used on the command line (`random`; `sobol` comes later).
+// Samplers this build has, by the name used in the scene file and on the command line.
+// Empty if `kind` is available, otherwise what to tell the user ("'sobol' is not
+// available in this build (it has: random)"). The loader and the CLI check with it, so
+// that make_sampler never fails inside a tracing thread.
+std::string sampler_unavailable(const std::string& kind);
+
+// Factory by that name; throws InputError for a name sampler_unavailable() rejects.
 std::unique_ptr<Sampler> make_sampler(const std::string& kind, std::uint64_t seed);
 
 }  // namespace luxtrace

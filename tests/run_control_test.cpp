@@ -78,16 +78,34 @@ TEST(WorkPlan, RankWorkHandsOutItsItemsInOrderAndReportsProgress) {
     RankWork work(plan, 1);
     PhotonRange c;
     std::uint64_t total = 0;
-    ASSERT_TRUE(work.next_chunk(300, c));
+    ASSERT_EQ(work.next_chunk(300, c), RankWork::Next::chunk);
     EXPECT_EQ(c.begin, 1000u);  // rank 1's first item is global item 1
     EXPECT_EQ(c.end, 1300u);
     total += c.size();
-    while (work.next_chunk(300, c)) total += c.size();
+    while (work.next_chunk(300, c) == RankWork::Next::chunk) total += c.size();
     // Items 1, 4, 7 of 10: 3000 photons.
     EXPECT_EQ(total, 3000u);
     const RankProgress p = work.progress();
     EXPECT_EQ(p.items_done, 3u);
     EXPECT_EQ(p.prefix, 0u);
+}
+
+TEST(WorkPlan, TheFenceStopsHandingOutAtAnExactCount) {
+    const WorkPlan plan({}, 10000, 1000, 2);
+    RankWork work(plan, 0);
+    work.set_fence(1700);
+    PhotonRange c;
+    std::uint64_t total = 0;
+    RankWork::Next next;
+    while ((next = work.next_chunk(300, c)) == RankWork::Next::chunk) total += c.size();
+    EXPECT_EQ(next, RankWork::Next::fenced);
+    EXPECT_EQ(total, 1700u);  // 1000 of item 0 and 700 of item 2 (rank 0 takes even items)
+    EXPECT_EQ(work.progress().items_done, 1u);
+    EXPECT_EQ(work.progress().prefix, 700u);
+    work.set_fence(RankWork::kNoFence);
+    while ((next = work.next_chunk(300, c)) == RankWork::Next::chunk) total += c.size();
+    EXPECT_EQ(next, RankWork::Next::exhausted);
+    EXPECT_EQ(total, 5000u);
 }
 
 TEST(Forecast, RecoversTheInverseSquareRootLawFromNoisyHistory) {

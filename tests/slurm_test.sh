@@ -6,9 +6,9 @@
 #       tallies bit-identical to (a): same seed and budget on another split (SPEC §3)
 #   (c) seed_array.sbatch, seeds 1 and 2          -> distinct tallies, means agreeing
 #       within 4 sigma (independent estimates of one quantity)
-#   (d) requeue.sbatch with a 1-minute limit and a budget it cannot finish in it: Slurm's
-#       USR1 before the limit, checkpoint (exit 3), self-requeue, restart from the
-#       checkpoint, finish; tallies bit-identical to an uninterrupted run.
+#   (d) requeue.sbatch signalled with USR1 once its first checkpoint exists (and by
+#       Slurm's own --signal before any 1-minute limit): checkpoint (exit 3), self-requeue,
+#       restart from the checkpoint, finish; tallies bit-identical to an uninterrupted run.
 # The cluster (munged, slurmctld, slurmd) is private to this test: its own key, socket,
 # ports, state and log directories; root is not needed. It is always torn down.
 # Usage: slurm_test.sh LUXTRACE WORKDIR
@@ -213,34 +213,34 @@ echo "submitted: (a) $id_a, (b) $id_b, (c) $id_c $(elapsed)"
 wait_jobs "$id_a,$id_b,$id_c"
 
 # --- (d): the requeue job and its reference --------------------------------------------------
-# slurmctld checks time limits every 30 s and sends --signal at the first check less than
-# SECONDS + 30 s before the end (sbatch(1): "up to 60 seconds earlier"). With --time=1 and
-# @10 USR1 comes 20-50 s into the first start, and at least 30 s before the kill; a
-# requeued start begins about 12 s after a check, so it is signalled about 48 s in.
-# The first start must not finish before 50 s: give (d) 70 s of work at the rate (c) just
-# had, one thread per run on each CPU, as (d) and its reference will have.
-rate=$("$py" -c "
-import h5py
-files = [h5py.File('$work/results/room-seed%d.h5' % i) for i in (1, 2)]
-print(int(max(f.attrs['photons'] / f.attrs['elapsed_s'] for f in files)))" 2>/dev/null) || rate=1000000
-budget_d=$(( (rate * 70 / 1000000 + 1) * 1000000 ))
-echo "single-thread rate $rate photons/s in (c): (d) gets $budget_d photons"
+# Driven by an event, not by the clock: as soon as the first start has written its first
+# checkpoint (one per reduction, every 200k photons), the test sends USR1 to the batch
+# shell (scancel --signal=USR1 --batch: the path Slurm's --signal=B:USR1 takes). The
+# start stops at once, checkpoints, exits 3 and requeues itself. The budget is 150 times
+# the photons of that first checkpoint, so the start cannot finish before the signal
+# lands unless the machine traces 150 x 200k photons in the time scancel takes; should
+# that ever happen, the start finishing first is seen and (d) runs again with ten times
+# the budget. Later starts still carry Slurm's own --signal=B:USR1@10 with --time=1, so a
+# slow machine is simply requeued more often.
+budget_d=30000000
 submit_d() {
-    id_d=$(PHOTONS=$budget_d SEED=11 sub --output="$work/d-%j.log" --cpus-per-task=1 --time=1 \
-           --signal=B:USR1@10 "$jobs/requeue.sbatch") || exit 1
+    id_d=$(PHOTONS=$budget_d SEED=11 CHECKPOINT_EVERY=0.001 LUXTRACE_ARGS="--quiet --report-every-photons 200k" \
+           sub --output="$work/d-%j.log" --cpus-per-task=1 --time=1 --signal=B:USR1@10 "$jobs/requeue.sbatch") || exit 1
     id_ref=$(sub --output="$work/ref-%j.log" --cpus-per-task=1 --time=10 --job-name=reference --wrap="srun \
              --mpi=pmix $lux run $scene --photons $budget_d --seed 11 --threads 1 --quiet \
              --output $work/results/reference-$budget_d.h5") || exit 1
     echo "submitted: (d) $id_d, reference $id_ref $(elapsed)"
+    local ck=$work/results/room-$id_d.ck.h5
+    while [ ! -f "$ck" ] && [ -n "$(squeue -h -j "$id_d" 2>/dev/null)" ]; do sleep 0.1; done
+    if [ -f "$ck" ]; then
+        scancel --signal=USR1 --batch "$id_d" && echo "(d) first checkpoint written: USR1 sent $(elapsed)"
+    fi
 }
 submit_d
 wait_jobs "$id_d,$id_ref"
-# A (d) that finished in its first start saw no signal: the machine got faster than
-# measured. That says nothing about luxtrace or the scripts; try once more with twice
-# the work.
 if [ "$(job_field "$id_d" Restarts)" = 0 ] && grep -q "^luxtrace-requeue: finished" "$work/d-$id_d.log"; then
-    budget_d=$((2 * budget_d))
-    echo "NOTE: (d) finished before Slurm's signal; again with $budget_d photons"
+    budget_d=$((10 * budget_d))
+    echo "NOTE: (d) finished before the signal landed; again with $budget_d photons"
     submit_d
     wait_jobs "$id_d,$id_ref"
 fi

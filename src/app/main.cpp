@@ -27,7 +27,7 @@ namespace {
 
 struct RunArgs {
     std::string scene;
-    std::string photons, seed;
+    std::string photons, seed, report_every_photons;
     std::optional<double> time_limit, target, report_every, checkpoint_every;
     std::optional<int> threads;
     std::string output, checkpoint, restart, sampler;
@@ -50,6 +50,10 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
         run.time_limit_s = *a.time_limit;
     }
     if (a.report_every) run.report_every_s = *a.report_every;
+    if (!a.report_every_photons.empty()) {
+        run.report_every_photons = parse_count_option("--report-every-photons", a.report_every_photons);
+        if (run.report_every_photons == 0) throw InputError("--report-every-photons: must be positive");
+    }
     if (a.checkpoint_every) {
         if (!(*a.checkpoint_every >= 0.0)) throw InputError("--checkpoint-every: must not be negative");
         run.checkpoint_every_s = *a.checkpoint_every;
@@ -178,6 +182,8 @@ int main(int argc, char** argv) {
     run->add_option("--checkpoint-every", ra.checkpoint_every, "seconds between checkpoints");
     run->add_option("--restart", ra.restart, "continue from a checkpoint");
     run->add_option("--report-every", ra.report_every, "seconds between progress lines");
+    run->add_option("--report-every-photons", ra.report_every_photons,
+                    "reduce and report every N photons instead (a history that is the same on any machine)");
     run->add_option("--sampler", ra.sampler, "random | sobol");
     run->add_flag("--quiet", ra.quiet, "no progress output");
     std::string check_path, info_path;

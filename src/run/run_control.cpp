@@ -14,6 +14,8 @@ RunController::RunController(const Scene& scene, const TallyLayout& layout, std:
       time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons),
       period_s_(std::clamp(scene.run.report_every_s, 0.05, 60.0)) {
     if (scene.run.report_every_s <= 0.0) period_s_ = 2.0;
+    // Reductions come at photon counts; the period only bounds the wait (time limit).
+    if (scene.run.report_every_photons > 0) period_s_ = kPhotonPeriodBound_s;
 }
 
 Decision RunController::after_reduction(const ReductionInput& in) {
@@ -49,7 +51,7 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
     std::vector<double> sorted = recent_stalls_;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    period_s_ = std::max(period_s_, 50.0 * sorted[sorted.size() / 2]);
+    if (scene_.run.report_every_photons == 0) period_s_ = std::max(period_s_, 50.0 * sorted[sorted.size() / 2]);
     Decision d;
     d.next_period_s = period_s_;
     bool error_targets_unmet = false;

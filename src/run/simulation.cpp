@@ -87,6 +87,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
                              ck.sampler + "; restart with the same (drop --seed/--sampler)");
         if (comm.is_root()) store.data() = ck.tallies;
         for (std::size_t i = 0; i + 1 < ck.done.size(); i += 2) done_before.push_back({ck.done[i], ck.done[i + 1]});
+        // A restart may set a new budget (--photons), but not one below photons it holds.
+        std::uint64_t highest = 0;
+        for (const PhotonRange& r : done_before) highest = std::max(highest, r.end);
+        if (run.photons < highest)
+            throw InputError("--photons: the checkpoint " + opt.restart + " already holds photons up to index " +
+                             std::to_string(highest - 1) + "; the budget must be at least " + std::to_string(highest));
         history_before = ck.history;
         elapsed_before = ck.elapsed_s;
     }
@@ -196,6 +202,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     comm.broadcast(writable);
     if (writable[0] == 0.0) throw InputError(not_writable);
 
+    // Reductions at photon counts: each rank stops handing out photons at its share of
+    // the next count, and the snapshot is taken when all its threads have parked there.
+    const std::uint64_t fence_step =
+        run.report_every_photons > 0 ? std::max<std::uint64_t>(1, (run.report_every_photons + R - 1) / R) : 0;
+    std::uint64_t fence = fence_step;
+    if (fence_step > 0) work.set_fence(fence);
     WorkerPool pool(scene, embree, store, work, topt);
     // The message: this rank's tallies, its progress and its flags. Call only while no
     // thread traces (paused or stopped), so the copy and the progress agree exactly.
@@ -213,11 +225,13 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         // Threads park at chunk boundaries with their buffers flushed.
         pool.pause();
         fill_snapshot(opt.signal != nullptr && opt.signal->load() != 0, pool.exhausted());
+        if (fence_step > 0) work.set_fence(fence += fence_step);
         pool.resume();
     };
     const bool tty = show && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr;
 
-    double period = std::clamp(run.report_every_s > 0.0 ? run.report_every_s : 2.0, 0.05, 60.0);
+    double period = fence_step > 0 ? RunController::kPhotonPeriodBound_s
+                                   : std::clamp(run.report_every_s > 0.0 ? run.report_every_s : 2.0, 0.05, 60.0);
     double stall_s = 0.0, write_s = 0.0;
     // Overhead accounting: tracing time lost to pauses, and the main thread's wait for
     // reductions (the workers trace meanwhile).
@@ -227,8 +241,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     while (true) {
         const double due = comm.wtime() + period;
         while (comm.wtime() < due && !pool.exhausted() && !pool.failed() &&
-               !(opt.signal != nullptr && opt.signal->load() != 0))
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+               !(opt.signal != nullptr && opt.signal->load() != 0) && !(fence_step > 0 && work.fence_reached()))
+            std::this_thread::sleep_for(std::chrono::milliseconds(fence_step > 0 ? 1 : 5));
         const double s0 = comm.wtime();
         take_snapshot();
         stall_s = comm.wtime() - s0;
@@ -344,6 +358,17 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s ("
             << std::setprecision(2) << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0)
             << " % of the run)\n";
+    if (r.has("/checkpoint/done_ranges")) {
+        const std::vector<std::uint64_t> done = r.u64("/checkpoint/done_ranges");
+        std::uint64_t n = 0, highest = 0;
+        for (std::size_t i = 0; i + 1 < done.size(); i += 2) {
+            if (done[i + 1] < done[i]) throw InputError(r.path().string() + ": damaged checkpoint: a done range ends before it begins");
+            n += done[i + 1] - done[i];
+            highest = std::max(highest, done[i + 1]);
+        }
+        out << "checkpoint     " << n << " photons done in " << done.size() / 2 << " range(s) below index " << highest
+            << ", budget " << r.attr_u64("/checkpoint", "budget") << '\n';
+    }
     out << std::defaultfloat << std::setprecision(6);
     out << "flux           " << r.attr_f64("/", "total_flux_lm") << " lm, " << r.attr_f64("/", "flux_per_photon_lm")
         << " lm per photon\n";

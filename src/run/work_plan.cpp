@@ -67,9 +67,11 @@ RankWork::RankWork(const WorkPlan& plan, int rank) : plan_(plan), rank_(rank) {
     pos_ = item_.begin;
 }
 
-bool RankWork::next_chunk(std::uint64_t max, PhotonRange& out) {
+RankWork::Next RankWork::next_chunk(std::uint64_t max, PhotonRange& out) {
     std::lock_guard lock(mutex_);
-    if (item_.empty()) return false;
+    if (item_.empty()) return Next::exhausted;
+    if (handed_out_ >= fence_) return Next::fenced;
+    max = std::min(max, fence_ - handed_out_);
     out = {pos_, std::min(item_.end, pos_ + max)};
     pos_ = out.end;
     handed_out_ += out.size();
@@ -78,7 +80,17 @@ bool RankWork::next_chunk(std::uint64_t max, PhotonRange& out) {
         item_ = plan_.item(rank_, item_index_);
         pos_ = item_.begin;
     }
-    return true;
+    return Next::chunk;
+}
+
+bool RankWork::fence_reached() const {
+    std::lock_guard lock(mutex_);
+    return item_.empty() || handed_out_ >= fence_;
+}
+
+void RankWork::set_fence(std::uint64_t handed_out) {
+    std::lock_guard lock(mutex_);
+    fence_ = handed_out;
 }
 
 RankProgress RankWork::progress() const {

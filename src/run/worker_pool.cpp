@@ -35,23 +35,34 @@ void WorkerPool::trace_until_stopped() {
     PhotonTracer tracer(scene_, embree_, store_.layout());
     const auto sampler = make_sampler(opt_.sampler, opt_.seed);
     TallyBuffer buffer(store_);
-    bool out_of_work = false;
+    bool out_of_work = false, at_fence = false;
     while (true) {
         {
             std::unique_lock lock(mutex_);
-            if (pause_requested_ || out_of_work) {
+            if (pause_requested_ || out_of_work || at_fence) {
                 // Park at a chunk boundary with everything flushed; an idle thread stays
-                // parked (and counted) until the pool stops.
+                // parked (and counted) until the pool stops, one at the fence until the
+                // next resume.
                 buffer.flush();
                 ++parked_;
                 cv_main_.notify_all();
-                cv_workers_.wait(lock, [&] { return stop_requested_ || (!pause_requested_ && !out_of_work); });
+                const std::uint64_t resumes = resumes_;
+                cv_workers_.wait(lock, [&] {
+                    return stop_requested_ ||
+                           (!pause_requested_ && !out_of_work && (!at_fence || resumes_ != resumes));
+                });
                 --parked_;
+                at_fence = false;
             }
             if (stop_requested_) break;
         }
         PhotonRange chunk;
-        if (!work_.next_chunk(opt_.chunk, chunk)) {
+        const RankWork::Next next = work_.next_chunk(opt_.chunk, chunk);
+        if (next == RankWork::Next::fenced) {
+            at_fence = true;
+            continue;
+        }
+        if (next == RankWork::Next::exhausted) {
             out_of_work = true;
             idle_.fetch_add(1);
             continue;
@@ -77,6 +88,7 @@ void WorkerPool::resume() {
     {
         std::lock_guard lock(mutex_);
         pause_requested_ = false;
+        ++resumes_;
     }
     cv_workers_.notify_all();
 }

@@ -87,6 +87,7 @@ public:
     std::string attr_str(const std::string& object, const std::string& name) const;
     std::vector<std::string> attr_strs(const std::string& object, const std::string& name) const;
     std::vector<std::string> children(const std::string& group) const;
+    const std::filesystem::path& path() const { return path_; }
 
 private:
     std::filesystem::path path_;

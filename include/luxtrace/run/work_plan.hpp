@@ -55,9 +55,17 @@ std::uint64_t count_photons(const std::vector<PhotonRange>& ranges);
 // Hands out a rank's photons to its threads in chunks. Thread-safe.
 class RankWork {
 public:
+    enum class Next { chunk, fenced, exhausted };
     RankWork(const WorkPlan& plan, int rank);
-    // Next chunk of at most `max` photons; false when the rank's work is exhausted.
-    bool next_chunk(std::uint64_t max, PhotonRange& out);
+    // Next chunk of at most `max` photons, never going past the fence; `fenced` when the
+    // fence is reached, `exhausted` when the rank's work is done.
+    Next next_chunk(std::uint64_t max, PhotonRange& out);
+    // No more than `handed_out` photons in all until the fence is moved (reductions at
+    // fixed photon counts); kNoFence lifts it.
+    static constexpr std::uint64_t kNoFence = UINT64_MAX;
+    void set_fence(std::uint64_t handed_out);
+    // Every photon up to the fence has been handed out, or the work is exhausted.
+    bool fence_reached() const;
     // Valid while no chunk is being traced (all threads paused or finished).
     RankProgress progress() const;
     std::uint64_t handed_out() const;
@@ -70,6 +78,7 @@ private:
     PhotonRange item_;
     std::uint64_t pos_ = 0;
     std::uint64_t handed_out_ = 0;
+    std::uint64_t fence_ = kNoFence;
 };
 
 }  // namespace luxtrace

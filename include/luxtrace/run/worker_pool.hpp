@@ -23,7 +23,8 @@ public:
     WorkerPool(const WorkerPool&) = delete;
     WorkerPool& operator=(const WorkerPool&) = delete;
 
-    // Blocks until every thread is parked at a chunk boundary (or out of work).
+    // Blocks until every thread is parked at a chunk boundary (or out of work, or at
+    // RankWork's fence; those go on after resume() once the fence has been moved).
     void pause();
     void resume();
     // Finish the current chunks and end the threads.
@@ -50,6 +51,7 @@ private:
     std::condition_variable cv_main_, cv_workers_;
     bool pause_requested_ = false, stop_requested_ = false;
     int parked_ = 0;
+    std::uint64_t resumes_ = 0;  // a thread parked at the fence retries after a resume
     std::atomic<int> idle_{0};
     std::atomic<std::uint64_t> traced_{0};
     std::atomic<bool> failed_{false};

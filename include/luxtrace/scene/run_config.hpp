@@ -25,6 +25,9 @@ struct RunConfig {
     std::uint64_t photons = 1'000'000;
     double time_limit_s = 0.0;       // 0 = none
     double report_every_s = 2.0;
+    // Reductions every this many photons (per run, split evenly over the ranks) instead
+    // of every report_every_s: the history is then the same on any machine. 0 = by time.
+    std::uint64_t report_every_photons = 0;
     std::string output;              // result path (relative to the working directory)
     double checkpoint_every_s = 0.0; // 0 = none
     std::string checkpoint;          // checkpoint path

@@ -324,9 +324,9 @@ TEST_F(Pictures, XdmfOfAnRgbRunEvaluatesToTheSpecMaps) {
     const fs::path result = simulate("rgb", kRgbRoom);
     const fs::path xdmf = dir / "rgb.xdmf";
     ASSERT_TRUE(fs::exists(xdmf)) << "luxtrace run writes the XDMF companion beside the result";
-    if (std::system("command -v xmllint > /dev/null 2>&1") == 0) {
-        EXPECT_EQ(std::system(("xmllint --noout " + xdmf.string()).c_str()), 0) << "xmllint rejects " << xdmf;
-    }
+    ASSERT_EQ(std::system("command -v xmllint > /dev/null 2>&1"), 0)
+        << "xmllint is missing (scripts/install_deps.sh installs libxml2-utils)";
+    EXPECT_EQ(std::system(("xmllint --noout " + xdmf.string()).c_str()), 0) << "xmllint rejects " << xdmf;
     const Companion c = read_companion(xdmf, result);
     ASSERT_GT(c.triangles, 0u);
     const ResultReader r(result);

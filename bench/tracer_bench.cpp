@@ -64,7 +64,7 @@ struct RawRay {
 };
 
 // Rays leaving the scene's surfaces the way diffusely reflected photons do.
-std::vector<RawRay> make_surface_rays(const Scene& scene, std::uint64_t n, std::uint64_t seed) {
+std::vector<RawRay> make_surface_rays(const Scene& scene, const EmbreeScene& embree, std::uint64_t n, std::uint64_t seed) {
     std::vector<double> cdf(scene.triangle_count());
     double sum = 0.0;
     for (std::size_t t = 0; t < cdf.size(); ++t) cdf[t] = (sum += scene.triangle_area_m2[t]);
@@ -83,7 +83,8 @@ std::vector<RawRay> make_surface_rays(const Scene& scene, std::uint64_t n, std::
         const Vec3 p = (1.0 - s) * a + (u2 * s) * b + (s - u2 * s) * c + eps * normal;
         const double d1 = uni(rng), d2 = uni(rng);
         const Vec3 d = sample_cosine_hemisphere(normal, d1, d2);
-        r = {{float(p.x), float(p.y), float(p.z)}, {float(d.x), float(d.y), float(d.z)}};
+        const Vec3f pl = embree.to_local(p);  // Embree's frame
+        r = {{pl.x, pl.y, pl.z}, {float(d.x), float(d.y), float(d.z)}};
     }
     return rays;
 }
@@ -247,7 +248,7 @@ int run(const Settings& set) {
 
     // Warm-up (pages in the BVH and the code paths) and, for "auto", rate estimates.
     constexpr std::uint64_t kProbeRays = 200000, kProbePhotons = 50000;
-    const RawResult probe_raw = run_raw(embree, make_surface_rays(scene, kProbeRays, seed + 1), 1);
+    const RawResult probe_raw = run_raw(embree, make_surface_rays(scene, embree, kProbeRays, seed + 1), 1);
     const TracerResult probe_tr = run_tracer(scene, embree, kProbePhotons, 1, seed + 1);
     const std::uint64_t n_rays =
         size_for(set.rays, "--rays", double(kProbeRays) / probe_raw.seconds, set.seconds, 100000);
@@ -255,7 +256,7 @@ int run(const Settings& set) {
         size_for(set.photons, "--photons", double(kProbePhotons) / probe_tr.seconds, set.seconds, 10000);
 
     t0 = Clock::now();
-    const std::vector<RawRay> rays = make_surface_rays(scene, n_rays, seed);
+    const std::vector<RawRay> rays = make_surface_rays(scene, embree, n_rays, seed);
     const double t_gen = seconds_since(t0);
     std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n",
                 set.scene_file.c_str(), scene.triangle_count(), scene.lights.lights().size(),

@@ -173,7 +173,7 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
     {
         H5Id mesh(group(file, "mesh"), H5Gclose, "group /mesh");
         std::vector<double> v;
-        for (const glm::vec3& p : scene.vertices) v.insert(v.end(), {p.x, p.y, p.z});
+        for (const Vec3& p : scene.vertices) v.insert(v.end(), {p.x, p.y, p.z});
         dataset(mesh, "vertices", {scene.vertices.size(), 3}, v.data());
         std::vector<std::uint32_t> t;
         for (const glm::uvec3& tri : scene.triangles) t.insert(t.end(), {tri.x, tri.y, tri.z});

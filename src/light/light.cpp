@@ -44,8 +44,7 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         double b = up2;
         if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
         const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
-        return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2),
-                surface.scene_triangle[i]};
+        return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2), surface.scene_triangle[i], a, b};
     }
     case LightType::directional: {
         const double r = beam_radius * std::sqrt(up1);

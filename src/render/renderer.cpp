@@ -110,23 +110,7 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
 }
 
 bool Renderer::occluded(const Vec3& o, const Vec3& d, double t_far) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRay ray;
-    ray.org_x = static_cast<float>(o.x);
-    ray.org_y = static_cast<float>(o.y);
-    ray.org_z = static_cast<float>(o.z);
-    ray.dir_x = static_cast<float>(d.x);
-    ray.dir_y = static_cast<float>(d.y);
-    ray.dir_z = static_cast<float>(d.z);
-    ray.tnear = 0.0f;
-    ray.tfar = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
-    ray.time = 0.0f;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
-    rtcOccluded1(embree_.handle(), &ctx, &ray);
-    return ray.tfar < 0.0f;  // Embree marks a found occluder with tfar = -inf
+    return embree_.occluded(o, d, std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
 }
 
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
@@ -340,7 +324,8 @@ RenderInput load_render_input(const fs::path& result) {
     const std::vector<double> direct = r.f64("/global/illuminance_direct");
     const std::vector<double> vertices = r.f64("/mesh/vertices", &vshape);
     bool same = shape.size() == 2 && shape[0] == s.triangle_count() && shape[1] == s.bands.size() &&
-                direct.size() == all.size() && vshape.size() == 2 && vshape[0] == s.vertices.size();
+                direct.size() == all.size() && vshape.size() == 2 && vshape[0] == s.vertices.size() &&
+                vshape[1] == 3;
     for (std::size_t v = 0; same && v < s.vertices.size(); ++v)
         for (int k = 0; k < 3; ++k)
             same = same && std::abs(vertices[3 * v + k] - static_cast<double>(s.vertices[v][k])) <=

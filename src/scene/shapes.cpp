@@ -41,21 +41,40 @@ TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& 
 }
 
 TriangleMesh make_box(const Vec3& center, const Vec3& size, int subdivisions, bool inward) {
+    // Each face is the rectangle make_rectangle would make, but every coordinate comes
+    // from one table per axis, so that faces meeting at an edge share its vertices bit
+    // for bit: the box is watertight for Embree (no crack between faces to escape by).
+    const int s = std::max(1, subdivisions);
+    const Vec3 lo = center - 0.5 * size, hi = center + 0.5 * size;
+    std::vector<double> grid[3];
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k <= s; ++k)
+            grid[a].push_back(k == 0 ? lo[a] : k == s ? hi[a] : lo[a] + (hi[a] - lo[a]) * (double(k) / s));
+    const int sign = inward ? -1 : 1;
     TriangleMesh m;
-    const double sign = inward ? -1.0 : 1.0;
     for (int axis = 0; axis < 3; ++axis)
         for (int dir = -1; dir <= 1; dir += 2) {
-            Vec3 n(0.0);
-            n[axis] = dir;
-            const Vec3 face_center = center + 0.5 * size[axis] * n;
-            // The face's "up" is the next axis; its other side follows from up x normal.
-            const int up_axis = (axis + 2) % 3;
-            const int other_axis = (axis + 1) % 3;
-            Vec3 up(0.0);
-            up[up_axis] = 1.0;
-            m.append(make_rectangle(face_center, sign * n, up, size[other_axis], size[up_axis],
-                                    subdivisions));
+            // The face's "up" is the next axis but one, its u axis (up x normal) the next
+            // axis, pointing along +axis when the face's normal does.
+            const int up_axis = (axis + 2) % 3, other_axis = (axis + 1) % 3;
+            const bool u_forward = sign * dir > 0;
+            const auto base = static_cast<unsigned>(m.vertices.size());
+            for (int j = 0; j <= s; ++j)
+                for (int i = 0; i <= s; ++i) {
+                    Vec3 p;
+                    p[axis] = dir > 0 ? hi[axis] : lo[axis];
+                    p[other_axis] = grid[other_axis][u_forward ? i : s - i];
+                    p[up_axis] = grid[up_axis][j];
+                    m.vertices.push_back(p);
+                }
+            for (int j = 0; j < s; ++j)
+                for (int i = 0; i < s; ++i) {
+                    const unsigned a = base + j * (s + 1) + i, b = a + 1, c = a + s + 2, d = a + s + 1;
+                    m.triangles.push_back({a, b, c});  // u x v = n: counter-clockwise from the front
+                    m.triangles.push_back({a, c, d});
+                }
         }
+    m.material_names.resize(m.triangles.size());
     return m;
 }
 

@@ -3,6 +3,7 @@
 #include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/ray_offset.hpp"
 
 #include <algorithm>
 #include <thread>
@@ -10,7 +11,7 @@
 namespace luxtrace {
 
 PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout)
-    : scene_(scene), embree_(embree), layout_(layout), eps_(scene.ray_epsilon_m()) {
+    : scene_(scene), embree_(embree), layout_(layout) {
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
         (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_)
             .push_back(i);
@@ -24,6 +25,12 @@ void PhotonTracer::check_luminance(const Vec3& p, const Vec3& d, int band) {
     }
 }
 
+SurfacePoint PhotonTracer::surface_point(unsigned tri, float u, float v) const {
+    const glm::uvec3 t = scene_.triangles[tri];
+    return point_on_triangle(embree_.local_vertex(t.x), embree_.local_vertex(t.y), embree_.local_vertex(t.z), u, v,
+                             embree_.self_hit_margin(tri));
+}
+
 void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
     sampler.start_photon(k);
     const LightSet& lights = scene_.lights;
@@ -33,9 +40,14 @@ void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
     const double d1 = sampler.next(), d2 = sampler.next();
     const Light& light = lights.lights()[li];
     const EmittedRay ray = light.emit(p1, p2, d1, d2);
-    Vec3 o = ray.origin, d = ray.direction;
+    // The ray's origin in Embree's local float coordinates; detectors and the photon's
+    // scattering work in scene coordinates.
+    Vec3f o = embree_.to_local(ray.origin);
+    Vec3 d = ray.direction;
     if (ray.emitter_triangle >= 0) {
-        o += eps_ * scene_.triangle_normal[static_cast<std::size_t>(ray.emitter_triangle)];
+        const auto tri = static_cast<unsigned>(ray.emitter_triangle);
+        o = spawn_origin(surface_point(tri, static_cast<float>(ray.emitter_u), static_cast<float>(ray.emitter_v)),
+                         Vec3f(scene_.triangle_normal[tri]), embree_.self_hit_margin(tri));
         check_luminance(ray.origin, d, band);
     }
     // SPEC §3: odd photons feed the odd map.
@@ -45,11 +57,14 @@ void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
     const int max_bounces = scene_.run.max_bounces;
     TallyLayout::Counter fate = TallyLayout::kTruncated;
     for (int bounce = 0; bounce < max_bounces; ++bounce) {
-        const Hit hit = embree_.intersect(o, d);
+        const Hit hit = embree_.intersect_local(o, Vec3f(d));
         const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
-        for (std::uint32_t di : illuminance_dets_) {
-            const int cell = scene_.detectors[di].crossing(o, d, t_max);
-            if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
+        if (!illuminance_dets_.empty()) {
+            const Vec3 o_scene = embree_.to_scene(o);
+            for (std::uint32_t di : illuminance_dets_) {
+                const int cell = scene_.detectors[di].crossing(o_scene, d, t_max);
+                if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
+            }
         }
         if (!hit.found) { fate = TallyLayout::kEscaped; break; }
         const std::size_t tri = hit.triangle;
@@ -58,15 +73,16 @@ void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
 
         sampler.set_dimension(6 + 3 * static_cast<std::uint32_t>(bounce));
         const double ue = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
-        const Vec3 p = o + t_max * d;
         const Vec3& ng = scene_.triangle_normal[tri];
         const Scattered s = scatter(scene_.materials[scene_.triangle_material[tri]], band, d, ng, ue, u1, u2);
         if (s.event == ScatterEvent::absorbed) { fate = TallyLayout::kAbsorbed; break; }
-        // Leave the surface on the side the photon goes to.
+        // Leave the surface on the side the photon goes to, just past the hit point's
+        // rounding error.
+        const SurfacePoint sp = surface_point(hit.triangle, hit.u, hit.v);
         const Vec3 n_in = glm::dot(d, ng) < 0.0 ? ng : -ng;
-        o = p + (s.side * eps_) * n_in;
+        o = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), embree_.self_hit_margin(hit.triangle));
         d = s.direction;
-        if (!luminance_dets_.empty()) check_luminance(p, d, band);
+        if (!luminance_dets_.empty()) check_luminance(embree_.to_scene(sp.p), d, band);
     }
     out.add(layout_.counter(fate), 1);
     if (!regs_.empty()) finish_photon(out);

@@ -16,7 +16,8 @@ enum class LightType { point, spot, area, directional };
 struct EmittedRay {
     Vec3 origin;
     Vec3 direction;
-    int emitter_triangle = -1;  // area lights: the scene triangle the photon leaves from
+    int emitter_triangle = -1;  // area lights: the scene triangle the photon leaves from,
+    double emitter_u = 0.0, emitter_v = 0.0;  // and the point's barycentrics on it (as Embree's)
 };
 
 // Triangles of an area emitter, with the cumulative area for uniform position sampling.

@@ -28,8 +28,9 @@ struct Scene {
     std::string name;
     std::vector<std::string> bands{"Y"};
     std::vector<Material> materials;
-    // Geometry: vertices and triangles as Embree takes them.
-    std::vector<glm::vec3> vertices;
+    // Geometry in scene coordinates (double: a model placed kilometres from the origin
+    // keeps its millimetres; Embree gets float coordinates relative to the scene's centre).
+    std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles;
     std::vector<std::uint32_t> triangle_material;
     std::vector<double> triangle_area_m2;

@@ -1,10 +1,17 @@
 #pragma once
 // The rank's one Embree BVH over all scene triangles (geometry 0, primID = triangle).
+//
+// Embree works in float. Its coordinates are relative to the centre of the scene's
+// bounding box ("local"), so a model placed kilometres from the scene origin (a site in
+// national grid coordinates) is intersected with the precision it would have at the
+// origin. The photon tracer works in local float coordinates throughout; callers in
+// scene coordinates use intersect(), which converts.
 #include "luxtrace/core/math.hpp"
 
 #include <embree3/rtcore.h>
 
 #include <limits>
+#include <vector>
 
 namespace luxtrace {
 
@@ -14,6 +21,7 @@ struct Hit {
     bool found = false;
     float t = std::numeric_limits<float>::infinity();
     unsigned triangle = 0;
+    float u = 0.0f, v = 0.0f;  // barycentrics: p = (1 - u - v) p0 + u p1 + v p2
 };
 
 class EmbreeScene {
@@ -23,18 +31,27 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    // Closest hit of the ray o + t d, t in [t_near, t_far). Thread-safe.
-    Hit intersect(const Vec3& o, const Vec3& d, float t_near = 0.0f,
-                  float t_far = std::numeric_limits<float>::infinity()) const {
+    // Scene coordinates of the local origin, and the conversions.
+    const Vec3& origin() const { return origin_; }
+    Vec3f to_local(const Vec3& p) const { return Vec3f(p - origin_); }
+    Vec3 to_scene(const Vec3f& p) const { return Vec3(p) + origin_; }
+    // Vertex v in local coordinates (Embree's own buffer).
+    const Vec3f& local_vertex(unsigned v) const { return vertices_[v]; }
+    // How far off its plane a ray leaving the triangle must start (ray_offset.hpp).
+    float self_hit_margin(unsigned triangle) const { return margin_[triangle]; }
+
+    // Closest hit of the local ray o + t d, t in [t_near, t_far). Thread-safe.
+    Hit intersect_local(const Vec3f& o, const Vec3f& d, float t_near = 0.0f,
+                        float t_far = std::numeric_limits<float>::infinity()) const {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         RTCRayHit rh;
-        rh.ray.org_x = static_cast<float>(o.x);
-        rh.ray.org_y = static_cast<float>(o.y);
-        rh.ray.org_z = static_cast<float>(o.z);
-        rh.ray.dir_x = static_cast<float>(d.x);
-        rh.ray.dir_y = static_cast<float>(d.y);
-        rh.ray.dir_z = static_cast<float>(d.z);
+        rh.ray.org_x = o.x;
+        rh.ray.org_y = o.y;
+        rh.ray.org_z = o.z;
+        rh.ray.dir_x = d.x;
+        rh.ray.dir_y = d.y;
+        rh.ray.dir_z = d.z;
         rh.ray.tnear = t_near;
         rh.ray.tfar = t_far;
         rh.ray.time = 0.0f;
@@ -49,14 +66,45 @@ public:
             h.found = true;
             h.t = rh.ray.tfar;
             h.triangle = rh.hit.primID;
+            h.u = rh.hit.u;
+            h.v = rh.hit.v;
         }
         return h;
+    }
+    // The same for a ray in scene coordinates (t is the same in both).
+    Hit intersect(const Vec3& o, const Vec3& d, float t_near = 0.0f,
+                  float t_far = std::numeric_limits<float>::infinity()) const {
+        return intersect_local(to_local(o), Vec3f(d), t_near, t_far);
+    }
+    // Any hit of the ray o + t d (scene coordinates), t in [0, t_far).
+    bool occluded(const Vec3& o, const Vec3& d, float t_far) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        const Vec3f lo = to_local(o);
+        RTCRay ray;
+        ray.org_x = lo.x;
+        ray.org_y = lo.y;
+        ray.org_z = lo.z;
+        ray.dir_x = static_cast<float>(d.x);
+        ray.dir_y = static_cast<float>(d.y);
+        ray.dir_z = static_cast<float>(d.z);
+        ray.tnear = 0.0f;
+        ray.tfar = t_far;
+        ray.time = 0.0f;
+        ray.mask = 0xFFFFFFFFu;
+        ray.id = 0;
+        ray.flags = 0;
+        rtcOccluded1(scene_, &ctx, &ray);
+        return ray.tfar < 0.0f;  // Embree marks a found occluder with tfar = -inf
     }
     RTCScene handle() const { return scene_; }
 
 private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    Vec3 origin_{0.0};
+    const Vec3f* vertices_ = nullptr;
+    std::vector<float> margin_;
 };
 
 }  // namespace luxtrace

@@ -7,6 +7,7 @@
 //   6+3b, 7+3b, 8+3b: event and direction at the b-th surface arrival.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/ray_offset.hpp"
 
 #include <atomic>
 #include <cstdint>
@@ -30,11 +31,11 @@ private:
     struct Registration { std::size_t index; std::uint32_t detector; };
     void finish_photon(TallyBuffer& out);
     void check_luminance(const Vec3& p, const Vec3& d, int band);
+    SurfacePoint surface_point(unsigned triangle, float u, float v) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     const TallyLayout& layout_;
-    double eps_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
     std::vector<Registration> regs_;  // this photon's detector registrations
 };

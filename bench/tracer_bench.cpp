@@ -1,18 +1,27 @@
-// tracer_bench: how close the photon tracer comes to Embree's raw incoherent ray rate.
+// tracer_bench: how close `luxtrace run`'s photon tracing comes to Embree alone on the
+// same rays, the same BVH and the same threads (docs/PERFORMANCE.md).
 //
-// In one run, on one scene and one EmbreeScene, for each repeat and thread count:
-//   raw    - rtcIntersect1 on pre-generated rays that start at random points of the
-//            scene's surfaces (area-weighted triangle, uniform point, offset by the
-//            scene's ray epsilon along the normal) with cosine-distributed directions;
-//   tracer - luxtrace::trace_photons over a photon budget; its rays are the
-//            intersections it performed, recovered from the tallies (see count_rays).
-// Raw and tracer measurements alternate, and so do the thread counts within each repeat,
-// so that load from other processes on the machine hits all alike; medians over the
-// repeats are reported.
-// Every tracer run must give bit-identical tallies (same seed, any thread count).
+// In one process, on one scene and one EmbreeScene:
+//   probe  - the photon tracer traces a few hundred thousand photons and records every
+//            ray it hands to Embree (local origin, direction, t_near);
+//   replay - rtcIntersect1 on exactly those rays, threads taking chunks of 1024;
+//   cosine - rtcIntersect1 on rays leaving random points of the surfaces with cosine
+//            directions (the older baseline, a second column);
+//   tracer - run_simulation, the code `luxtrace run` runs: the work plan, the pausable
+//            worker pool, snapshots and reductions at the scene's period, on the same
+//            EmbreeScene; its rays are the intersections it made (arrivals + escapes),
+//            its time that of its tracing threads (the result file is written after).
+// Measurements alternate (replay, cosine, tracer for each thread count, repeats outermost)
+// so that other load hits all alike; medians over repeats, and paired ratios (the median
+// over repeats of tracer/replay measured back to back). Every tracer run with the same
+// seed must give bit-identical tallies whatever the thread count.
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
 #include "luxtrace/material/material.hpp"
+#include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/simulation.hpp"
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
@@ -24,27 +33,28 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
 using namespace luxtrace;
+namespace fs = std::filesystem;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// CPU time of the whole process: CPU time / (wall time x threads) tells whether the
-// threads really had their cores (other load on the machine shows as < 100%).
+// CPU time of the whole process: CPU / (wall x threads) well below 1 means other
+// processes took the cores during a measurement.
 double process_cpu_seconds() {
     timespec ts{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
@@ -57,66 +67,78 @@ double median(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// A ray in the form Embree takes it (single precision).
-struct RawRay {
-    float org[3];
-    float dir[3];
-};
-
-// Rays leaving the scene's surfaces the way diffusely reflected photons do.
-std::vector<RawRay> make_surface_rays(const Scene& scene, const EmbreeScene& embree, std::uint64_t n, std::uint64_t seed) {
-    std::vector<double> cdf(scene.triangle_count());
-    double sum = 0.0;
-    for (std::size_t t = 0; t < cdf.size(); ++t) cdf[t] = (sum += scene.triangle_area_m2[t]);
-    const double eps = scene.ray_epsilon_m();
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> uni(0.0, 1.0);
-    std::vector<RawRay> rays(n);
-    for (RawRay& r : rays) {
-        const auto it = std::upper_bound(cdf.begin(), cdf.end(), uni(rng) * sum);
-        const std::size_t t = std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1);
-        const glm::uvec3 tri = scene.triangles[t];
-        const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
-        // Uniform point in the triangle: barycentrics (1 - sqrt(u1), u2 sqrt(u1)).
-        const double s = std::sqrt(uni(rng)), u2 = uni(rng);
-        const Vec3& normal = scene.triangle_normal[t];
-        const Vec3 p = (1.0 - s) * a + (u2 * s) * b + (s - u2 * s) * c + eps * normal;
-        const double d1 = uni(rng), d2 = uni(rng);
-        const Vec3 d = sample_cosine_hemisphere(normal, d1, d2);
-        const Vec3f pl = embree.to_local(p);  // Embree's frame
-        r = {{pl.x, pl.y, pl.z}, {float(d.x), float(d.y), float(d.z)}};
+// The tracer's own rays: photons [0, n) traced by one PhotonTracer with recording on.
+std::vector<RecordedRay> record_tracer_rays(const Scene& scene, const EmbreeScene& embree, std::uint64_t n,
+                                            std::uint64_t seed) {
+    const TallyLayout layout(scene);
+    TallyStore store(layout);
+    std::vector<RecordedRay> rays;
+    {
+        PhotonTracer tracer(scene, embree, store.layout());
+        TallyBuffer buffer(store);
+        const auto sampler = make_sampler(scene.run.sampler, seed);
+        tracer.record_rays(&rays);
+        for (std::uint64_t k = 0; k < n; ++k) tracer.trace(k, *sampler, buffer);
     }
     return rays;
 }
 
-struct RawResult {
+// Rays leaving the surfaces as diffusely reflected photons would: an area-weighted
+// triangle, a uniform point in it, a cosine direction about its normal (the baseline of
+// the first version of this benchmark).
+std::vector<RecordedRay> make_cosine_rays(const Scene& scene, const EmbreeScene& embree, std::uint64_t n,
+                                          std::uint64_t seed) {
+    std::vector<double> cdf(scene.triangle_count());
+    double sum = 0.0;
+    for (std::size_t t = 0; t < cdf.size(); ++t) cdf[t] = (sum += scene.triangle_area_m2[t]);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> uni(0.0, 1.0);
+    std::vector<RecordedRay> rays(n);
+    for (RecordedRay& r : rays) {
+        const auto it = std::upper_bound(cdf.begin(), cdf.end(), uni(rng) * sum);
+        const auto t = static_cast<unsigned>(std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1));
+        const double s = std::sqrt(uni(rng)), u2 = uni(rng);
+        const SurfacePoint sp = point_on_triangle(embree.local_vertex(scene.triangles[t].x),
+                                                  embree.local_vertex(scene.triangles[t].y),
+                                                  embree.local_vertex(scene.triangles[t].z), float(u2 * s),
+                                                  float(s - u2 * s), embree.self_hit_margin(t));
+        const Vec3& normal = scene.triangle_normal[t];
+        const double d1 = uni(rng), d2 = uni(rng);
+        r = {spawn_origin(sp, Vec3f(normal), embree.self_hit_margin(t)), Vec3f(sample_cosine_hemisphere(normal, d1, d2)),
+             0.0f};
+    }
+    return rays;
+}
+
+struct Timed {
     double seconds = 0.0, cpu_seconds = 0.0;
-    std::uint64_t hits = 0;
+    std::uint64_t rays = 0, hits = 0;
 };
 
-// rtcIntersect1 on every ray, `threads` threads taking chunks as the tracer does.
-RawResult run_raw(const EmbreeScene& embree, const std::vector<RawRay>& rays, int threads) {
+// rtcIntersect1 on every ray, `threads` threads taking chunks of 1024.
+Timed replay(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, int threads) {
     constexpr std::size_t kChunk = 1024;
     const RTCScene handle = embree.handle();
     std::atomic<std::size_t> next{0};
     std::atomic<std::uint64_t> hits{0};
     auto worker = [&] {
-        std::uint64_t my_hits = 0;
+        std::uint64_t mine = 0;
         RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);  // default flags: incoherent, as in EmbreeScene
+        rtcInitIntersectContext(&ctx);  // default flags, as EmbreeScene::intersect_local
         while (true) {
             const std::size_t first = next.fetch_add(kChunk);
             if (first >= rays.size()) break;
             const std::size_t last = std::min(rays.size(), first + kChunk);
             for (std::size_t i = first; i < last; ++i) {
+                const RecordedRay& r = rays[i];
                 RTCRayHit rh;
-                rh.ray.org_x = rays[i].org[0];
-                rh.ray.org_y = rays[i].org[1];
-                rh.ray.org_z = rays[i].org[2];
-                rh.ray.dir_x = rays[i].dir[0];
-                rh.ray.dir_y = rays[i].dir[1];
-                rh.ray.dir_z = rays[i].dir[2];
-                rh.ray.tnear = 0.0f;
+                rh.ray.org_x = r.origin.x;
+                rh.ray.org_y = r.origin.y;
+                rh.ray.org_z = r.origin.z;
+                rh.ray.dir_x = r.direction.x;
+                rh.ray.dir_y = r.direction.y;
+                rh.ray.dir_z = r.direction.z;
+                rh.ray.tnear = r.t_near;
                 rh.ray.tfar = std::numeric_limits<float>::infinity();
                 rh.ray.time = 0.0f;
                 rh.ray.mask = 0xFFFFFFFFu;
@@ -125,10 +147,10 @@ RawResult run_raw(const EmbreeScene& embree, const std::vector<RawRay>& rays, in
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                 rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                 rtcIntersect1(handle, &ctx, &rh);
-                my_hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                mine += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
             }
         }
-        hits += my_hits;
+        hits += mine;
     };
     const auto t0 = Clock::now();
     const double c0 = process_cpu_seconds();
@@ -137,52 +159,45 @@ RawResult run_raw(const EmbreeScene& embree, const std::vector<RawRay>& rays, in
         for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
         worker();
     }
-    return {seconds_since(t0), process_cpu_seconds() - c0, hits.load()};
+    return {seconds_since(t0), process_cpu_seconds() - c0, rays.size(), hits.load()};
 }
 
-struct TracerResult {
-    double seconds = 0.0, cpu_seconds = 0.0;
-    std::uint64_t rays = 0, arrivals = 0, escaped = 0, absorbed = 0, truncated = 0;
-    std::uint64_t checksum = 0;
-};
-
-// Intersections performed by the tracer, from its tallies. In PhotonTracer::trace each
-// loop pass does one intersect: a hit adds 1 to count_odd or count_even of the hit
-// triangle (then the photon scatters, is absorbed, or runs into max_bounces), a miss
-// ends the photon as escaped. So rays = all surface arrivals + escaped photons.
-void count_rays(const TallyStore& store, TracerResult& r) {
-    const TallyLayout& L = store.layout();
-    for (std::size_t t = 0; t < L.triangles(); ++t)
-        for (std::size_t b = 0; b < L.bands(); ++b)
-            r.arrivals += store[L.surface(t, b, TallyLayout::kCountOdd)] +
-                          store[L.surface(t, b, TallyLayout::kCountEven)];
-    r.escaped = store[L.counter(TallyLayout::kEscaped)];
-    r.absorbed = store[L.counter(TallyLayout::kAbsorbed)];
-    r.truncated = store[L.counter(TallyLayout::kTruncated)];
-    r.rays = r.arrivals + r.escaped;
-    // FNV-1a over all tallies: equal checksums across runs mean identical counts.
+// FNV-1a over every tally of a result: equal checksums mean identical counts.
+std::uint64_t tally_checksum(const fs::path& result) {
+    const ResultReader r(result);
+    std::vector<std::string> names;
+    for (const char* n : {"count_odd", "count_even", "direct_odd", "direct_even"}) names.push_back(std::string("/global/") + n);
+    for (const std::string& d : r.children("/detectors"))
+        for (const char* n : {"count", "sumsq"}) names.push_back("/detectors/" + d + "/" + n);
     std::uint64_t h = 0xcbf29ce484222325ull;
-    for (std::uint64_t v : store.data())
-        for (int i = 0; i < 8; ++i) h = (h ^ ((v >> (8 * i)) & 0xFFu)) * 0x100000001b3ull;
-    r.checksum = h;
+    for (const std::string& n : names)
+        for (std::uint64_t v : r.u64(n))
+            for (int i = 0; i < 8; ++i) h = (h ^ ((v >> (8 * i)) & 0xFFu)) * 0x100000001b3ull;
+    return h;
 }
 
-TracerResult run_tracer(const Scene& scene, const EmbreeScene& embree, std::uint64_t photons,
-                        int threads, std::uint64_t seed) {
-    TallyStore store{TallyLayout(scene)};  // allocated and zeroed outside the timing
-    TraceOptions opt;
-    opt.seed = seed;
+// The production path on `photons` photons and `threads` threads.
+Timed run_tracer(const Scene& base, const EmbreeScene& embree, const Communicator& comm, std::uint64_t photons,
+                 int threads, const fs::path& out, std::uint64_t* checksum) {
+    Scene scene = base;
+    scene.run.photons = photons;
+    scene.run.targets.clear();  // a fixed budget: every run does the same work
+    scene.run.time_limit_s = 0.0;
+    scene.run.checkpoint_every_s = 0.0;
+    scene.run.output = out.string();
+    RunOptions opt;
     opt.threads = threads;
-    const auto t0 = Clock::now();
+    opt.quiet = true;
+    opt.embree = &embree;
+    std::ostringstream sink;
     const double c0 = process_cpu_seconds();
-    trace_photons(scene, embree, store, 0, photons, opt);
-    TracerResult r;
-    r.seconds = seconds_since(t0);
-    r.cpu_seconds = process_cpu_seconds() - c0;
-    count_rays(store, r);
-    if (r.escaped + r.absorbed + r.truncated != photons)
-        throw std::runtime_error("photon fates do not add up to the photon budget");
-    return r;
+    const auto t0 = Clock::now();
+    const RunSummary s = run_simulation(scene, comm, opt, sink);
+    const double wall = seconds_since(t0), cpu = process_cpu_seconds() - c0;
+    if (s.failed || s.photons != photons) throw std::runtime_error("the tracer run failed: " + s.error);
+    if (checksum != nullptr) *checksum = tally_checksum(out);
+    // CPU share over the whole call (it includes writing the result, single-threaded).
+    return {s.tracing_s, cpu * s.tracing_s / wall, s.rays, 0};
 }
 
 std::vector<int> parse_threads(const std::string& text) {
@@ -205,145 +220,117 @@ std::uint64_t count_arg(const std::string& opt, const std::string& text) {
     return *v;
 }
 
-struct Row {
-    int threads = 0;
-    double raw = 0.0, tracer = 0.0;  // median rays/s
-    double paired = 0.0;             // median of tracer/raw within each repeat
-    double busy = 0.0;               // median CPU time / (wall time x threads), both kinds
-    double raw_lo = 0.0, raw_hi = 0.0, tracer_lo = 0.0, tracer_hi = 0.0;
-};
-
 struct Settings {
-    std::string scene_file, threads = "1,2", photons = "auto", rays = "auto";
+    std::string scene_file, threads = "1,2", photons = "auto", probe = "auto";
     int repeats = 5;
     double seconds = 1.5;  // auto sizing: length of one single-thread measurement
     std::uint64_t seed = 1;
     bool verbose = false;
 };
 
-// "auto": the count that makes one measurement at `rate` per second last `seconds`.
-std::uint64_t size_for(const std::string& text, const char* opt, double rate, double seconds,
-                       std::uint64_t lo) {
-    if (text != "auto") return count_arg(opt, text);
-    return std::max<std::uint64_t>(lo, static_cast<std::uint64_t>(rate * seconds));
-}
+struct Series {
+    std::vector<double> replay, cosine, tracer, paired, busy;
+};
 
-int run(const Settings& set) {
+int run(const Settings& set, const Communicator& comm) {
     const std::vector<int> thread_counts = parse_threads(set.threads);
     if (set.repeats < 1) throw InputError("--repeats: must be at least 1");
     if (!(set.seconds > 0.0)) throw InputError("--seconds: must be positive");
-    if (set.photons != "auto") count_arg("--photons", set.photons);  // fail before loading
-    if (set.rays != "auto") count_arg("--rays", set.rays);
-    const int repeats = set.repeats;
-    const std::uint64_t seed = set.seed;
-    const bool verbose = set.verbose;
+    if (set.photons != "auto") count_arg("--photons", set.photons);
+    if (set.probe != "auto") count_arg("--probe-photons", set.probe);
 
     auto t0 = Clock::now();
     const Scene scene = load_scene(set.scene_file);
     const double t_load = seconds_since(t0);
-    if (scene.triangle_count() == 0) throw InputError(set.scene_file + ": the scene has no triangles");
     t0 = Clock::now();
     const EmbreeScene embree(scene);
     const double t_build = seconds_since(t0);
+    const fs::path dir = fs::temp_directory_path() / ("luxtrace_bench_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
 
-    // Warm-up (pages in the BVH and the code paths) and, for "auto", rate estimates.
-    constexpr std::uint64_t kProbeRays = 200000, kProbePhotons = 50000;
-    const RawResult probe_raw = run_raw(embree, make_surface_rays(scene, embree, kProbeRays, seed + 1), 1);
-    const TracerResult probe_tr = run_tracer(scene, embree, kProbePhotons, 1, seed + 1);
-    const std::uint64_t n_rays =
-        size_for(set.rays, "--rays", double(kProbeRays) / probe_raw.seconds, set.seconds, 100000);
-    const std::uint64_t photons =
-        size_for(set.photons, "--photons", double(kProbePhotons) / probe_tr.seconds, set.seconds, 10000);
-
+    // Warm-up and sizing: a short probe gives the tracer's rate and rays per photon.
+    constexpr std::uint64_t kWarm = 20000;
     t0 = Clock::now();
-    const std::vector<RawRay> rays = make_surface_rays(scene, embree, n_rays, seed);
+    const std::vector<RecordedRay> warm = record_tracer_rays(scene, embree, kWarm, set.seed + 7);
+    const double warm_s = seconds_since(t0);
+    const double rays_per_photon = double(warm.size()) / double(kWarm);
+    const double photon_rate = double(kWarm) / warm_s;
+    const std::uint64_t photons = set.photons == "auto"
+                                      ? std::max<std::uint64_t>(20000, std::uint64_t(photon_rate * set.seconds))
+                                      : count_arg("--photons", set.photons);
+    // The replayed rays: those of the first photons the tracer runs trace (about the same
+    // number of rays as a tracer run, so one replay takes about as long as the raw rate
+    // allows for them).
+    const std::uint64_t probe = set.probe == "auto" ? photons : count_arg("--probe-photons", set.probe);
+    t0 = Clock::now();
+    const std::vector<RecordedRay> rays = record_tracer_rays(scene, embree, probe, scene.run.seed);
+    const std::vector<RecordedRay> cosine = make_cosine_rays(scene, embree, rays.size(), set.seed);
     const double t_gen = seconds_since(t0);
-    std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n",
-                set.scene_file.c_str(), scene.triangle_count(), scene.lights.lights().size(),
-                scene.detectors.size(), scene.run.max_bounces);
-    std::printf("load %.2f s, BVH build %.2f s, %llu raw rays pre-generated in %.2f s\n", t_load, t_build,
-                static_cast<unsigned long long>(n_rays), t_gen);
-    std::printf("photons %llu per tracer run, seed %llu, %d repeats, medians [min..max]\n\n",
-                static_cast<unsigned long long>(photons), static_cast<unsigned long long>(seed), repeats);
+    std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n", set.scene_file.c_str(),
+                scene.triangle_count(), scene.lights.lights().size(), scene.detectors.size(), scene.run.max_bounces);
+    std::printf("load %.2f s, BVH build %.2f s; %llu photons per tracer run (seed %llu); replay: the %zu rays of "
+                "its first %llu photons (%.3f rays/photon), recorded in %.2f s with the cosine rays\n",
+                t_load, t_build, static_cast<unsigned long long>(photons),
+                static_cast<unsigned long long>(scene.run.seed), rays.size(), static_cast<unsigned long long>(probe),
+                rays_per_photon, t_gen);
+    std::printf("%d repeats, medians [min..max]\n\n", set.repeats);
 
-    // Per thread count, one entry per repeat. Repeats are the outer loop, so every thread
-    // count is measured in each stretch of time and the speed-ups can be paired too.
-    struct Series { std::vector<double> raw, tracer, paired, busy; };
     std::vector<Series> series(thread_counts.size());
-    TracerResult reference;
+    std::uint64_t reference = 0, tracer_rays = 0;
     bool have_reference = false;
-    std::uint64_t raw_hits = 0;
-    for (int rep = 0; rep < repeats; ++rep)
+    for (int rep = 0; rep < set.repeats; ++rep)
         for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
             const int threads = thread_counts[ti];
             Series& se = series[ti];
-            const RawResult raw = run_raw(embree, rays, threads);
-            const TracerResult tr = run_tracer(scene, embree, photons, threads, seed);
-            raw_hits = raw.hits;
-            se.raw.push_back(static_cast<double>(n_rays) / raw.seconds);
-            se.tracer.push_back(static_cast<double>(tr.rays) / tr.seconds);
-            se.paired.push_back(se.tracer.back() / se.raw.back());
-            se.busy.push_back(raw.cpu_seconds / (raw.seconds * threads));
-            se.busy.push_back(tr.cpu_seconds / (tr.seconds * threads));
-            if (verbose)
-                std::printf("  repeat %d threads %d: raw %.3f Mrays/s (%.2f s, busy %.0f%%), "
-                            "tracer %.3f Mrays/s (%.2f s, busy %.0f%%)\n",
-                            rep, threads, se.raw.back() * 1e-6, raw.seconds, 100.0 * se.busy[se.busy.size() - 2],
-                            se.tracer.back() * 1e-6, tr.seconds, 100.0 * se.busy.back());
+            const Timed r = replay(embree, rays, threads);
+            const Timed c = replay(embree, cosine, threads);
+            std::uint64_t sum = 0;
+            const Timed t = run_tracer(scene, embree, comm, photons, threads, dir / "bench.h5", &sum);
+            se.replay.push_back(double(r.rays) / r.seconds);
+            se.cosine.push_back(double(c.rays) / c.seconds);
+            se.tracer.push_back(double(t.rays) / t.seconds);
+            se.paired.push_back(se.tracer.back() / se.replay.back());
+            se.busy.push_back(r.cpu_seconds / (r.seconds * threads));
+            se.busy.push_back(t.cpu_seconds / (t.seconds * threads));
+            if (set.verbose)
+                std::printf("  repeat %d threads %d: replay %.3f, cosine %.3f, tracer %.3f Mrays/s (%.2f s)\n", rep,
+                            threads, se.replay.back() * 1e-6, se.cosine.back() * 1e-6, se.tracer.back() * 1e-6,
+                            t.seconds);
             if (!have_reference) {
-                reference = tr;
+                reference = sum;
+                tracer_rays = t.rays;
                 have_reference = true;
-            } else if (tr.checksum != reference.checksum || tr.rays != reference.rays) {
+            } else if (sum != reference || t.rays != tracer_rays) {
                 throw std::runtime_error("tracer tallies differ between runs with the same seed");
             }
         }
-    std::vector<Row> rows;
+    fs::remove_all(dir);
+
+    std::printf("tracer: %llu rays per run (%.3f per photon); tally checksum %016llx, identical in all %zu runs\n\n",
+                static_cast<unsigned long long>(tracer_rays), double(tracer_rays) / double(photons),
+                static_cast<unsigned long long>(reference), thread_counts.size() * set.repeats);
+    // tracer/replay: ratio of the medians; paired: median of the ratios measured back to
+    // back. busy: CPU / (wall x threads) of replay and tracer runs.
+    std::printf("threads | replay Mrays/s          | cosine Mrays/s | tracer Mrays/s          | tracer/replay | paired | busy\n");
+    std::printf("--------+-------------------------+----------------+-------------------------+---------------+--------+-----\n");
+    auto lo = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
+    auto hi = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
     for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
         const Series& se = series[ti];
-        Row row;
-        row.threads = thread_counts[ti];
-        row.raw = median(se.raw);
-        row.tracer = median(se.tracer);
-        row.paired = median(se.paired);
-        row.busy = median(se.busy);
-        row.raw_lo = *std::min_element(se.raw.begin(), se.raw.end());
-        row.raw_hi = *std::max_element(se.raw.begin(), se.raw.end());
-        row.tracer_lo = *std::min_element(se.tracer.begin(), se.tracer.end());
-        row.tracer_hi = *std::max_element(se.tracer.begin(), se.tracer.end());
-        rows.push_back(row);
+        std::printf("%7d | %6.3f [%6.3f..%6.3f] | %14.3f | %6.3f [%6.3f..%6.3f] | %12.1f%% | %5.1f%% | %3.0f%%\n",
+                    thread_counts[ti], median(se.replay) * 1e-6, lo(se.replay) * 1e-6, hi(se.replay) * 1e-6,
+                    median(se.cosine) * 1e-6, median(se.tracer) * 1e-6, lo(se.tracer) * 1e-6, hi(se.tracer) * 1e-6,
+                    100.0 * median(se.tracer) / median(se.replay), 100.0 * median(se.paired), 100.0 * median(se.busy));
     }
-
-    const double ph = static_cast<double>(photons);
-    std::printf("raw rays: %.1f%% hit a surface\n", 100.0 * double(raw_hits) / double(n_rays));
-    std::printf("tracer rays: %llu = %llu surface arrivals + %llu escaped; %.3f rays/photon; "
-                "fates: escaped %.1f%%, absorbed %.1f%%, truncated %.1f%%\n",
-                static_cast<unsigned long long>(reference.rays), static_cast<unsigned long long>(reference.arrivals),
-                static_cast<unsigned long long>(reference.escaped), double(reference.rays) / ph,
-                100.0 * double(reference.escaped) / ph, 100.0 * double(reference.absorbed) / ph,
-                100.0 * double(reference.truncated) / ph);
-    std::printf("tally checksum %016llx (identical in all %zu tracer runs)\n\n",
-                static_cast<unsigned long long>(reference.checksum), thread_counts.size() * repeats);
-    // tracer/raw: ratio of the medians; paired: median over repeats of the ratio of the
-    // two adjacent measurements, less sensitive to other load on the machine. busy: CPU
-    // time / (wall x threads); well below 100% means other processes took the cores.
-    std::printf("threads | raw Mrays/s            | tracer Mrays/s         | tracer/raw | paired | busy\n");
-    std::printf("--------+------------------------+------------------------+------------+--------+-----\n");
-    for (const Row& r : rows)
-        std::printf("%7d | %6.3f [%6.3f..%6.3f] | %6.3f [%6.3f..%6.3f] | %9.1f%% | %5.1f%% | %3.0f%%\n",
-                    r.threads, r.raw * 1e-6, r.raw_lo * 1e-6, r.raw_hi * 1e-6, r.tracer * 1e-6,
-                    r.tracer_lo * 1e-6, r.tracer_hi * 1e-6, 100.0 * r.tracer / r.raw, 100.0 * r.paired,
-                    100.0 * r.busy);
-    // Speed-ups relative to the first thread count given (1 by default): ratio of the
-    // medians, and paired (median over repeats of the ratio within the same repeat).
-    for (std::size_t i = 1; i < rows.size(); ++i) {
-        std::vector<double> tr_pair, raw_pair;
-        for (int rep = 0; rep < repeats; ++rep) {
-            tr_pair.push_back(series[i].tracer[rep] / series[0].tracer[rep]);
-            raw_pair.push_back(series[i].raw[rep] / series[0].raw[rep]);
+    for (std::size_t i = 1; i < series.size(); ++i) {
+        std::vector<double> tr, rp;
+        for (int rep = 0; rep < set.repeats; ++rep) {
+            tr.push_back(series[i].tracer[rep] / series[0].tracer[rep]);
+            rp.push_back(series[i].replay[rep] / series[0].replay[rep]);
         }
-        std::printf("speed-up %d/%d threads: tracer %.2fx (paired %.2fx), raw %.2fx (paired %.2fx)\n",
-                    rows[i].threads, rows[0].threads, rows[i].tracer / rows[0].tracer, median(tr_pair),
-                    rows[i].raw / rows[0].raw, median(raw_pair));
+        std::printf("speed-up %d/%d threads: tracer %.2fx (paired %.2fx), replay %.2fx (paired %.2fx)\n",
+                    thread_counts[i], thread_counts[0], median(series[i].tracer) / median(series[0].tracer), median(tr),
+                    median(series[i].replay) / median(series[0].replay), median(rp));
     }
     return 0;
 }
@@ -351,20 +338,21 @@ int run(const Settings& set) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"tracer_bench: photon tracer ray rate vs raw Embree incoherent ray rate"};
+    Communicator comm(&argc, &argv);  // run_simulation reduces through it (one rank)
+    CLI::App app{"tracer_bench: luxtrace run's ray rate against Embree alone on the same rays"};
     Settings set;
     app.add_option("scene", set.scene_file, "scene file (TOML)")->required();
     app.add_option("--threads-list", set.threads, "comma-separated thread counts")->capture_default_str();
     app.add_option("--photons", set.photons, "photons per tracer run, or auto")->capture_default_str();
-    app.add_option("--rays", set.rays, "pre-generated raw rays per raw run, or auto")->capture_default_str();
-    app.add_option("--repeats", set.repeats, "measurements per thread count")->capture_default_str();
-    app.add_option("--seconds", set.seconds, "auto: single-thread length of one measurement")
+    app.add_option("--probe-photons", set.probe, "photons whose rays are replayed, or auto (= --photons)")
         ->capture_default_str();
-    app.add_option("--seed", set.seed, "seed of the tracer and of the raw rays")->capture_default_str();
+    app.add_option("--repeats", set.repeats, "measurements per thread count")->capture_default_str();
+    app.add_option("--seconds", set.seconds, "auto: single-thread length of one measurement")->capture_default_str();
+    app.add_option("--seed", set.seed, "seed of the cosine rays")->capture_default_str();
     app.add_flag("--verbose", set.verbose, "print every measurement");
     CLI11_PARSE(app, argc, argv);
     try {
-        return run(set);
+        return run(set, comm);
     } catch (const InputError& e) {
         std::cerr << "tracer_bench: " << e.what() << "\n";
         return 2;

@@ -102,7 +102,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     const WorkPlan plan(done_before, run.photons, block, R);
     const std::uint64_t photons_before = plan.previously_done_count();
     RankWork work(plan, comm.rank());
-    EmbreeScene embree(scene);
+    std::optional<EmbreeScene> own_embree;
+    const EmbreeScene& embree = opt.embree != nullptr ? *opt.embree : own_embree.emplace(scene);
 
     TraceOptions topt;
     topt.seed = run.seed;
@@ -208,6 +209,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         run.report_every_photons > 0 ? std::max<std::uint64_t>(1, (run.report_every_photons + R - 1) / R) : 0;
     std::uint64_t fence = fence_step;
     if (fence_step > 0) work.set_fence(fence);
+    const double trace0 = comm.wtime();
     WorkerPool pool(scene, embree, store, work, topt);
     // The message: this rank's tallies, its progress and its flags. Call only while no
     // thread traces (paused or stopped), so the copy and the progress agree exactly.
@@ -290,6 +292,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     if (tty) out << '\n';
     // Final exact reduction: the threads finish their chunks and flush.
     pool.stop();
+    summary.tracing_s = comm.allreduce_max(comm.wtime() - trace0);
     if (decision[2] == 1.0 || decision[2] == 2.0) {
         summary.exit_code = static_cast<int>(decision[2]);
         summary.failed = true;
@@ -307,6 +310,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     std::vector<double> reason_code{0.0};
     std::vector<double> final_code{static_cast<double>(summary.exit_code)};
     if (comm.is_root()) {
+        // Each intersection ends in an arrival on a triangle or in an escape.
+        summary.rays = reduced[layout.counter(TallyLayout::kEscaped)];
+        for (std::size_t t = 0; t < layout.triangles(); ++t)
+            for (std::size_t b = 0; b < layout.bands(); ++b)
+                summary.rays += reduced[layout.surface(t, b, TallyLayout::kCountOdd)] +
+                                reduced[layout.surface(t, b, TallyLayout::kCountEven)];
         const std::string result_err = attempt_write(run.output, reduced, elapsed, summary.stop_reason, false);
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         std::string ck_err;

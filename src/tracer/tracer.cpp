@@ -6,7 +6,6 @@
 #include "luxtrace/tracer/ray_offset.hpp"
 
 #include <algorithm>
-#include <thread>
 
 namespace luxtrace {
 
@@ -57,6 +56,7 @@ void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
     const int max_bounces = scene_.run.max_bounces;
     TallyLayout::Counter fate = TallyLayout::kTruncated;
     for (int bounce = 0; bounce < max_bounces; ++bounce) {
+        if (record_ != nullptr) record_->push_back({o, Vec3f(d), 0.0f});
         const Hit hit = embree_.intersect_local(o, Vec3f(d));
         const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
         if (!illuminance_dets_.empty()) {
@@ -117,29 +117,6 @@ void PhotonTracer::finish_photon(TallyBuffer& out) {
     }
     close_detector();
     regs_.clear();
-}
-
-void trace_photons(const Scene& scene, const EmbreeScene& embree, TallyStore& store,
-                   std::uint64_t begin, std::uint64_t end, const TraceOptions& opt,
-                   std::atomic<std::uint64_t>* done) {
-    std::atomic<std::uint64_t> next{begin};
-    auto worker = [&] {
-        PhotonTracer tracer(scene, embree, store.layout());
-        const auto sampler = make_sampler(opt.sampler, opt.seed);
-        TallyBuffer buffer(store);
-        while (true) {
-            const std::uint64_t first = next.fetch_add(opt.chunk);
-            if (first >= end) break;
-            const std::uint64_t last = std::min(end, first + opt.chunk);
-            for (std::uint64_t k = first; k < last; ++k) tracer.trace(k, *sampler, buffer);
-            if (done != nullptr) done->fetch_add(last - first, std::memory_order_relaxed);
-        }
-        buffer.flush();
-    };
-    const int n = std::max(1, opt.threads);
-    std::vector<std::jthread> pool;
-    for (int i = 1; i < n; ++i) pool.emplace_back(worker);
-    worker();
 }
 
 }  // namespace luxtrace

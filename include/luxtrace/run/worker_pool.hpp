@@ -10,10 +10,18 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 namespace luxtrace {
+
+struct TraceOptions {
+    std::uint64_t seed = 1;
+    std::string sampler = "random";
+    int threads = 1;
+    std::uint64_t chunk = 256;  // photons a thread takes at a time (pause latency)
+};
 
 class WorkerPool {
 public:

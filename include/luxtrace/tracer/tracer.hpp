@@ -9,10 +9,7 @@
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
-#include <atomic>
 #include <cstdint>
-#include <functional>
-#include <string>
 #include <vector>
 
 namespace luxtrace {
@@ -21,11 +18,20 @@ struct Scene;
 class EmbreeScene;
 class Sampler;
 
+// A ray as the tracer hands it to Embree (local float coordinates), for benchmarks that
+// replay exactly the tracer's rays through Embree alone.
+struct RecordedRay {
+    Vec3f origin, direction;
+    float t_near = 0.0f;
+};
+
 class PhotonTracer {
 public:
     PhotonTracer(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout);
     // Trace photon k and add its contributions to `out`.
     void trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out);
+    // Append every ray traced from now on to `sink` (null: stop recording).
+    void record_rays(std::vector<RecordedRay>* sink) { record_ = sink; }
 
 private:
     struct Registration { std::size_t index; std::uint32_t detector; };
@@ -38,19 +44,7 @@ private:
     const TallyLayout& layout_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
     std::vector<Registration> regs_;  // this photon's detector registrations
+    std::vector<RecordedRay>* record_ = nullptr;
 };
-
-struct TraceOptions {
-    std::uint64_t seed = 1;
-    std::string sampler = "random";
-    int threads = 1;
-    std::uint64_t chunk = 1024;  // photons a thread takes at a time
-};
-
-// Trace photons [begin, end) with `threads` threads into `store`. `done` (optional) is
-// advanced as chunks finish, for progress reports from another thread.
-void trace_photons(const Scene& scene, const EmbreeScene& embree, TallyStore& store,
-                   std::uint64_t begin, std::uint64_t end, const TraceOptions& opt,
-                   std::atomic<std::uint64_t>* done = nullptr);
 
 }  // namespace luxtrace

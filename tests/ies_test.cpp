@@ -7,12 +7,14 @@
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -331,6 +333,124 @@ TEST(IesBadInputMissing, NamesTheFile) {
         FAIL() << "no InputError";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("does_not_exist.ies"), std::string::npos);
+    }
+}
+
+
+// ---------------------------------------------------------------------------------
+// A real maker's file (tests/data/real/README.md): American Electric Lighting ASA 15M R2,
+// a 150 W metal-halide roadway luminaire, type II full cutoff, LM-63-2002, relative
+// photometry (one 13000 lm lamp), 37 vertical x 73 horizontal angles (bilateral 0-180).
+
+std::filesystem::path real(const std::string& name) {
+    return std::filesystem::path(LUXTRACE_TEST_DATA_DIR) / "real" / name;
+}
+
+TEST(IesRealFile, AmericanElectricAsa15mR2Parses) {
+    const IesPhotometry p = load_ies(real("ASA_15M_R2.ies"));
+    EXPECT_EQ(p.num_lamps, 1);
+    EXPECT_DOUBLE_EQ(p.lumens_per_lamp, 13000.0);
+    EXPECT_DOUBLE_EQ(p.input_watts, 185.0);
+    ASSERT_EQ(p.vertical_deg.size(), 37u);
+    ASSERT_EQ(p.horizontal_deg.size(), 73u);
+    EXPECT_DOUBLE_EQ(p.vertical_deg.back(), 90.0);
+    EXPECT_DOUBLE_EQ(p.horizontal_deg[1], 2.5);
+    EXPECT_EQ(p.symmetry(), IesSymmetry::Bilateral);
+    const auto keyword = [&](const std::string& k) {
+        for (const auto& [key, value] : p.keywords)
+            if (key == k) return value;
+        return std::string("(missing)");
+    };
+    EXPECT_EQ(keyword("MANUFAC"), "American Electric Lighting");
+    EXPECT_EQ(keyword("LUMCAT"), "ASA 15M R2");
+    EXPECT_EQ(keyword("LAMP"), "ONE 150-WATT CLEAR ED23.5 CERAMIC METAL HALIDE PULSE START, HORIZONTAL\nPOS.");
+    // Values straight from the file (multiplier and ballast factor are 1).
+    EXPECT_DOUBLE_EQ(I(p, 0, 0), 1666.0);
+    EXPECT_DOUBLE_EQ(I(p, 2.5, 0), 1817.0);
+    EXPECT_DOUBLE_EQ(I(p, 90, 0), 0.0);
+    EXPECT_DOUBLE_EQ(I(p, 2.5, 2.5), 1861.0);  // second plane, second angle
+    // Full cutoff: nothing above the horizontal.
+    EXPECT_EQ(I(p, 100, 45), 0.0);
+    EXPECT_EQ(I(p, 180, 0), 0.0);
+    // Bilateral: the 180-360 half mirrors the file's 0-180 planes.
+    for (double g : {10.0, 37.5, 61.0, 80.0})
+        for (double c : {5.0, 47.5, 91.0, 170.0}) EXPECT_NEAR(I(p, g, 360.0 - c), I(p, g, c), 1e-9) << g << " " << c;
+}
+
+TEST(IesRealFile, AmericanElectricAsa15mR2Flux) {
+    // The file is relative photometry: its candelas integrate to the luminaire's output,
+    // the lamp's 13000 lm times the luminaire's efficiency. An independent midpoint
+    // quadrature of the same bilinear interpolant (20000 x 4000 cells, numpy) gives
+    // 9560.83 lm, an efficiency of 73.5 % (tests/data/real/README.md).
+    const IesPhotometry p = load_ies(real("ASA_15M_R2.ies"));
+    EXPECT_NEAR(p.flux_lm(), 9560.83, 0.01 * 9560.83 * 1e-2);  // 0.01 %
+    const double efficiency = p.flux_lm() / (p.lumens_per_lamp * p.num_lamps);
+    EXPECT_GT(efficiency, 0.6);
+    EXPECT_LT(efficiency, 1.0);
+    // The sampling table integrates the same distribution on its own grid.
+    const IesDistribution dist(p);
+    EXPECT_NEAR(dist.flux_lm() / p.flux_lm(), 1.0, 2e-3);
+}
+
+TEST(IesRealFile, AmericanElectricAsa15mR2Sampling) { expect_passes(real("ASA_15M_R2.ies"), 0xA5Au); }
+
+// ---------------------------------------------------------------------------------
+// Hardening made with the fuzz targets (tests/fuzz/README.md): numbers that are finite
+// alone but not once scaled, photometry without a finite positive flux and files that
+// are not regular files are refused with the file named.
+
+class IesHardening : public testing::Test {
+protected:
+    std::filesystem::path write(const std::string& text) {
+        path_ = std::filesystem::temp_directory_path() /
+                ("luxtrace_ies_test_" + std::to_string(::getpid()) + "_" +
+                 testing::UnitTest::GetInstance()->current_test_info()->name() + ".ies");
+        std::ofstream(path_) << text;
+        return path_;
+    }
+    void TearDown() override {
+        std::error_code ec;
+        std::filesystem::remove(path_, ec);
+    }
+    std::string error_of(const std::string& text) {
+        try {
+            load_ies(write(text));
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "(no InputError)";
+    }
+    std::filesystem::path path_;
+};
+
+TEST_F(IesHardening, ScaledCandelaOverflowIsRefused) {
+    const std::string msg = error_of("TILT=NONE\n1 -1 1e300 2 1 1 2 0 0 0\n1e10 1 0\n0 90\n0\n1e10 1\n");
+    EXPECT_NE(msg.find(path_.string() + ":6: "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("too large"), std::string::npos) << msg;
+}
+
+TEST_F(IesHardening, FluxOverflowIsRefused) {
+    // Every value is finite after scaling, but their integral is not.
+    const std::string msg = error_of("TILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 180\n0\n1.7e308 1.7e308\n");
+    EXPECT_NE(msg.find(path_.string() + ":"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("flux"), std::string::npos) << msg;
+}
+
+// Found by fuzz_ies (tests/fuzz/crashers/ies/tilt_name_too_long): a TILT= file name
+// longer than the file system allows made std::filesystem::exists throw
+// filesystem_error (exit 1) instead of the InputError for a missing tilt file.
+TEST_F(IesHardening, TiltFileNameTooLongForTheFileSystem) {
+    const std::string tilt(5000, 'x');
+    const std::string msg = error_of("IESNA:LM-63-2002\nTILT=" + tilt + "\n1 -1 1 2 1 1 2 0 0 0\n");
+    EXPECT_NE(msg.find(path_.string() + ":2: TILT file '" + tilt + "' not found"), std::string::npos) << msg;
+}
+
+TEST_F(IesHardening, NotARegularFileIsRefused) {
+    try {
+        load_ies("/dev/zero");  // would otherwise be read for ever
+        FAIL() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/dev/zero: not a regular file"), std::string::npos) << e.what();
     }
 }
 

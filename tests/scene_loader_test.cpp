@@ -606,5 +606,96 @@ TEST_F(Loader, SceneWithNoSurfaces) {
     expect_bad(kMat + kLamp, "", {"no surfaces"});
 }
 
+
+// ---------------------------------------------------------------------------------
+// Real meshes (tests/data/real/README.md): two Blender exports from LuxCoreRender's
+// test scenes, ASCII PLY with normals, texture coordinates and (the cube) colours.
+
+TEST_F(Loader, RealPlyCubeFromBlender) {
+    const std::string ply = data("real/luxcore_simple-mat-cube1.ply").string();
+    const Scene s = load(kMat + kLamp + "[[mesh]]\nfile = \"" + ply + "\"\nmaterial = \"m\"\n");
+    ASSERT_EQ(s.triangle_count(), 12u);
+    EXPECT_NEAR(s.total_area_m2(), 24.0, 1e-4);  // a 2 m cube, turned about z
+    expect_vec(s.bounds_min, Vec3(-2.809938, -1.38206, 0.478389), kPosTol);
+    expect_vec(s.bounds_max, Vec3(-0.318721, 1.109157, 2.478389), kPosTol);
+    // Blender wrote the faces counter-clockwise seen from outside.
+    std::vector<std::size_t> all(s.triangle_count());
+    for (std::size_t t = 0; t < all.size(); ++t) all[t] = t;
+    expect_facing(s, all, 0.5 * (s.bounds_min + s.bounds_max), false);
+}
+
+TEST_F(Loader, RealPlyCornellBlock) {
+    const std::string ply = data("real/luxcore_cornell_box.ply").string();
+    const Scene s = load(kMat + kLamp + "[[mesh]]\nfile = \"" + ply + "\"\nmaterial = \"m\"\n");
+    ASSERT_EQ(s.triangle_count(), 12u);
+    EXPECT_NEAR(s.total_area_m2(), 36.355554, 1e-4);  // the file's 12 triangles summed (numpy)
+    expect_vec(s.bounds_min, Vec3(-5.232944, 1.801294, 0.00585), kPosTol);
+    expect_vec(s.bounds_max, Vec3(-0.178533, 3.801294, 1.149667), kPosTol);
+}
+
+// ---------------------------------------------------------------------------------
+// Hardening made with the fuzz targets (tests/fuzz/README.md): absurd sizes are refused
+// before anything is allocated, and values that are finite alone but overflow or vanish
+// together are refused with the entry named.
+
+TEST_F(Loader, AbsurdSubdivisionsAreRefused) {
+    const std::string shape = kMat + kLamp + "[[shape]]\nmaterial = \"m\"\nradius = 1\nsize = [1, 1]\n";
+    expect_bad(shape + "type = \"disk\"\nsubdivisions = 4096\n", "subdivisions",
+               {"key 'subdivisions'", "4096 gives 268402688 triangles", "at most 4194304"});
+    expect_bad(shape + "type = \"rectangle\"\nsubdivisions = 2000\n", "subdivisions",
+               {"key 'subdivisions'", "8000000 triangles", "split it"});
+    expect_bad(shape + "type = \"sphere\"\nsubdivisions = 1100\n", "subdivisions", {"4835600 triangles"});
+    expect_bad(kMat + kLamp + "[[shape]]\ntype = \"box\"\nsize = [1, 1, 1]\nmaterial = \"m\"\nsubdivisions = 600\n",
+               "subdivisions", {"4320000 triangles"});
+    // Past the int range: refused, not wrapped to a small number.
+    expect_bad(shape + "type = \"rectangle\"\nsubdivisions = 4294967297\n", "subdivisions", {"must lie in [1, 4096]"});
+    // The largest shapes still load (a 1448 x 1448 rectangle is 4,193,408 triangles).
+    EXPECT_EQ(load(kMat + kLamp + "[[shape]]\ntype = \"rectangle\"\nsize = [1, 1]\nmaterial = \"m\"\n"
+                   "subdivisions = 1448\n").triangle_count(), 4193408u);
+}
+
+TEST_F(Loader, MaxBouncesPastTheIntRangeIsRefused) {
+    expect_bad(kMat + kFloor + kLamp + "[run]\nmax_bounces = 4294967297\n", "max_bounces",
+               {"key 'max_bounces'", "must lie in [1, 1000000]"});
+}
+
+TEST_F(Loader, VerticesFarAwayAreRefused) {
+    expect_bad(kMat + kLamp + "[[shape]]\ntype = \"rectangle\"\ncenter = [1e300, 0, 0]\nsize = [1, 1]\nmaterial = \"m\"\n",
+               "", {"[[shape]] #1", "lies outside the +-1000000000 m"});
+    write("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"far.obj\"\nmaterial = \"m\"\ntransform = { scale = 1e300 }\n", "",
+               {"[[mesh]] #1", "lies outside"});
+}
+
+TEST_F(Loader, AreaLightOnAShapeWithoutArea) {
+    // Every triangle of the panel is degenerate (dropped), so it has nothing to emit from.
+    expect_bad(kMat + kFloor + "[[shape]]\nname = \"panel\"\ntype = \"rectangle\"\nsize = [1e-200, 1e-200]\n"
+               "material = \"m\"\n[[light]]\ntype = \"area\"\nshape = \"panel\"\nflux_lm = 10\n",
+               "shape = \"panel\"", {"key 'shape'", "no area to emit from"});
+}
+
+TEST_F(Loader, FluxesThatOverflowTogetherAreRefused) {
+    const std::string big = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1e308\n";
+    expect_bad(kMat + kFloor + big + big, "", {"light 2 (point)", "total flux"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nilluminance_lx = 1e308\n", "",
+               {"light 1 (directional)", "total flux"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1\ncolour = [1e308, 1e308]\n"
+               "[scene]\nbands = [\"a\", \"b\"]\n", "colour", {"key 'colour'", "too large"});
+}
+
+TEST_F(Loader, DetectorTooSmallToMeasureIsRefused) {
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1e-200, 1e-200]\n", "",
+               {"[[detector]] #1 'd'", "too small"});
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
+               "size = [1, 1]\nhalf_angle_deg = 1e-300\n", "", {"[[detector]] #1 'd'", "too narrow"});
+}
+
+TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
+    // Light only within 0.1 degree of the nadir: no sampling-table direction sees it.
+    write("narrow.ies", "TILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 0.1\n0\n100 100\n");
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"narrow.ies\"\n", "ies =",
+               {"key 'ies'", "narrow.ies", "too narrow a beam"});
+}
+
 }  // namespace
 }  // namespace luxtrace

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
@@ -18,27 +19,67 @@ struct Closer {
     ~Closer() { if (id >= 0) fn(id); }
 };
 
+// Every error of a reader names the file: a missing or damaged object is bad input.
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
+    throw InputError(path.string() + ": " + what);
+}
+
+// Datasets of a luxtrace result are stored uncompressed, so a dataset cannot hold more
+// elements than its storage has bytes; a larger claim is damage (and must not allocate).
+constexpr std::size_t kMaxUnbackedBytes = std::size_t{64} << 20;
+
 template <class T>
-std::vector<T> read_dataset(hid_t file, const std::string& name, hid_t mem_type, std::vector<std::size_t>* shape) {
-    Closer ds{H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose};
-    if (ds.id < 0) throw std::runtime_error("result file has no dataset " + name);
+std::vector<T> read_dataset(const std::filesystem::path& path, hid_t file, const std::string& name, hid_t mem_type,
+                            std::vector<std::size_t>* shape) {
+    Closer ds{-1, H5Dclose};
+    H5E_BEGIN_TRY { ds.id = H5Dopen2(file, name.c_str(), H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (ds.id < 0) fail(path, "result file has no dataset " + name + " (or it is damaged)");
     Closer space{H5Dget_space(ds.id), H5Sclose};
+    if (space.id < 0) fail(path, "cannot read the shape of dataset " + name);
     const int rank = H5Sget_simple_extent_ndims(space.id);
-    std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
-    H5Sget_simple_extent_dims(space.id, dims.data(), nullptr);
+    if (rank < 0 || rank > 8) fail(path, "dataset " + name + " has a damaged shape");
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+    if (H5Sget_simple_extent_dims(space.id, dims.data(), nullptr) < 0)
+        fail(path, "dataset " + name + " has a damaged shape");
     std::size_t total = 1;
-    for (hsize_t d : dims) total *= d;
+    for (hsize_t d : dims) {
+        if (d != 0 && total > SIZE_MAX / sizeof(T) / d) fail(path, "dataset " + name + " is impossibly large");
+        total *= d;
+    }
+    if (total * sizeof(T) > kMaxUnbackedBytes) {
+        hsize_t stored = 0;
+        H5E_BEGIN_TRY { stored = H5Dget_storage_size(ds.id); }
+        H5E_END_TRY;
+        if (stored < total)
+            fail(path, "dataset " + name + " claims " + std::to_string(total) + " elements but stores " +
+                           std::to_string(stored) + " bytes");
+    }
     if (shape != nullptr) shape->assign(dims.begin(), dims.end());
     std::vector<T> out(total);
-    if (total > 0 && H5Dread(ds.id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-        throw std::runtime_error("cannot read dataset " + name);
+    herr_t ok = 0;
+    if (total > 0) {
+        H5E_BEGIN_TRY { ok = H5Dread(ds.id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()); }
+        H5E_END_TRY;
+    }
+    if (ok < 0) fail(path, "cannot read dataset " + name + " (damaged or not numbers)");
     return out;
 }
 
-hid_t open_attr(hid_t file, const std::string& object, const std::string& name) {
-    const hid_t a = H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-    if (a < 0) throw std::runtime_error("result file has no attribute " + object + "@" + name);
+hid_t open_attr(const std::filesystem::path& path, hid_t file, const std::string& object, const std::string& name) {
+    hid_t a = -1;
+    H5E_BEGIN_TRY { a = H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (a < 0) fail(path, "result file has no attribute " + object + "@" + name + " (or it is damaged)");
     return a;
+}
+
+// Elements of an attribute, refused when damaged or absurd (an attribute lives in an
+// object header, which is at most 64 KiB per message).
+std::size_t attr_points(const std::filesystem::path& path, hid_t space, const std::string& what) {
+    const hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+    if (n < 0 || n > (hssize_t{1} << 24)) fail(path, "attribute " + what + " has a damaged shape");
+    return static_cast<std::size_t>(n);
 }
 
 }  // namespace
@@ -78,11 +119,11 @@ bool ResultReader::has_attr(const std::string& object, const std::string& name) 
 }
 
 std::vector<std::uint64_t> ResultReader::u64(const std::string& name, std::vector<std::size_t>* shape) const {
-    return read_dataset<std::uint64_t>(file_, name, H5T_NATIVE_UINT64, shape);
+    return read_dataset<std::uint64_t>(path_, file_, name, H5T_NATIVE_UINT64, shape);
 }
 
 std::vector<double> ResultReader::f64(const std::string& name, std::vector<std::size_t>* shape) const {
-    return read_dataset<double>(file_, name, H5T_NATIVE_DOUBLE, shape);
+    return read_dataset<double>(path_, file_, name, H5T_NATIVE_DOUBLE, shape);
 }
 
 double ResultReader::attr_f64(const std::string& object, const std::string& name) const {
@@ -91,39 +132,58 @@ double ResultReader::attr_f64(const std::string& object, const std::string& name
 }
 
 std::vector<double> ResultReader::f64_attr_array(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(file_, object, name), H5Aclose};
+    Closer a{open_attr(path_, file_, object, name), H5Aclose};
     Closer space{H5Aget_space(a.id), H5Sclose};
-    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id)));
-    if (!v.empty()) H5Aread(a.id, H5T_NATIVE_DOUBLE, v.data());
+    std::vector<double> v(attr_points(path_, space.id, object + "@" + name));
+    herr_t ok = 0;
+    if (!v.empty()) {
+        H5E_BEGIN_TRY { ok = H5Aread(a.id, H5T_NATIVE_DOUBLE, v.data()); }
+        H5E_END_TRY;
+    }
+    if (ok < 0) fail(path_, "attribute " + object + "@" + name + " is not a number (or is damaged)");
     return v;
 }
 
 std::uint64_t ResultReader::attr_u64(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(file_, object, name), H5Aclose};
+    Closer a{open_attr(path_, file_, object, name), H5Aclose};
     Closer space{H5Aget_space(a.id), H5Sclose};
     // Read every element (an array attribute must not overrun a scalar), return the first.
-    std::vector<std::uint64_t> v(static_cast<std::size_t>(std::max<hssize_t>(1, H5Sget_simple_extent_npoints(space.id))));
-    H5Aread(a.id, H5T_NATIVE_UINT64, v.data());
+    std::vector<std::uint64_t> v(std::max<std::size_t>(1, attr_points(path_, space.id, object + "@" + name)));
+    herr_t ok = 0;
+    H5E_BEGIN_TRY { ok = H5Aread(a.id, H5T_NATIVE_UINT64, v.data()); }
+    H5E_END_TRY;
+    if (ok < 0) fail(path_, "attribute " + object + "@" + name + " is not a whole number (or is damaged)");
     return v[0];
 }
 
 std::vector<std::string> ResultReader::attr_strs(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(file_, object, name), H5Aclose};
+    const std::string what = object + "@" + name;
+    Closer a{open_attr(path_, file_, object, name), H5Aclose};
     Closer type{H5Aget_type(a.id), H5Tclose};
     Closer space{H5Aget_space(a.id), H5Sclose};
-    const hssize_t n = H5Sget_simple_extent_npoints(space.id);
+    const std::size_t n = attr_points(path_, space.id, what);
+    if (type.id < 0 || H5Tget_class(type.id) != H5T_STRING) fail(path_, "attribute " + what + " is not text");
     std::vector<std::string> out;
+    herr_t ok = 0;
     if (H5Tis_variable_str(type.id) > 0) {
-        std::vector<char*> ptrs(static_cast<std::size_t>(n), nullptr);
-        H5Aread(a.id, type.id, ptrs.data());
-        for (char* p : ptrs) out.emplace_back(p ? p : "");
-        H5Dvlen_reclaim(type.id, space.id, H5P_DEFAULT, ptrs.data());
+        std::vector<char*> ptrs(n, nullptr);
+        H5E_BEGIN_TRY { ok = H5Aread(a.id, type.id, ptrs.data()); }
+        H5E_END_TRY;
+        if (ok >= 0)
+            for (char* p : ptrs) out.emplace_back(p ? p : "");
+        if (n > 0) H5Dvlen_reclaim(type.id, space.id, H5P_DEFAULT, ptrs.data());
     } else {
         const std::size_t len = H5Tget_size(type.id);
-        std::vector<char> buf(len * static_cast<std::size_t>(n) + 1, '\0');
-        H5Aread(a.id, type.id, buf.data());
-        for (hssize_t i = 0; i < n; ++i) out.emplace_back(buf.data() + i * len, strnlen(buf.data() + i * len, len));
+        if (len == 0 || len > (std::size_t{1} << 20)) fail(path_, "attribute " + what + " has a damaged type");
+        std::vector<char> buf(len * n + 1, '\0');
+        if (n > 0) {
+            H5E_BEGIN_TRY { ok = H5Aread(a.id, type.id, buf.data()); }
+            H5E_END_TRY;
+        }
+        if (ok >= 0)
+            for (std::size_t i = 0; i < n; ++i) out.emplace_back(buf.data() + i * len, strnlen(buf.data() + i * len, len));
     }
+    if (ok < 0) fail(path_, "attribute " + what + " cannot be read (damaged)");
     return out;
 }
 
@@ -139,7 +199,10 @@ std::vector<std::string> ResultReader::children(const std::string& group) const 
         static_cast<std::vector<std::string>*>(data)->emplace_back(name);
         return 0;
     };
-    H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, cb, &names, H5P_DEFAULT);
+    herr_t ok = 0;
+    H5E_BEGIN_TRY { ok = H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, cb, &names, H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (ok < 0) fail(path_, "cannot list group " + group + " (damaged)");
     return names;
 }
 
@@ -167,12 +230,17 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         const auto p = r.u64("/history/photons");
         const auto g = r.f64("/history/sigma_rel_global");
         const auto f = r.f64("/history/forecast_s");
+        if (p.size() != t.size() || g.size() != t.size() || f.size() != t.size())
+            throw InputError(where + "the /history columns differ in length");
         std::vector<std::size_t> shape;
         std::vector<double> tv, tf, tp;
         if (r.has("/history/target_value")) {
             tv = r.f64("/history/target_value", &shape);
             tf = r.f64("/history/target_forecast_s");
             if (r.has("/history/target_forecast_photons")) tp = r.f64("/history/target_forecast_photons");
+            if (shape.size() != 2 || shape[0] != t.size() || tf.size() != tv.size() ||
+                (!tp.empty() && tp.size() != tv.size()))
+                throw InputError(where + "the /history target columns do not match its rows");
         }
         const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
         for (std::size_t i = 0; i < t.size(); ++i) {
@@ -184,11 +252,15 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
             }
             s.history.push_back(std::move(row));
         }
-    } catch (const std::runtime_error& e) {
-        throw InputError(where + "damaged checkpoint: " + e.what());
+    } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " (damaged checkpoint)");
     }
     if (s.tallies.size() != s.layout_size || s.done.size() % 2 != 0)
         throw InputError(where + "damaged checkpoint: inconsistent sizes");
+    for (std::size_t i = 0; i < s.done.size(); i += 2)
+        if (s.done[i] > s.done[i + 1])
+            throw InputError(where + "damaged checkpoint: photon range " + std::to_string(s.done[i]) + ".." +
+                             std::to_string(s.done[i + 1]) + " runs backwards");
     return s;
 }
 

@@ -227,6 +227,9 @@ double IesPhotometry::flux_lm() const {
 
 IesPhotometry load_ies(const std::filesystem::path& file) {
     const std::string name = file.string();
+    std::error_code ec;
+    if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+        throw InputError(name + ": not a regular file");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(name + ": cannot open IES file");
     std::vector<std::string> lines;
@@ -260,8 +263,10 @@ IesPhotometry load_ies(const std::filesystem::path& file) {
     if (iequals(tv, "INCLUDE"))
         fail_at(name, tilt_line, "TILT=INCLUDE is not supported (only TILT=NONE)");
     if (!iequals(tv, "NONE")) {
-        // A tilt file is named relative to the IES file.
-        if (tv.empty() || !std::filesystem::exists(file.parent_path() / std::string(tv)))
+        // A tilt file is named relative to the IES file. A name the file system cannot
+        // even look up (too long, say) is as absent as a missing file.
+        std::error_code tilt_ec;
+        if (tv.empty() || !std::filesystem::exists(file.parent_path() / std::string(tv), tilt_ec))
             fail_at(name, tilt_line, "TILT file '" + std::string(tv) + "' not found");
         fail_at(name, tilt_line, "TILT=" + std::string(tv) + " is not supported (only TILT=NONE)");
     }
@@ -332,11 +337,18 @@ IesPhotometry load_ies(const std::filesystem::path& file) {
             const double cd = rd.number("candela value");
             if (cd < 0.0) rd.fail(rd.prev_line(), "negative candela value " + fmt(cd));
             any_light = any_light || cd > 0.0;
+            if (!std::isfinite(cd * scale))
+                rd.fail(rd.prev_line(), "candela value " + fmt(cd) + " times the multipliers (" + fmt(scale) +
+                                            ") is too large");
             p.candela_cd[j].push_back(cd * scale);
         }
     }
     if (!rd.done()) count_error(rd.line(), expected + rd.remaining());
     if (!any_light) fail_at(name, last_line, "all candela values are zero");
+    const double flux = p.flux_lm();
+    if (!(flux > 0.0 && std::isfinite(flux)))
+        fail_at(name, last_line, "the photometry's flux (" + fmt(flux) + " lm) is not a positive number; "
+                                 "are the angles or the candela values right?");
     return p;
 }
 

@@ -115,10 +115,16 @@ DetectorData read_detector(const fs::path& result, const std::string& name) {
     d.type = r.attr_str(g, "type");
     d.units = units_text(r.attr_str(g, "units"));
     const std::vector<double> cells = r.f64_attr_array(g, "cells"), size = r.f64_attr_array(g, "size");
-    d.nx = static_cast<int>(cells.at(0));
-    d.ny = static_cast<int>(cells.at(1));
-    d.size_u = size.at(0);
-    d.size_v = size.at(1);
+    // The scene loader's limits: whole cells, at most 1e8 of them, a positive finite size.
+    if (cells.size() != 2 || !(cells[0] >= 1 && cells[1] >= 1 && cells[0] * cells[1] <= 1e8) ||
+        cells[0] != std::floor(cells[0]) || cells[1] != std::floor(cells[1]))
+        throw InputError(result.string() + ": " + g + "@cells is damaged");
+    if (size.size() != 2 || !(size[0] > 0 && size[1] > 0 && std::isfinite(size[0]) && std::isfinite(size[1])))
+        throw InputError(result.string() + ": " + g + "@size is damaged");
+    d.nx = static_cast<int>(cells[0]);
+    d.ny = static_cast<int>(cells[1]);
+    d.size_u = size[0];
+    d.size_v = size[1];
     const auto n = vec3(r.f64_attr_array(g, "normal"));
     d.up = vec3(r.f64_attr_array(g, "up"));
     const auto& v = d.up;  // u = up x normal (Detector::finalize)
@@ -137,14 +143,19 @@ DetectorData read_detector(const fs::path& result, const std::string& name) {
         throw InputError(result.string() + ": " + g + "/value does not match the detector's cells");
     d.value.assign(K, 0.0);
     d.sigma_rel.assign(K, kNaN);
+    if (B == 0) throw InputError(result.string() + ": " + g + "/value has no bands");
     if (B == 1) {
         d.value = value;
         d.sigma_rel = r.f64(g + "/sigma_rel");
+        if (d.sigma_rel.size() != K)
+            throw InputError(result.string() + ": " + g + "/sigma_rel does not match the detector's cells");
         d.band_note = bands.empty() ? "" : "band " + bands[0];
     } else {
         // A photon carries one band, so counts and sums of squares add over bands and
         // eq. (8) holds for the sum as for one band.
         const std::vector<std::uint64_t> cnt = r.u64(g + "/count"), sq = r.u64(g + "/sumsq");
+        if (cnt.size() != K * B || sq.size() != K * B)
+            throw InputError(result.string() + ": " + g + "/count or /sumsq does not match /value");
         const double inv_n = d.photons > 0 ? 1.0 / static_cast<double>(d.photons) : 0.0;
         for (std::size_t c = 0; c < K; ++c) {
             double nn = 0, qq = 0;

@@ -7,6 +7,7 @@
 #include <assimp/scene.h>
 
 #include <cmath>
+#include <string>
 
 namespace luxtrace {
 
@@ -49,6 +50,8 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
             if (sc->mMaterials[mesh->mMaterialIndex]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS)
                 material_name = name.C_Str();
         }
+        if (mesh->mNumVertices > 0 && mesh->mVertices == nullptr)
+            throw InputError(context + ": mesh '" + file.string() + "' has faces but no vertex positions");
         const auto base = static_cast<unsigned>(out.vertices.size());
         for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
             const aiVector3D& p = mesh->mVertices[v];
@@ -56,7 +59,12 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
         }
         for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
             const aiFace& face = mesh->mFaces[f];
-            if (face.mNumIndices != 3) continue;
+            if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
+            for (unsigned k = 0; k < 3; ++k)  // assimp does not check every importer's indices
+                if (face.mIndices[k] >= mesh->mNumVertices)
+                    throw InputError(context + ": mesh '" + file.string() + "': face " + std::to_string(f + 1) +
+                                     " names vertex " + std::to_string(face.mIndices[k] + 1) + " of " +
+                                     std::to_string(mesh->mNumVertices));
             out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1],
                                      base + face.mIndices[2]});
             out.material_names.push_back(material_name);

@@ -32,6 +32,25 @@ double Scene::ray_epsilon_m() const {
 namespace {
 
 constexpr double kMaxDetectorCells = 1e8;
+// Limits that keep an absurd scene from allocating gigabytes before anything is traced:
+// triangles of one built-in shape, triangles of the whole scene (each costs about 300
+// bytes in the scene, the BVH and the tallies), and vertex coordinates (no lighting scene
+// spans a million kilometres; huge values would overflow areas and Embree's floats).
+constexpr std::uint64_t kMaxShapeTriangles = std::uint64_t{1} << 22;  // 4,194,304
+constexpr std::uint64_t kMaxSceneTriangles = std::uint64_t{1} << 25;  // 33,554,432
+constexpr double kMaxCoordinate = 1e9;                                // metres
+
+// Triangles make_rectangle/box/sphere/disk produce for `subdivisions` (shapes.cpp).
+std::uint64_t shape_triangles(const std::string& type, std::uint64_t s) {
+    if (type == "rectangle") return 2 * s * s;
+    if (type == "box") return 12 * s * s;
+    if (type == "sphere") {
+        const std::uint64_t stacks = std::max<std::uint64_t>(3, s);
+        return 4 * stacks * (stacks - 1);
+    }
+    if (type == "disk") return std::max<std::uint64_t>(12, 8 * s) * (2 * s - 1);
+    return 0;
+}
 
 std::string fmt_count(double v) {
     std::ostringstream os;
@@ -150,6 +169,13 @@ struct Loader {
     }
 
     void add_triangles(const TriangleMesh& mesh, std::uint32_t default_material, TableReader& r) {
+        if (scene.triangles.size() + mesh.triangles.size() > kMaxSceneTriangles)
+            r.fail_entry("the scene would have " + std::to_string(scene.triangles.size() + mesh.triangles.size()) +
+                         " triangles; a scene may have at most " + std::to_string(kMaxSceneTriangles));
+        for (const Vec3& v : mesh.vertices)
+            if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate))
+                r.fail_entry("a vertex at (" + fmt_count(v.x) + ", " + fmt_count(v.y) + ", " + fmt_count(v.z) +
+                             ") lies outside the +-" + fmt_count(kMaxCoordinate) + " m that luxtrace can place");
         const auto base = static_cast<unsigned>(scene.vertices.size());
         for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -205,8 +231,13 @@ struct Loader {
         const std::uint32_t mat = material_ref(r, "material", true);
         const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
         const auto name = r.string("name");
-        const int subdiv = static_cast<int>(r.integer("subdivisions").value_or(type == "sphere" ? 16 : 1));
-        if (subdiv < 1 || subdiv > 4096) r.fail("subdivisions", "must lie in [1, 4096]");
+        const std::int64_t subdiv64 = r.integer("subdivisions").value_or(type == "sphere" ? 16 : 1);
+        if (subdiv64 < 1 || subdiv64 > 4096) r.fail("subdivisions", "must lie in [1, 4096]");
+        const int subdiv = static_cast<int>(subdiv64);
+        if (const std::uint64_t n = shape_triangles(type, static_cast<std::uint64_t>(subdiv)); n > kMaxShapeTriangles)
+            r.fail("subdivisions", std::to_string(subdiv) + " gives " + std::to_string(n) + " triangles; a " + type +
+                                       " may have at most " + std::to_string(kMaxShapeTriangles) +
+                                       " (split it into several shapes or use a mesh)");
         auto positive = [&](const std::string& key) {
             const auto v = r.number(key);
             if (!v) r.fail_entry("type '" + type + "' needs '" + key + "'");
@@ -279,7 +310,13 @@ struct Loader {
                     } catch (const InputError& e) {  // say which scene entry named the file
                         r.fail("ies", e.what());
                     }
-                    auto dist = std::make_shared<const IesDistribution>(photometry);
+                    std::shared_ptr<const IesDistribution> dist;
+                    try {
+                        dist = std::make_shared<const IesDistribution>(photometry);
+                    } catch (const std::invalid_argument&) {  // no light on the sampling grid
+                        r.fail("ies", resolve(*ies).string() +
+                                          ": its light lies in too narrow a beam for the 0.5 degree sampling grid");
+                    }
                     cached = ies_cache.emplace(key, std::make_pair(std::make_shared<const IesPhotometry>(std::move(photometry)),
                                                                    std::move(dist))).first;
                 }
@@ -288,6 +325,7 @@ struct Loader {
                 // The file's own flux (exact for its interpolant), not the sampling table's.
                 l.flux_lm = l.photometry->flux_lm() * mult;
                 if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
+                if (!std::isfinite(l.flux_lm)) r.fail("multiplier", "the flux of the file times the multiplier is too large");
             } else {
                 l.flux_lm = flux("flux_lm");
             }
@@ -324,6 +362,8 @@ struct Loader {
                 s.area_m2 += scene.triangle_area_m2[tri];
                 s.cdf.push_back(s.area_m2);
             }
+            if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
+                r.fail("shape", "shape '" + *shape + "' has no area to emit from (its triangles are degenerate)");
             for (double& c : s.cdf) c /= s.area_m2;
         } else if (type == "directional") {
             l.type = LightType::directional;
@@ -346,6 +386,7 @@ struct Loader {
                 sum += c;
             }
             if (!(sum > 0.0)) r.fail("colour", "needs a positive share in some band");
+            if (!std::isfinite(sum)) r.fail("colour", "shares are too large");
         }
         double share_sum = 0.0;  // Light::band_share is normalised
         for (double c : l.band_share) share_sum += c;
@@ -403,6 +444,8 @@ struct Loader {
         }
         r.finish();
         d.finalize();
+        if (!(d.value_per_lm() > 0.0 && std::isfinite(d.value_per_lm())))
+            r.fail_entry("its cells are too small (or its cone too narrow) to measure anything");
         scene.detectors.push_back(d);
     }
 
@@ -458,7 +501,7 @@ struct Loader {
         run.sampler = r.string("sampler").value_or(run.sampler);
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty()) r.fail("sampler", why);
         if (const auto mb = r.integer("max_bounces")) {
-            if (*mb < 1) r.fail("max_bounces", "must be at least 1");
+            if (*mb < 1 || *mb > 1000000) r.fail("max_bounces", "must lie in [1, 1000000]");
             run.max_bounces = static_cast<int>(*mb);
         }
         if (const toml::array* targets = r.array("target"))
@@ -573,6 +616,13 @@ Scene load_scene(const fs::path& file) {
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
         }
+    double total_flux = 0.0;
+    for (const Light& l : lights) {
+        total_flux += l.flux_lm;
+        if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
+            throw InputError(L.fname + ": " + l.label + ": its flux (" + fmt_count(l.flux_lm) +
+                             " lm) makes the total flux of the scene too large or not positive");
+    }
     L.scene.lights = LightSet(std::move(lights));
     const auto detector_tables = L.tables_of(root, "detector");
     for (std::size_t i = 0; i < detector_tables.size(); ++i) L.parse_detector(*detector_tables[i], i);

@@ -25,6 +25,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/surface_table.hpp"
 #include "luxtrace/tracer/tracer.hpp"
 
 #include <CLI/CLI.hpp>
@@ -74,11 +75,11 @@ std::vector<RecordedRay> record_tracer_rays(const Scene& scene, const EmbreeScen
     TallyStore store(layout);
     std::vector<RecordedRay> rays;
     {
-        PhotonTracer tracer(scene, embree, store.layout());
+        const SurfaceTable surfaces(scene, embree);
+        PhotonTracer tracer(scene, embree, surfaces, store.layout(), seed);
         TallyBuffer buffer(store);
-        const auto sampler = make_sampler(scene.run.sampler, seed);
         tracer.record_rays(&rays);
-        for (std::uint64_t k = 0; k < n; ++k) tracer.trace(k, *sampler, buffer);
+        tracer.trace(0, n, buffer);
     }
     return rays;
 }

@@ -347,6 +347,7 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "stop_reason", info.stop_reason);
         attr_strings(file, "bands", scene.bands, false);
         attr(file, "sampler", info.sampler);
+        attr(file, "photon_layout", info.photon_layout);
         attr(file, "reductions", info.reductions);
         attr(file, "reduction_stall_s", info.reduction_stall_s);
         attr(file, "reduction_wait_s", info.reduction_wait_s);

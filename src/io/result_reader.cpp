@@ -225,6 +225,7 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         s.bands = r.attr_u64("/checkpoint", "bands");
         s.seed = r.attr_u64("/", "seed");
         s.sampler = r.attr_str("/", "sampler");
+        if (r.has_attr("/", "photon_layout")) s.photon_layout = r.attr_u64("/", "photon_layout");
         s.elapsed_s = r.attr_f64("/", "elapsed_s");
         const auto t = r.f64("/history/time_s");
         const auto p = r.u64("/history/photons");

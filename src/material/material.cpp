@@ -33,8 +33,33 @@ double at(const std::vector<double>& v, int band) {
 
 }  // namespace
 
-Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
-                  double u, double u1, double u2) {
+ScatterModel scatter_model(const Material& m, int band) {
+    ScatterModel s;
+    s.type = m.type;
+    switch (m.type) {
+    case MaterialType::black:
+        break;
+    case MaterialType::diffuse:
+        s.diffuse_reflection = at(m.diffuse_reflectance, band);
+        break;
+    case MaterialType::mirror:
+        s.specular_reflection = at(m.specular_reflectance, band);
+        break;
+    case MaterialType::general:
+        s.diffuse_reflection = at(m.diffuse_reflectance, band);
+        s.specular_reflection = s.diffuse_reflection + at(m.specular_reflectance, band);
+        s.diffuse_transmission = s.specular_reflection + at(m.diffuse_transmittance, band);
+        s.specular_transmission = s.diffuse_transmission + at(m.specular_transmittance, band);
+        break;
+    case MaterialType::glass:
+        s.ior = m.ior;
+        s.transmittance = m.transmittance.empty() ? 1.0 : at(m.transmittance, band);
+        break;
+    }
+    return s;
+}
+
+Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double u, double u1, double u2) {
     // Normal on the side the photon arrives from.
     const bool from_front = glm::dot(dir, ng) < 0.0;
     const Vec3 n = from_front ? ng : -ng;
@@ -43,33 +68,25 @@ Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
     case MaterialType::black:
         return s;
     case MaterialType::diffuse:
-        if (u < at(m.diffuse_reflectance, band))
-            s = {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
+        if (u < m.diffuse_reflection) s = {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
         return s;
     case MaterialType::mirror:
-        if (u < at(m.specular_reflectance, band))
-            s = {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        if (u < m.specular_reflection) s = {ScatterEvent::specular_reflection, reflect(dir, n), 1};
         return s;
-    case MaterialType::general: {
-        double p = at(m.diffuse_reflectance, band);
-        if (u < p) return {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
-        p += at(m.specular_reflectance, band);
-        if (u < p) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
-        p += at(m.diffuse_transmittance, band);
-        if (u < p)
+    case MaterialType::general:
+        if (u < m.diffuse_reflection) return {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
+        if (u < m.specular_reflection) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        if (u < m.diffuse_transmission)
             return {ScatterEvent::diffuse_transmission, sample_cosine_hemisphere(-n, u1, u2), -1};
-        p += at(m.specular_transmittance, band);
-        if (u < p) return {ScatterEvent::specular_transmission, dir, -1};
+        if (u < m.specular_transmission) return {ScatterEvent::specular_transmission, dir, -1};
         return s;
-    }
     case MaterialType::glass: {
         // Entering through the front side goes from air (1) into glass (ior).
         const double eta = from_front ? 1.0 / m.ior : m.ior;
         const double cos_i = -glm::dot(dir, n);
         const double r = fresnel_dielectric(cos_i, eta);
         if (u < r) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
-        const double t = m.transmittance.empty() ? 1.0 : at(m.transmittance, band);
-        if (u >= r + (1.0 - r) * t) return s;  // absorbed in the crossing
+        if (u >= r + (1.0 - r) * m.transmittance) return s;  // absorbed in the crossing
         const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
         const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
         const Vec3 refracted = glm::normalize(eta * dir + (eta * cos_i - cos_t) * n);

@@ -82,6 +82,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
                              std::to_string(ck.triangles) + " triangles, " + std::to_string(ck.bands) +
                              " bands; this scene has " + std::to_string(layout.triangles()) + " and " +
                              std::to_string(layout.bands()) + ")");
+        if (ck.photon_layout != kPhotonLayout)
+            throw InputError(opt.restart + ": the checkpoint was made by a luxtrace whose photons draw their random "
+                             "numbers differently (photon layout " + std::to_string(ck.photon_layout) + ", this one " +
+                             std::to_string(kPhotonLayout) + "); continue it with that version or start anew");
         if (ck.seed != run.seed || ck.sampler != run.sampler)
             throw InputError(opt.restart + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " +
                              ck.sampler + "; restart with the same (drop --seed/--sampler)");
@@ -131,6 +135,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     info.ranks = R;
     info.threads_per_rank = threads;
     info.sampler = run.sampler;
+    info.photon_layout = kPhotonLayout;
 
     // Root: the done ranges and photon count described by a reduced message.
     auto done_ranges_of = [&](const std::vector<std::uint64_t>& msg) {

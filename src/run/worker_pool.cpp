@@ -1,12 +1,13 @@
 #include "luxtrace/run/worker_pool.hpp"
 
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/sampler/sampler.hpp"
 
 namespace luxtrace {
 
 WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
                        const TraceOptions& opt)
-    : scene_(scene), embree_(embree), store_(store), work_(work), opt_(opt) {
+    : scene_(scene), embree_(embree), surfaces_(scene, embree), store_(store), work_(work), opt_(opt) {
     for (int i = 0; i < std::max(1, opt_.threads); ++i) threads_.emplace_back([this] { worker(); });
 }
 
@@ -32,8 +33,8 @@ void WorkerPool::worker() {
 }
 
 void WorkerPool::trace_until_stopped() {
-    PhotonTracer tracer(scene_, embree_, store_.layout());
-    const auto sampler = make_sampler(opt_.sampler, opt_.seed);
+    if (const std::string why = sampler_unavailable(opt_.sampler); !why.empty()) throw InputError("sampler: " + why);
+    PhotonTracer tracer(scene_, embree_, surfaces_, store_.layout(), opt_.seed);
     TallyBuffer buffer(store_);
     bool out_of_work = false, at_fence = false;
     while (true) {
@@ -67,7 +68,7 @@ void WorkerPool::trace_until_stopped() {
             idle_.fetch_add(1);
             continue;
         }
-        for (std::uint64_t k = chunk.begin; k < chunk.end; ++k) tracer.trace(k, *sampler, buffer);
+        tracer.trace(chunk.begin, chunk.end, buffer);
         traced_.fetch_add(chunk.size(), std::memory_order_relaxed);
     }
     buffer.flush();

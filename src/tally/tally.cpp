@@ -25,16 +25,18 @@ std::vector<int> cells_of(const Scene& scene) {
 TallyLayout::TallyLayout(const Scene& scene)
     : TallyLayout(scene.triangle_count(), scene.bands.size(), cells_of(scene)) {}
 
-TallyBuffer::TallyBuffer(TallyStore& store) : store_(store), slots_(kCapacity, Slot{kEmpty, 0}) {}
+TallyBuffer::TallyBuffer(TallyStore& store)
+    : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}
 
 void TallyBuffer::flush() {
-    if (used_ == 0) return;
-    for (Slot& s : slots_)
-        if (s.index != kEmpty) {
-            store_.add(s.index, s.value);
-            s = {kEmpty, 0};
-        }
-    used_ = 0;
+    constexpr std::size_t kAhead = 8;  // store lines requested before their add
+    for (std::size_t i = 0; i < used_count_; ++i) {
+        if (i + kAhead < used_count_) __builtin_prefetch(store_.address(slots_[used_[i + kAhead]].index), 1);
+        Slot& s = slots_[used_[i]];
+        store_.add(s.index, s.value);
+        s = {kEmpty, 0};
+    }
+    used_count_ = 0;
 }
 
 }  // namespace luxtrace

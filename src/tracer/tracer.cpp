@@ -1,97 +1,105 @@
 #include "luxtrace/tracer/tracer.hpp"
 
-#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/tracer/embree_scene.hpp"
-#include "luxtrace/tracer/ray_offset.hpp"
+#include "luxtrace/tracer/surface_table.hpp"
 
 #include <algorithm>
 
 namespace luxtrace {
 
-PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout)
-    : scene_(scene), embree_(embree), layout_(layout) {
+PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
+                           const TallyLayout& layout, std::uint64_t seed)
+    : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(seed) {
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
-        (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_)
-            .push_back(i);
-    regs_.reserve(64);
+        (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_).push_back(i);
+    for (Photon& p : flight_) p.regs.reserve(32);
 }
 
-void PhotonTracer::check_luminance(const Vec3& p, const Vec3& d, int band) {
+void PhotonTracer::check_luminance(Photon& p, const Vec3& point) {
     for (std::uint32_t di : luminance_dets_) {
-        const int cell = scene_.detectors[di].leaving(p, d);
-        if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
+        const int cell = scene_.detectors[di].leaving(point, p.direction);
+        if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
     }
 }
 
-SurfacePoint PhotonTracer::surface_point(unsigned tri, float u, float v) const {
-    const glm::uvec3 t = scene_.triangles[tri];
-    return point_on_triangle(embree_.local_vertex(t.x), embree_.local_vertex(t.y), embree_.local_vertex(t.z), u, v,
-                             embree_.self_hit_margin(tri));
-}
-
-void PhotonTracer::trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out) {
-    sampler.start_photon(k);
+void PhotonTracer::start(Photon& p, std::uint64_t k) {
+    p.k = k;
+    p.bounce = 0;
+    p.regs.clear();
     const LightSet& lights = scene_.lights;
-    const std::size_t li = lights.pick_light(sampler.next());
-    const int band = lights.pick_band(li, sampler.next());
-    const double p1 = sampler.next(), p2 = sampler.next();
-    const double d1 = sampler.next(), d2 = sampler.next();
+    const auto b0 = sampler_.block(k, 0);
+    const std::size_t li = lights.pick_light(PhiloxSampler::uniform(b0[0]));
+    p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
     const Light& light = lights.lights()[li];
-    const EmittedRay ray = light.emit(p1, p2, d1, d2);
-    // The ray's origin in Embree's local float coordinates; detectors and the photon's
-    // scattering work in scene coordinates.
-    Vec3f o = embree_.to_local(ray.origin);
-    Vec3 d = ray.direction;
+    double u_pos1 = 0.5, u_pos2 = 0.5;
+    if (light.type == LightType::area || light.type == LightType::directional) {
+        const auto b1 = sampler_.block(k, 1);
+        u_pos1 = PhiloxSampler::uniform(b1[0]);
+        u_pos2 = PhiloxSampler::uniform(b1[1]);
+    }
+    const EmittedRay ray = light.emit(u_pos1, u_pos2, PhiloxSampler::uniform(b0[2]), PhiloxSampler::uniform(b0[3]));
+    // The ray's origin in Embree's local float frame; detectors and scattering work in
+    // scene coordinates.
+    p.origin = embree_.to_local(ray.origin);
+    p.direction = ray.direction;
     if (ray.emitter_triangle >= 0) {
-        const auto tri = static_cast<unsigned>(ray.emitter_triangle);
-        o = spawn_origin(surface_point(tri, static_cast<float>(ray.emitter_u), static_cast<float>(ray.emitter_v)),
-                         Vec3f(scene_.triangle_normal[tri]), embree_.self_hit_margin(tri));
-        check_luminance(ray.origin, d, band);
+        const TriangleRecord& t = surfaces_.triangle(static_cast<std::size_t>(ray.emitter_triangle));
+        p.origin = spawn_origin(point_on_triangle(t.p0, t.p1, t.p2, static_cast<float>(ray.emitter_u),
+                                                  static_cast<float>(ray.emitter_v), t.margin),
+                                t.normal, t.margin);
+        if (!luminance_dets_.empty()) check_luminance(p, ray.origin);
     }
-    // SPEC §3: odd photons feed the odd map.
-    const bool odd = (k & 1u) != 0;
-    const auto count_slot = odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven;
-    const auto direct_slot = odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven;
-    const int max_bounces = scene_.run.max_bounces;
-    TallyLayout::Counter fate = TallyLayout::kTruncated;
-    for (int bounce = 0; bounce < max_bounces; ++bounce) {
-        if (record_ != nullptr) record_->push_back({o, Vec3f(d), 0.0f});
-        const Hit hit = embree_.intersect_local(o, Vec3f(d));
-        const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
-        if (!illuminance_dets_.empty()) {
-            const Vec3 o_scene = embree_.to_scene(o);
-            for (std::uint32_t di : illuminance_dets_) {
-                const int cell = scene_.detectors[di].crossing(o_scene, d, t_max);
-                if (cell >= 0) regs_.push_back({layout_.detector_n(di, cell, band), di});
-            }
-        }
-        if (!hit.found) { fate = TallyLayout::kEscaped; break; }
-        const std::size_t tri = hit.triangle;
-        out.add(layout_.surface(tri, band, count_slot), 1);
-        if (bounce == 0) out.add(layout_.surface(tri, band, direct_slot), 1);
-
-        sampler.set_dimension(6 + 3 * static_cast<std::uint32_t>(bounce));
-        const double ue = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
-        const Vec3& ng = scene_.triangle_normal[tri];
-        const Scattered s = scatter(scene_.materials[scene_.triangle_material[tri]], band, d, ng, ue, u1, u2);
-        if (s.event == ScatterEvent::absorbed) { fate = TallyLayout::kAbsorbed; break; }
-        // Leave the surface on the side the photon goes to, just past the hit point's
-        // rounding error.
-        const SurfacePoint sp = surface_point(hit.triangle, hit.u, hit.v);
-        const Vec3 n_in = glm::dot(d, ng) < 0.0 ? ng : -ng;
-        o = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), embree_.self_hit_margin(hit.triangle));
-        d = s.direction;
-        if (!luminance_dets_.empty()) check_luminance(embree_.to_scene(sp.p), d, band);
-    }
-    out.add(layout_.counter(fate), 1);
-    if (!regs_.empty()) finish_photon(out);
 }
 
-void PhotonTracer::finish_photon(TallyBuffer& out) {
+bool PhotonTracer::step(Photon& p, TallyBuffer& out) {
+    const Hit& hit = p.hit;
+    const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
+    if (!illuminance_dets_.empty()) {
+        const Vec3 o = embree_.to_scene(p.origin);
+        for (std::uint32_t di : illuminance_dets_) {
+            const int cell = scene_.detectors[di].crossing(o, p.direction, t_max);
+            if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
+        }
+    }
+    if (!hit.found) {
+        finish(p, TallyLayout::kEscaped, out);
+        return false;
+    }
+    // SPEC §3: odd photons feed the odd map; the first arrival is the direct one.
+    const bool odd = (p.k & 1u) != 0;
+    out.add(layout_.surface(hit.triangle, p.band, odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
+    if (p.bounce == 0)
+        out.add(layout_.surface(hit.triangle, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
+
+    const TriangleRecord& t = surfaces_.triangle(hit.triangle);
+    const auto u = sampler_.block(p.k, 2 + static_cast<std::uint32_t>(p.bounce));
+    const Vec3 ng(t.normal);
+    const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
+                                PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
+    if (s.event == ScatterEvent::absorbed) {
+        finish(p, TallyLayout::kAbsorbed, out);
+        return false;
+    }
+    // Leave the surface on the side the photon goes to, just past the hit point's
+    // rounding error.
+    const SurfacePoint sp = point_on_triangle(t.p0, t.p1, t.p2, hit.u, hit.v, t.margin);
+    const Vec3 n_in = glm::dot(p.direction, ng) < 0.0 ? ng : -ng;
+    p.origin = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), t.margin);
+    p.direction = s.direction;
+    if (!luminance_dets_.empty()) check_luminance(p, embree_.to_scene(sp.p));
+    if (++p.bounce >= scene_.run.max_bounces) {
+        finish(p, TallyLayout::kTruncated, out);
+        return false;
+    }
+    return true;
+}
+
+void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) {
+    out.add(layout_.counter(fate), 1);
+    if (p.regs.empty()) return;
     // E_i of eq. (6): how many times this photon registered in each cell.
-    std::sort(regs_.begin(), regs_.end(),
-              [](const Registration& a, const Registration& b) { return a.index < b.index; });
+    std::vector<Registration>& regs = p.regs;
+    std::sort(regs.begin(), regs.end(), [](const Registration& a, const Registration& b) { return a.index < b.index; });
     std::uint32_t last_detector = UINT32_MAX;
     std::uint64_t in_detector = 0;  // this photon's registrations in last_detector
     auto close_detector = [&] {
@@ -100,23 +108,48 @@ void PhotonTracer::finish_photon(TallyBuffer& out) {
         out.add(layout_.detector_total_n(last_detector), in_detector);
         out.add(layout_.detector_total_q(last_detector), in_detector * in_detector);
     };
-    for (std::size_t i = 0; i < regs_.size();) {
+    for (std::size_t i = 0; i < regs.size();) {
         std::size_t j = i;
-        while (j < regs_.size() && regs_[j].index == regs_[i].index) ++j;
+        while (j < regs.size() && regs[j].index == regs[i].index) ++j;
         const std::uint64_t e = j - i;
-        out.add(regs_[i].index, e);      // n_c
-        out.add(regs_[i].index + 1, e * e);  // q_c
+        out.add(regs[i].index, e);          // n_c
+        out.add(regs[i].index + 1, e * e);  // q_c
         // Detectors occupy disjoint ascending index ranges, so sorted order groups them.
-        if (regs_[i].detector != last_detector) {
+        if (regs[i].detector != last_detector) {
             close_detector();
-            last_detector = regs_[i].detector;
+            last_detector = regs[i].detector;
             in_detector = 0;
         }
         in_detector += e;
         i = j;
     }
     close_detector();
-    regs_.clear();
+    regs.clear();
+}
+
+void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out) {
+    std::uint64_t next = first;
+    int active = 0;
+    while (active < kInFlight && next < last) start(flight_[active++], next++);
+    while (active > 0) {
+        for (int i = 0; i < active; ++i) {
+            Photon& p = flight_[i];
+            const Vec3f d(p.direction);
+            if (record_ != nullptr) record_->push_back({p.origin, d, 0.0f});
+            p.hit = embree_.intersect_local(p.origin, d);
+            if (p.hit.found) __builtin_prefetch(&surfaces_.triangle(p.hit.triangle));
+        }
+        for (int i = 0; i < active;) {
+            if (step(flight_[i], out)) {
+                ++i;
+            } else if (next < last) {
+                start(flight_[i++], next++);
+            } else {
+                // Keep the photons in flight at the front.
+                std::swap(flight_[i], flight_[--active]);
+            }
+        }
+    }
 }
 
 }  // namespace luxtrace

@@ -35,6 +35,7 @@ struct RunInfo {
     double elapsed_s = 0.0;
     std::string stop_reason;
     std::string sampler;
+    std::uint64_t photon_layout = 0;  // which random numbers a photon draws (tracer.hpp)
     std::uint64_t reductions = 0;
     double reduction_stall_s = 0.0;  // tracing time lost to snapshots (max over ranks)
     double reduction_wait_s = 0.0;   // main thread's wait for reductions (tracing goes on)
@@ -55,6 +56,7 @@ struct CheckpointState {
     std::uint64_t budget = 0;
     std::uint64_t seed = 0;
     std::string sampler;
+    std::uint64_t photon_layout = 1;  // files without the attribute were made with layout 1
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;
     std::vector<HistoryRow> history;

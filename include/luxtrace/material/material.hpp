@@ -44,11 +44,27 @@ double fresnel_dielectric(double cos_i, double eta);
 // Cosine-weighted direction on the hemisphere around n (Malley's method).
 Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2);
 
-// Scatter a photon of `band` travelling along unit `dir` that hit a surface with unit
-// geometric normal `ng` (either orientation: the front side is where ng points).
-// u_event picks the event, (u1, u2) its direction. Glass is entered from the front side.
-Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
-                  double u_event, double u1, double u2);
+// One material in one band, flattened for the tracing path: the event thresholds as
+// cumulative probabilities (u_event below `diffuse_reflection` reflects diffusely, below
+// `specular_reflection` specularly, and so on; above the last one the photon is
+// absorbed), and for glass its index and the survival of a crossing.
+struct ScatterModel {
+    MaterialType type = MaterialType::black;
+    double diffuse_reflection = 0.0, specular_reflection = 0.0;
+    double diffuse_transmission = 0.0, specular_transmission = 0.0;
+    double ior = 1.5, transmittance = 1.0;
+};
+ScatterModel scatter_model(const Material& m, int band);
+
+// Scatter a photon travelling along unit `dir` that hit a surface with unit geometric
+// normal `ng` (either orientation: the front side is where ng points). u_event picks the
+// event, (u1, u2) its direction. Glass is entered from the front side.
+Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double u_event, double u1, double u2);
+// The same for a photon of `band` on material `m`.
+inline Scattered scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng, double u_event, double u1,
+                         double u2) {
+    return scatter(scatter_model(m, band), dir, ng, u_event, u1, u2);
+}
 
 // Probability that a photon of `band` hitting the material at normal incidence survives
 // (used for checks and warnings, not for tracing).

@@ -4,6 +4,7 @@
 // has flushed its buffer, so the store holds exactly the photons handed out) to take a
 // consistent snapshot, then let them go on.
 #include "luxtrace/run/work_plan.hpp"
+#include "luxtrace/tracer/surface_table.hpp"
 #include "luxtrace/tracer/tracer.hpp"
 
 #include <atomic>
@@ -52,6 +53,7 @@ private:
     void trace_until_stopped();
     const Scene& scene_;
     const EmbreeScene& embree_;
+    const SurfaceTable surfaces_;  // shared by the threads
     TallyStore& store_;
     RankWork& work_;
     TraceOptions opt_;

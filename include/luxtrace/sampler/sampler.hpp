@@ -1,50 +1,59 @@
 #pragma once
-// Random numbers for photon k as a pure function of (seed, k, dimension).
-// The tracer positions the sampler at a photon and then draws dimensions in a fixed
-// order (see tracer.hpp), so tallies do not depend on which rank or thread traced a
-// photon, and a quasi-random sampler can replace this one without touching the tracer.
+// Random numbers for photon k as a pure function of (seed, k, block): Philox4x32-10
+// (Salmon et al., SC'11, via Random123), counter = (k, block, "luxt"), key = seed. Each
+// block is four 32-bit words. The tracer draws one block per decision group (the photon
+// layout in tracer.hpp), so tallies do not depend on which rank or thread traced a
+// photon, and no call per number is made on the tracing path.
+#include <Random123/philox.h>
+
+#include <array>
 #include <cstdint>
-#include <memory>
 #include <string>
 
 namespace luxtrace {
 
-class Sampler {
+class PhiloxSampler {
 public:
-    virtual ~Sampler() = default;
-    // Position at photon k, dimension 0.
-    virtual void start_photon(std::uint64_t k) = 0;
-    // Next dimension, uniform in [0, 1).
-    virtual double next() = 0;
-    // Jump to dimension d of the current photon (used to give each bounce fixed dimensions).
-    virtual void set_dimension(std::uint32_t d) = 0;
-};
+    explicit PhiloxSampler(std::uint64_t seed) : seed_(seed) {}
 
-// Philox4x32-10 (Salmon et al., SC'11, via Random123): counter = (k, dimension block),
-// key = seed. Each counter yields four 32-bit words, i.e. four dimensions.
-class PhiloxSampler final : public Sampler {
-public:
-    explicit PhiloxSampler(std::uint64_t seed);
-    void start_photon(std::uint64_t k) override;
-    double next() override;
-    void set_dimension(std::uint32_t d) override;
+    // The four words of block `b` of photon `k`.
+    std::array<std::uint32_t, 4> block(std::uint64_t k, std::uint32_t b) const {
+        const r123::Philox4x32::ctr_type ctr = {
+            {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(k >> 32), b, 0x6c757874u /* "luxt" */}};
+        const r123::Philox4x32::key_type key = {
+            {static_cast<std::uint32_t>(seed_), static_cast<std::uint32_t>(seed_ >> 32)}};
+        const auto out = r123::Philox4x32()(ctr, key);
+        return {out.v[0], out.v[1], out.v[2], out.v[3]};
+    }
+    // 32 random bits, centred in their interval: strictly inside (0, 1).
+    static double uniform(std::uint32_t w) { return (static_cast<double>(w) + 0.5) * 0x1p-32; }
+
+    // Sequential use (tests, probes): dimension d is word d % 4 of block d / 4.
+    void start_photon(std::uint64_t k) {
+        photon_ = k;
+        dim_ = 0;
+        block_ = UINT32_MAX;
+    }
+    void set_dimension(std::uint32_t d) { dim_ = d; }
+    double next() {
+        if (dim_ / 4u != block_) {
+            block_ = dim_ / 4u;
+            words_ = block(photon_, block_);
+        }
+        return uniform(words_[dim_++ % 4u]);
+    }
 
 private:
-    void refill();
     std::uint64_t seed_;
     std::uint64_t photon_ = 0;
     std::uint32_t dim_ = 0;
-    std::uint32_t block_ = UINT32_MAX;  // dimension block held in words_
-    std::uint32_t words_[4] = {};
+    std::uint32_t block_ = UINT32_MAX;
+    std::array<std::uint32_t, 4> words_{};
 };
 
 // Samplers this build has, by the name used in the scene file and on the command line.
 // Empty if `kind` is available, otherwise what to tell the user ("'sobol' is not
-// available in this build (it has: random)"). The loader and the CLI check with it, so
-// that make_sampler never fails inside a tracing thread.
+// available in this build (it has: random)"). The loader and the CLI check with it.
 std::string sampler_unavailable(const std::string& kind);
-
-// Factory by that name; throws InputError for a name sampler_unavailable() rejects.
-std::unique_ptr<Sampler> make_sampler(const std::string& kind, std::uint64_t seed);
 
 }  // namespace luxtrace

@@ -69,6 +69,7 @@ public:
         std::atomic_ref<std::uint64_t>(data_[index]).fetch_add(value, std::memory_order_relaxed);
     }
     std::uint64_t operator[](std::size_t i) const { return data_[i]; }
+    const std::uint64_t* address(std::size_t i) const { return &data_[i]; }
     std::vector<std::uint64_t>& data() { return data_; }
     const std::vector<std::uint64_t>& data() const { return data_; }
 
@@ -78,6 +79,10 @@ private:
 };
 
 // A thread's fixed-size write-combining buffer (open addressing on the tally index).
+// 16 KB: it stays in the core's L1/L2 while the thread traces. Repeated indices (a small
+// scene's triangles, a detector's cells) are summed in place; the slots in use are
+// listed, so a flush touches only them and prefetches the store's lines ahead of its
+// atomic adds (a large scene's tallies are spread over many megabytes).
 class TallyBuffer {
 public:
     explicit TallyBuffer(TallyStore& store);
@@ -92,7 +97,8 @@ public:
             if (s.index == index) { s.value += value; return; }
             if (s.index == kEmpty) {
                 s = {index, value};
-                if (++used_ >= kMaxLoad) flush();
+                used_[used_count_++] = static_cast<std::uint16_t>(h);
+                if (used_count_ == kMaxLoad) flush();
                 return;
             }
             h = (h + 1) & (kCapacity - 1);
@@ -101,14 +107,15 @@ public:
     void flush();
 
 private:
-    static constexpr int kLogCapacity = 12;
+    static constexpr int kLogCapacity = 10;
     static constexpr std::size_t kCapacity = std::size_t{1} << kLogCapacity;
     static constexpr std::size_t kMaxLoad = kCapacity / 2;
     static constexpr std::size_t kEmpty = ~std::size_t{0};
     struct Slot { std::size_t index; std::uint64_t value; };
     TallyStore& store_;
     std::vector<Slot> slots_;
-    std::size_t used_ = 0;
+    std::vector<std::uint16_t> used_;  // slots in use, in the order they were taken
+    std::size_t used_count_ = 0;
 };
 
 }  // namespace luxtrace

@@ -1,22 +1,36 @@
 #pragma once
 // The photon path: light (emit) -> Embree (intersect) -> material (scatter) -> tallies.
 //
-// Random dimensions of photon k, always in this order, so that a quasi-random sampler
-// sees the same dimension for the same decision:
-//   0 light, 1 band, 2-3 emission position, 4-5 emission direction,
-//   6+3b, 7+3b, 8+3b: event and direction at the b-th surface arrival.
+// Random numbers of photon k come in Philox blocks of four (sampler.hpp), one block per
+// group of decisions, always the same block for the same decision:
+//   block 0: light, band, emission direction (2);
+//   block 1: emission position (2), drawn by area and directional lights only;
+//   block 2 + b: event and direction (2) at the b-th surface arrival.
+// (Photon layout 2. Layout 1, before luxtrace 0.2, drew single dimensions: 0 light,
+// 1 band, 2-3 position, 4-5 direction, 6+3b.. event and direction at arrival b.)
+//
+// A thread keeps several photons in flight: their rays are intersected one after the
+// other, then the records of the triangles they hit are fetched together and each photon
+// takes its next step, so the memory latencies of one photon overlap the work of the
+// others. Photons never interact, and tallies are integer sums, so the order in which
+// their steps are taken changes no count.
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 namespace luxtrace {
 
 struct Scene;
-class EmbreeScene;
-class Sampler;
+class SurfaceTable;
+
+// The random-number layout above, stored in results and checked on restart.
+inline constexpr std::uint64_t kPhotonLayout = 2;
 
 // A ray as the tracer hands it to Embree (local float coordinates), for benchmarks that
 // replay exactly the tracer's rays through Embree alone.
@@ -27,23 +41,39 @@ struct RecordedRay {
 
 class PhotonTracer {
 public:
-    PhotonTracer(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout);
-    // Trace photon k and add its contributions to `out`.
-    void trace(std::uint64_t k, Sampler& sampler, TallyBuffer& out);
+    PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
+                 const TallyLayout& layout, std::uint64_t seed);
+    // Trace photons [first, last) and add their contributions to `out`.
+    void trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out);
     // Append every ray traced from now on to `sink` (null: stop recording).
     void record_rays(std::vector<RecordedRay>* sink) { record_ = sink; }
 
+    static constexpr int kInFlight = 8;
+
 private:
     struct Registration { std::size_t index; std::uint32_t detector; };
-    void finish_photon(TallyBuffer& out);
-    void check_luminance(const Vec3& p, const Vec3& d, int band);
-    SurfacePoint surface_point(unsigned triangle, float u, float v) const;
+    struct Photon {
+        std::uint64_t k = 0;
+        int band = 0;
+        int bounce = 0;
+        Vec3f origin;
+        Vec3 direction;
+        Hit hit;
+        std::vector<Registration> regs;  // detector registrations, counted at the end
+    };
+    void start(Photon& p, std::uint64_t k);
+    // One step after the photon's ray was intersected; false once the photon has ended.
+    bool step(Photon& p, TallyBuffer& out);
+    void finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out);
+    void check_luminance(Photon& p, const Vec3& point);
 
     const Scene& scene_;
     const EmbreeScene& embree_;
+    const SurfaceTable& surfaces_;
     const TallyLayout& layout_;
+    PhiloxSampler sampler_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
-    std::vector<Registration> regs_;  // this photon's detector registrations
+    std::array<Photon, kInFlight> flight_;
     std::vector<RecordedRay>* record_ = nullptr;
 };
 

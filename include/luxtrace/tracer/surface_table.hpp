@@ -1,0 +1,40 @@
+#pragma once
+// What a photon reads when it arrives on a surface, laid out for the tracing path: one
+// 64-byte record per triangle (its vertices in Embree's float frame, its normal, its
+// material and the margin its ray origins keep, ray_offset.hpp), and each material's
+// probabilities per band flattened (material.hpp). Built once per rank and shared,
+// read-only, by its tracing threads: memory does not grow with the thread count.
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/material/material.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace luxtrace {
+
+struct Scene;
+class EmbreeScene;
+
+struct alignas(64) TriangleRecord {
+    Vec3f p0, p1, p2;       // local float coordinates, as Embree intersects them
+    Vec3f normal;           // unit geometric normal, front side
+    std::uint32_t material; // index into Scene::materials
+    float margin;           // EmbreeScene::self_hit_margin
+};
+static_assert(sizeof(TriangleRecord) == 64, "one cache line per triangle");
+
+class SurfaceTable {
+public:
+    SurfaceTable(const Scene& scene, const EmbreeScene& embree);
+    const TriangleRecord& triangle(std::size_t t) const { return triangles_[t]; }
+    const ScatterModel& model(std::uint32_t material, int band) const {
+        return models_[material * static_cast<std::size_t>(bands_) + static_cast<std::size_t>(band)];
+    }
+
+private:
+    std::vector<TriangleRecord> triangles_;
+    std::vector<ScatterModel> models_;
+    int bands_ = 1;
+};
+
+}  // namespace luxtrace

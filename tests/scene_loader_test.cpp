@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -637,6 +638,25 @@ TEST_F(Loader, RealPlyCornellBlock) {
 // Hardening made with the fuzz targets (tests/fuzz/README.md): absurd sizes are refused
 // before anything is allocated, and values that are finite alone but overflow or vanish
 // together are refused with the entry named.
+
+// Found by fuzz_mesh (tests/fuzz/crashers/mesh/ply_header_*): assimp 5.2.5's PLY reader
+// never returns on a header without an "end_header" line, so `luxtrace check` hung on a
+// PLY file cut short inside its header. The loader refuses such a file itself.
+TEST_F(Loader, PlyHeaderWithoutEndHeaderIsRefused) {
+    const std::string cube = [] {
+        std::ifstream in(data("real/luxcore_simple-mat-cube1.ply"), std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }();
+    const std::size_t end = cube.find("end_header");
+    ASSERT_NE(end, std::string::npos);
+    const std::string scene = kMat + kLamp + "[[mesh]]\nfile = \"cut.ply\"\nmaterial = \"m\"\n";
+    write("cut.ply", cube.substr(0, end - 10));  // cut inside the header
+    expect_bad(scene, "file =", {"[[mesh]] #1", "cut.ply", "no 'end_header' line"});
+    write("cut.ply", cube.substr(0, end) + "pro" + cube.substr(end));  // "proend_header"
+    expect_bad(scene, "file =", {"no 'end_header' line"});
+    write("cut.ply", cube);  // the whole file still loads
+    EXPECT_EQ(load(scene).triangle_count(), 12u);
+}
 
 TEST_F(Loader, AbsurdSubdivisionsAreRefused) {
     const std::string shape = kMat + kLamp + "[[shape]]\nmaterial = \"m\"\nradius = 1\nsize = [1, 1]\n";

@@ -6,10 +6,40 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <string>
+#include <string_view>
 
 namespace luxtrace {
+
+namespace {
+
+// assimp 5.2.5's PLY reader never returns on a header that has no "end_header" line (a
+// file cut short inside its header, a damaged header): it seeks for ever. Such a file
+// is refused before assimp sees it. The header is ASCII lines even in binary PLY files.
+bool is_ply(const std::filesystem::path& file, const std::string& head) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".ply" || head.rfind("ply", 0) == 0;
+}
+
+bool ply_header_ends(const std::string& head) {
+    std::size_t pos = 0;
+    while (pos < head.size()) {
+        std::size_t end = head.find('\n', pos);
+        if (end == std::string::npos) end = head.size();
+        std::string_view line(head.data() + pos, end - pos);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+            line.remove_suffix(1);
+        if (line == "end_header") return true;
+        pos = end + 1;
+    }
+    return false;
+}
+
+}  // namespace
 
 Vec3 Transform::apply(const Vec3& p) const {
     Vec3 q = p * scale;
@@ -30,6 +60,16 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
                        const std::string& context) {
     if (!std::filesystem::is_regular_file(file))
         throw InputError(context + ": mesh file '" + file.string() + "' does not exist");
+    {
+        constexpr std::size_t kMaxPlyHeader = std::size_t{1} << 20;
+        std::ifstream in(file, std::ios::binary);
+        std::string head(kMaxPlyHeader, '\0');
+        in.read(head.data(), static_cast<std::streamsize>(head.size()));
+        head.resize(static_cast<std::size_t>(in.gcount()));
+        if (is_ply(file, head) && !ply_header_ends(head))
+            throw InputError(context + ": cannot read mesh '" + file.string() +
+                             "': its PLY header has no 'end_header' line (in its first MiB); is the file cut short?");
+    }
     Assimp::Importer importer;
     // Keep the file's winding and vertices; only triangulate polygons and bake node
     // transforms. Lines and points are dropped.

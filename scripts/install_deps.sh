@@ -10,6 +10,7 @@ packages=(
   python3-h5py python3-numpy python3-matplotlib
   slurm-wlm munge
   libcairo2-dev libpng-dev libopenexr-dev fonts-dejavu-core libxml2-utils
+  clang-14 libclang-rt-14-dev   # the libFuzzer build (tests/fuzz/README.md)
 )
 missing=()
 for p in "${packages[@]}"; do

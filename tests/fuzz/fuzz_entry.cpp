@@ -1,0 +1,456 @@
+// Entry functions of the fuzz targets; see fuzz_entry.hpp and tests/fuzz/README.md.
+#include "fuzz_entry.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/light/ies.hpp"
+#include "luxtrace/render/camera.hpp"
+#include "luxtrace/render/detector_plot.hpp"
+#include "luxtrace/render/renderer.hpp"
+#include "luxtrace/render/tone_map.hpp"
+#include "luxtrace/run/simulation.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/embree_scene.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+namespace luxtrace::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------------ fixed small files
+// Valid files that fuzzed scenes may name by relative path.
+constexpr std::string_view kCubeObj = R"(mtllib cube.mtl
+v -0.5 -0.5 -0.5
+v 0.5 -0.5 -0.5
+v 0.5 0.5 -0.5
+v -0.5 0.5 -0.5
+v -0.5 -0.5 0.5
+v 0.5 -0.5 0.5
+v 0.5 0.5 0.5
+v -0.5 0.5 0.5
+f 1 4 3 2
+f 5 6 7 8
+usemtl red
+f 1 5 8 4
+f 2 3 7 6
+usemtl grey
+f 1 2 6 5
+f 4 8 7 3
+)";
+constexpr std::string_view kCubeMtl = "newmtl red\nKd 0.8 0.1 0.1\nnewmtl grey\nKd 0.5 0.5 0.5\n";
+constexpr std::string_view kTriPly = R"(ply
+format ascii 1.0
+element vertex 4
+property float x
+property float y
+property float z
+element face 2
+property list uchar int vertex_indices
+end_header
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+3 0 1 2
+3 0 2 3
+)";
+constexpr std::string_view kLightIes = R"(IESNA:LM-63-2002
+[TEST] fuzz fixture
+TILT=NONE
+1 1000 1 5 3 1 2 0.1 0.1 0
+1 0 20
+0 45 90 135 180
+0 90 180
+300 250 120 10 0
+300 240 100 5 0
+300 230 90 0 0
+)";
+
+// The scene of the result target's seeds (tests/fuzz/make_result_seeds.sh writes results
+// of it): `render` reloads the scene named in a result, so it lives at a fixed path.
+constexpr std::string_view kResultSceneDir = "/tmp/luxtrace-fuzz-result-scene";
+constexpr std::string_view kResultScene = R"([scene]
+bands = ["R", "G", "B"]
+[[material]]
+name = "wall"
+reflectance = [0.6, 0.5, 0.4]
+[[material]]
+name = "mirror"
+type = "mirror"
+specular_reflectance = 0.8
+[[material]]
+name = "emitter"
+type = "black"
+[[shape]]
+type = "box"
+center = [1, 1, 1]
+size = [2, 2, 2]
+inward = true
+material = "wall"
+[[shape]]
+type = "rectangle"
+center = [0.5, 1, 0.01]
+normal = [0, 0, 1]
+size = [0.5, 0.5]
+material = "mirror"
+[[shape]]
+name = "panel"
+type = "rectangle"
+center = [1, 1, 1.99]
+normal = [0, 0, -1]
+size = [0.4, 0.4]
+material = "emitter"
+[[light]]
+type = "point"
+position = [1.5, 1.5, 1.5]
+ies = "light.ies"
+[[light]]
+type = "area"
+shape = "panel"
+flux_lm = 500
+colour = [1, 0.8, 0.6]
+[[detector]]
+name = "floor"
+center = [1, 1, 0.05]
+size = [1.6, 1.6]
+cells = [4, 3]
+[[detector]]
+name = "wall"
+type = "luminance"
+center = [0.02, 1, 1]
+normal = [1, 0, 0]
+up = [0, 0, 1]
+size = [1.5, 1.5]
+cells = [3, 2]
+half_angle_deg = 20
+[[camera]]
+name = "view"
+position = [1.8, 0.2, 1.6]
+target = [0.5, 1.5, 0.5]
+size = [12, 8]
+[run]
+seed = 5
+photons = 2000
+)";
+
+// One band, targets (so /history has target columns) and a spot and a directional light.
+constexpr std::string_view kResultSceneY = R"([[material]]
+name = "wall"
+reflectance = 0.5
+[[material]]
+name = "glass"
+type = "glass"
+ior = 1.5
+[[shape]]
+type = "box"
+center = [0, 0, 1]
+size = [2, 2, 2]
+inward = true
+material = "wall"
+[[shape]]
+type = "sphere"
+center = [0, 0, 0.5]
+radius = 0.3
+subdivisions = 3
+material = "glass"
+[[light]]
+type = "spot"
+position = [0, 0, 1.9]
+direction = [0, 0, -1]
+half_angle_deg = 40
+flux_lm = 1000
+[[light]]
+type = "point"
+position = [0.5, 0.5, 1.5]
+flux_lm = 300
+[[detector]]
+name = "desk"
+center = [0, 0, 0.8]
+size = [1, 1]
+cells = [5, 5]
+[[camera]]
+name = "top"
+position = [0.9, -0.9, 1.8]
+target = [0, 0, 0.5]
+size = [8, 6]
+[run]
+seed = 7
+photons = 3000
+[[run.target]]
+on = "detector:desk"
+relative_error = 0.5
+[[run.target]]
+on = "detector:desk[1:3,1:3]"
+photons_received = 1000000000000
+)";
+
+void write_file(const fs::path& p, std::string_view text) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!out) {
+        std::cerr << "fuzz: cannot write " << p << '\n';
+        std::abort();
+    }
+}
+
+// Written through a temporary name and renamed: other fuzzing processes may read it.
+void publish_file(const fs::path& p, std::string_view text) {
+    const fs::path tmp = p.string() + ".tmp" + std::to_string(::getpid());
+    write_file(tmp, text);
+    fs::rename(tmp, p);
+}
+
+// The process's private folder, removed at exit.
+const fs::path& private_dir() {
+    static const fs::path dir = [] {
+        std::string templ = (fs::temp_directory_path() / "luxtrace-fuzz-XXXXXX").string();
+        if (::mkdtemp(templ.data()) == nullptr) {
+            std::perror("fuzz: mkdtemp");
+            std::abort();
+        }
+        const fs::path d = templ;
+        write_file(d / "cube.obj", kCubeObj);
+        write_file(d / "cube.mtl", kCubeMtl);
+        write_file(d / "tri.ply", kTriPly);
+        write_file(d / "light.ies", kLightIes);
+        std::atexit([] {
+            std::error_code ec;
+            fs::remove_all(private_dir(), ec);
+        });
+        return d;
+    }();
+    return dir;
+}
+
+fs::path write_input(const std::string& name, const std::uint8_t* data, std::size_t size) {
+    const fs::path p = private_dir() / name;
+    write_file(p, std::string_view(reinterpret_cast<const char*>(data), size));
+    return p;
+}
+
+[[noreturn]] void broken(const std::string& what) {
+    std::cerr << "fuzz: invariant broken: " << what << '\n';
+    std::abort();
+}
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// What the rest of luxtrace relies on in a scene that load_scene accepted.
+void check_scene(const Scene& s) {
+    if (s.bands.empty()) broken("no bands");
+    const std::size_t T = s.triangles.size(), V = s.vertices.size();
+    if (T == 0) broken("no triangles");
+    if (s.triangle_material.size() != T || s.triangle_area_m2.size() != T || s.triangle_normal.size() != T)
+        broken("per-triangle arrays differ in size");
+    for (const auto& v : s.vertices)
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) broken("vertex not finite");
+    for (std::size_t t = 0; t < T; ++t) {
+        for (int k = 0; k < 3; ++k)
+            if (s.triangles[t][k] >= V)
+                broken("triangle " + std::to_string(t) + " names vertex " + std::to_string(s.triangles[t][k]) +
+                       " of " + std::to_string(V));
+        if (s.triangle_material[t] >= s.materials.size()) broken("material index out of range");
+        if (!(s.triangle_area_m2[t] > 0.0 && std::isfinite(s.triangle_area_m2[t]))) broken("bad triangle area");
+        if (!finite(s.triangle_normal[t])) broken("normal not finite");
+    }
+    if (!finite(s.bounds_min) || !finite(s.bounds_max)) broken("bounds not finite");
+    if (!std::isfinite(s.ray_epsilon_m())) broken("ray epsilon not finite");
+    const double total = s.lights.total_flux_lm();
+    if (!(total > 0.0 && std::isfinite(total))) broken("total flux " + std::to_string(total));
+    for (const Light& l : s.lights.lights()) {
+        if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm))) broken(l.label + ": flux " + std::to_string(l.flux_lm));
+        if (l.band_share.size() != s.bands.size()) broken(l.label + ": band shares");
+        for (double c : l.band_share)
+            if (!(c >= 0.0 && c <= 1.0)) broken(l.label + ": band share " + std::to_string(c));
+        if (l.type == LightType::area && !(l.surface.area_m2 > 0.0 && std::isfinite(l.surface.area_m2)))
+            broken(l.label + ": emitter area " + std::to_string(l.surface.area_m2));
+        if (l.type == LightType::point && l.ies && !(l.ies->flux_lm() > 0.0 && std::isfinite(l.ies->flux_lm())))
+            broken(l.label + ": sampling table flux");
+        // A few emitted rays must be finite.
+        for (int k = 0; k < 4; ++k) {
+            const double u = (k + 0.5) / 4.0;
+            const EmittedRay ray = l.emit(u, 1.0 - u, u * u, 0.37);
+            if (!finite(ray.origin) || !finite(ray.direction)) broken(l.label + ": emitted ray not finite");
+        }
+    }
+    for (const Detector& d : s.detectors) {
+        if (!(d.nx >= 1 && d.ny >= 1 && static_cast<double>(d.nx) * d.ny <= 1e8)) broken("detector cells");
+        if (!std::isfinite(d.value_per_lm())) broken("detector " + d.name + ": value per lm not finite");
+    }
+    for (const Camera& c : s.cameras)
+        if (!(c.width >= 1 && c.height >= 1 && c.width <= 16384 && c.height <= 16384)) broken("camera size");
+}
+
+// Runs `f`; InputError is the expected answer to bad input.
+template <class F>
+void expect_input_error_only(F&& f) {
+    try {
+        f();
+    } catch (const InputError&) {
+    }
+}
+
+void quiet_hdf5() {
+    static const bool once = [] {
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the error stacks are noise here
+        return true;
+    }();
+    (void)once;
+}
+
+// Every HDF5 object a reader opened must be closed again.
+void check_hdf5_closed(const char* after) {
+    const ssize_t open = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL);
+    if (open != 0) broken(std::to_string(open) + " HDF5 objects left open after " + after);
+}
+
+const fs::path& result_scene_dir() {
+    static const fs::path dir = [] {
+        const fs::path d(kResultSceneDir);
+        std::error_code ec;
+        fs::create_directories(d, ec);
+        publish_file(d / "scene.toml", kResultScene);
+        publish_file(d / "scene_y.toml", kResultSceneY);
+        publish_file(d / "light.ies", kLightIes);
+        return d;
+    }();
+    return dir;
+}
+
+}  // namespace
+
+int fuzz_scene(const std::uint8_t* data, std::size_t size) {
+    const fs::path file = write_input("scene.toml", data, size);
+    expect_input_error_only([&] { check_scene(load_scene(file)); });
+    return 0;
+}
+
+int fuzz_ies(const std::uint8_t* data, std::size_t size) {
+    const fs::path file = write_input("input.ies", data, size);
+    IesPhotometry p;
+    try {
+        p = load_ies(file);
+    } catch (const InputError&) {
+        return 0;
+    }
+    const IesSymmetry sym = p.symmetry();  // std::logic_error if load_ies let a bad layout through
+    (void)sym;
+    const double flux = p.flux_lm();
+    if (!(flux > 0.0 && std::isfinite(flux))) broken("accepted photometry has flux " + std::to_string(flux));
+    for (int g = 0; g <= 12; ++g)
+        for (int c = 0; c < 8; ++c) {
+            const double v = p.intensity_cd(g * kPi / 12.0, c * kPi / 4.0 - 1.0);
+            if (!(v >= 0.0 && std::isfinite(v))) broken("intensity " + std::to_string(v));
+        }
+    // The scene loader builds the sampling table of a light's photometry; a coarse one
+    // here keeps the target fast. No light on the grid's directions is a documented
+    // std::invalid_argument, which load_scene turns into an InputError.
+    try {
+        const IesDistribution dist(p, 24, 48);
+        for (int k = 0; k < 16; ++k) {
+            const Vec3 d = dist.sample((k + 0.5) / 16.0, std::fmod(0.618 * k, 1.0));
+            if (!finite(d) || std::abs(glm::length(d) - 1.0) > 1e-9) broken("sampled direction");
+        }
+    } catch (const std::invalid_argument&) {
+    }
+    return 0;
+}
+
+int fuzz_mesh(const std::uint8_t* data, std::size_t size) {
+    if (size == 0) return 0;
+    const std::string ext = (data[0] & 1) ? ".ply" : ".obj";
+    write_input("input" + ext, data + 1, size - 1);
+    std::string scene = "[[material]]\nname = \"m\"\nreflectance = 0.5\n"
+                        "[[material]]\nname = \"red\"\nreflectance = 0.7\n"
+                        "[[mesh]]\nfile = \"input" + ext + "\"\nmaterial = \"m\"\n"
+                        "[[light]]\ntype = \"point\"\nposition = [0.2, 0.3, 2]\nflux_lm = 100\n";
+    const fs::path file = write_input("mesh_scene.toml", reinterpret_cast<const std::uint8_t*>(scene.data()),
+                                      scene.size());
+    expect_input_error_only([&] { check_scene(load_scene(file)); });
+    return 0;
+}
+
+int fuzz_result(const std::uint8_t* data, std::size_t size) {
+    quiet_hdf5();
+    result_scene_dir();
+    // A new name each time: HDF5 identifies an open file by its inode, so a file that a
+    // leaked handle still holds open must never be mistaken for the next input.
+    static unsigned long serial = 0;
+    const fs::path file = write_input("input" + std::to_string(serial++) + ".h5", data, size);
+
+    // luxtrace info
+    expect_input_error_only([&] {
+        const ResultReader r(file);
+        std::ostringstream out;
+        print_result_summary(r, out);
+    });
+    check_hdf5_closed("info");
+    // luxtrace run --restart: main.cpp's checks, then the simulation's read_checkpoint.
+    expect_input_error_only([&] {
+        {
+            const ResultReader ck(file);
+            (void)ck.attr_str("/", "format");
+            (void)ck.attr_u64("/", "seed");
+            (void)ck.attr_str("/", "sampler");
+            (void)ck.attr_u64("/checkpoint", "budget");
+        }
+        const CheckpointState s = read_checkpoint(file);
+        if (s.tallies.size() != s.layout_size || s.done.size() % 2 != 0) broken("checkpoint sizes");
+        for (const HistoryRow& row : s.history)
+            if (row.target_value.size() != row.target_forecast_s.size() ||
+                row.target_value.size() != row.target_forecast_photons.size())
+                broken("history row sizes");
+    });
+    check_hdf5_closed("restart");
+    // luxtrace render: the views (small, one sample per pixel) and the detector pictures.
+    expect_input_error_only([&] {
+        RenderInput in = load_render_input(file);
+        const EmbreeScene embree(in.scene);
+        const Renderer renderer(in.scene, embree, std::move(in.secondary_lx));
+        RenderOptions opt;
+        opt.samples = 1;
+        opt.threads = 1;
+        opt.area_light_samples = 2;
+        for (Camera c : in.scene.cameras) {
+            c.width = std::min(c.width, 12);
+            c.height = std::min(c.height, 8);
+            const LuminanceImage image = renderer.render(PinholeCamera(c), opt);
+            AutoToneParams tone;
+            (void)tone_map_auto(image, 2.2, &tone);
+            (void)tone_map_exposure(image, tone.white_cd_m2, 2.2);
+            (void)tone_map_false_colour(image, FalseColourScale::log_below(tone.white_cd_m2));
+        }
+    });
+    check_hdf5_closed("render");
+    std::vector<std::string> detectors;
+    expect_input_error_only([&] { detectors = ResultReader(file).children("/detectors"); });
+    for (const std::string& d : detectors)
+        expect_input_error_only([&] { render_detector_pictures(file, d, "", private_dir() / "pictures"); });
+    check_hdf5_closed("detector pictures");
+    std::error_code ec;
+    fs::remove(file, ec);
+    return 0;
+}
+
+Entry entry_by_name(const std::string& name) {
+    if (name == "scene") return fuzz_scene;
+    if (name == "ies") return fuzz_ies;
+    if (name == "mesh") return fuzz_mesh;
+    if (name == "result") return fuzz_result;
+    return nullptr;
+}
+
+}  // namespace luxtrace::fuzz

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Runs one libFuzzer target of build-fuzz/ (tests/fuzz/README.md) on a working copy of
+# its committed corpus:
+#   bash tests/fuzz/run_fuzzer.sh TARGET SECONDS [more libFuzzer options]
+# TARGET is scene, ies, mesh or result. New inputs go to build-fuzz/fuzz/TARGET/corpus,
+# crashes to build-fuzz/fuzz/TARGET/artifacts/, the log to build-fuzz/fuzz/TARGET/log.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+target=$1 seconds=$2
+shift 2
+bin=${LUXTRACE_FUZZ_BUILD:-$root/build-fuzz}/tests/fuzz/fuzz_$target
+work=${LUXTRACE_FUZZ_BUILD:-$root/build-fuzz}/fuzz/$target
+[ -x "$bin" ] || { echo "no $bin: build with -DLUXTRACE_FUZZ=ON first" >&2; exit 2; }
+mkdir -p "$work/corpus" "$work/artifacts"
+cp -n "$here/corpus/$target"/* "$work/corpus/" 2>/dev/null || true
+opts=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
+      -artifact_prefix="$work/artifacts/")
+asan=detect_leaks=1
+case $target in
+  scene)  opts+=(-max_len=8192 -dict="$here/scene.dict") ;;
+  ies)    opts+=(-max_len=32768) ;;
+  # assimp's own crashes and hangs on damaged files are not ours: keep fuzzing past them
+  # (each is still written to artifacts/ and must be triaged: a luxtrace frame is ours).
+  mesh)   opts+=(-max_len=4096 -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1) ;;
+  # Full stacks for every allocation, so that the leak suppressions can tell a leak inside
+  # libhdf5 (no frame pointers) from one that luxtrace's calls cause. HDF5 itself crashes
+  # on some damaged global heaps (README): keep going past them too, and triage.
+  result) opts+=(-max_len=65536 -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+          asan+=:fast_unwind_on_malloc=0:suppressions=$here/asan.supp ;;
+  *) echo "unknown target $target" >&2; exit 2 ;;
+esac
+export ASAN_OPTIONS=${ASAN_OPTIONS:-$asan}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$here/lsan.supp:print_suppressions=0}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+cd "$work"
+rc=0
+nice -n 5 "$bin" "${opts[@]}" "$@" "$work/corpus" > "$work/log" 2>&1 || rc=$?
+grep -E "^#[0-9]+:? +(cov|INITED|DONE|pulse)|ERROR|SUMMARY|invariant|stat::|Test unit written" "$work/log" || true
+echo "fuzz_$target: exit $rc; log $work/log"
+exit "$rc"

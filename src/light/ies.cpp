@@ -21,6 +21,7 @@
 #include "luxtrace/light/ies.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/light/guided_cdf.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -379,13 +380,18 @@ IesDistribution::IesDistribution(const IesPhotometry& p, int n_gamma, int n_c)
     if (!(flux_lm_ > 0.0)) throw std::invalid_argument("IesDistribution: zero flux");
     for (double& m : marginal_cdf_) m /= flux_lm_;
     marginal_cdf_[n_gamma] = 1.0;
+    guide_slices_ = std::max(1, std::min(n_gamma, n_c) / 4);
+    marginal_guide_ = build_guide(marginal_cdf_.data(), n_gamma, guide_slices_);
+    for (int i = 0; i < n_gamma; ++i) {
+        const auto g = build_guide(&conditional_cdf_[static_cast<std::size_t>(i) * (n_c + 1)], n_c, guide_slices_);
+        conditional_guide_.insert(conditional_guide_.end(), g.begin(), g.end());
+    }
 }
 
 namespace {
 // Cell k with cdf[k] <= u < cdf[k+1] (never a zero-width cell) and u's position in it.
-std::pair<int, double> invert(const double* cdf, int n, double u) {
-    const double* it = std::upper_bound(cdf, cdf + n + 1, u);
-    const int k = std::clamp(static_cast<int>(it - cdf) - 1, 0, n - 1);
+std::pair<int, double> invert(const double* cdf, int n, const std::uint32_t* guide, int slices, double u) {
+    const int k = find_cell(cdf, n, guide, slices, u);
     const double width = cdf[k + 1] - cdf[k];
     const double t = width > 0.0 ? (u - cdf[k]) / width : 0.5;
     return {k, std::clamp(t, 0.0, 1.0)};
@@ -396,9 +402,9 @@ Vec3 IesDistribution::sample(double u1, double u2) const {
     constexpr double kOneMinus = 1.0 - 0x1p-53;
     u1 = std::clamp(u1, 0.0, kOneMinus);
     u2 = std::clamp(u2, 0.0, kOneMinus);
-    const auto [i, t1] = invert(marginal_cdf_.data(), n_gamma_, u1);
-    const auto [j, t2] =
-        invert(&conditional_cdf_[static_cast<std::size_t>(i) * (n_c_ + 1)], n_c_, u2);
+    const auto [i, t1] = invert(marginal_cdf_.data(), n_gamma_, marginal_guide_.data(), guide_slices_, u1);
+    const auto [j, t2] = invert(&conditional_cdf_[static_cast<std::size_t>(i) * (n_c_ + 1)], n_c_,
+                                &conditional_guide_[static_cast<std::size_t>(i) * guide_slices_], guide_slices_, u2);
     const double cg = cos_edge_[i] + t1 * (cos_edge_[i + 1] - cos_edge_[i]);
     const double sg = std::sqrt(std::max(0.0, 1.0 - cg * cg));
     const double c = (j + t2) * (2.0 * kPi / n_c_);

@@ -71,10 +71,21 @@ LightSet::LightSet(std::vector<Light> lights) : lights_(std::move(lights)) {
     for (double& v : light_cdf_) v /= sum;
 }
 
-std::size_t LightSet::pick_light(double u) const { return sample_cdf(light_cdf_, u); }
+namespace {
+// sample_cdf for the few entries of a light or band table: a scan, same answer.
+std::size_t scan_cdf(const std::vector<double>& cdf, double u) {
+    std::size_t i = 0;
+    while (i + 1 < cdf.size() && cdf[i] <= u) ++i;
+    return i;
+}
+}  // namespace
+
+std::size_t LightSet::pick_light(double u) const {
+    return light_cdf_.size() <= 16 ? scan_cdf(light_cdf_, u) : sample_cdf(light_cdf_, u);
+}
 
 int LightSet::pick_band(std::size_t light, double u) const {
-    return static_cast<int>(sample_cdf(band_cdf_[light], u));
+    return static_cast<int>(scan_cdf(band_cdf_[light], u));  // at most a few bands
 }
 
 }  // namespace luxtrace

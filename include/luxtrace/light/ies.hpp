@@ -8,6 +8,7 @@
 // is (sin g cos c, sin g sin c, cos g); the light places this frame along its `aim`.
 #include "luxtrace/core/math.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -79,6 +80,8 @@ private:
     std::vector<double> cos_edge_;        // cos of the gamma cell edges, n_gamma + 1
     std::vector<double> marginal_cdf_;    // over gamma rows, n_gamma + 1, ends at 1
     std::vector<double> conditional_cdf_; // per row over c cells, n_gamma x (n_c + 1)
+    int guide_slices_ = 1;                // guide tables (guided_cdf.hpp): n / 4 slices each
+    std::vector<std::uint32_t> marginal_guide_, conditional_guide_;
 };
 
 }  // namespace luxtrace

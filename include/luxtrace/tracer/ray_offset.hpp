@@ -10,10 +10,20 @@
 #include "luxtrace/core/math.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
 namespace luxtrace {
+
+// The next float above / below a finite v (std::nextafter without the library call).
+inline float next_float_up(float v) {
+    if (v == 0.0f) return std::numeric_limits<float>::denorm_min();
+    const auto bits = std::bit_cast<std::uint32_t>(v);
+    return std::bit_cast<float>(v > 0.0f ? bits + 1 : bits - 1);
+}
+inline float next_float_down(float v) { return -next_float_up(-v); }
 
 // A point on a triangle in float coordinates and a per-axis bound on its error.
 struct SurfacePoint {
@@ -69,8 +79,8 @@ inline Vec3f spawn_origin(const SurfacePoint& s, const Vec3f& n, float margin) {
     const float d = glm::dot(glm::abs(n), s.error) + margin;
     Vec3f o = s.p + d * n;
     for (int i = 0; i < 3; ++i) {
-        if (n[i] > 0.0f) o[i] = std::nextafter(o[i], std::numeric_limits<float>::infinity());
-        else if (n[i] < 0.0f) o[i] = std::nextafter(o[i], -std::numeric_limits<float>::infinity());
+        if (n[i] > 0.0f) o[i] = next_float_up(o[i]);
+        else if (n[i] < 0.0f) o[i] = next_float_down(o[i]);
     }
     return o;
 }

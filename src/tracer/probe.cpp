@@ -3,6 +3,7 @@
 #include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/ray_offset.hpp"
 
 #include <cstdio>
 
@@ -11,16 +12,24 @@ namespace luxtrace {
 std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embree, int rays) {
     std::vector<std::string> warnings;
     PhiloxSampler sampler(0x9e3779b9u);
-    const double eps = scene.ray_epsilon_m();
     for (std::size_t li = 0; li < scene.lights.lights().size(); ++li) {
         const Light& l = scene.lights.lights()[li];
         int black = 0, escaped = 0;
         for (int k = 0; k < rays; ++k) {
             sampler.start_photon(static_cast<std::uint64_t>(k));
             const double a = sampler.next(), b = sampler.next(), c = sampler.next(), d = sampler.next();
-            EmittedRay r = l.emit(a, b, c, d);
-            if (r.emitter_triangle >= 0) r.origin += eps * scene.triangle_normal[static_cast<std::size_t>(r.emitter_triangle)];
-            const Hit h = embree.intersect(r.origin, r.direction);
+            const EmittedRay r = l.emit(a, b, c, d);
+            Vec3f o = embree.to_local(r.origin);
+            if (r.emitter_triangle >= 0) {  // leave the emitter as the tracer does
+                const auto t = static_cast<unsigned>(r.emitter_triangle);
+                const glm::uvec3 v = scene.triangles[t];
+                const float margin = embree.self_hit_margin(t);
+                o = spawn_origin(point_on_triangle(embree.local_vertex(v.x), embree.local_vertex(v.y),
+                                                   embree.local_vertex(v.z), static_cast<float>(r.emitter_u),
+                                                   static_cast<float>(r.emitter_v), margin),
+                                 Vec3f(scene.triangle_normal[t]), margin);
+            }
+            const Hit h = embree.intersect_local(o, Vec3f(r.direction));
             if (!h.found) { ++escaped; continue; }
             if (scene.materials[scene.triangle_material[h.triangle]].type == MaterialType::black) ++black;
         }

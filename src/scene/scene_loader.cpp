@@ -24,9 +24,9 @@ double Scene::total_area_m2() const {
 }
 
 double Scene::ray_epsilon_m() const {
-    const Vec3 ext = bounds_max - bounds_min;
-    const double scale = std::max({glm::length(ext), glm::length(bounds_max), glm::length(bounds_min), 1e-3});
-    return 2e-6 * scale;
+    // Embree works relative to the scene's centre (EmbreeScene), so the scene's size,
+    // not its distance from the origin, sets the precision.
+    return 2e-6 * std::max(glm::length(bounds_max - bounds_min), 1e-3);
 }
 
 namespace {
@@ -495,6 +495,7 @@ struct Loader {
         };
         run.time_limit_s = nonneg("time_limit_s", run.time_limit_s);
         run.report_every_s = nonneg("report_every_s", run.report_every_s);
+        run.report_every_photons = r.count("report_every_photons").value_or(0);
         run.checkpoint_every_s = nonneg("checkpoint_every_s", run.checkpoint_every_s);
         if (auto o = r.string("output")) run.output = resolve(*o).string();
         if (auto c = r.string("checkpoint")) run.checkpoint = resolve(*c).string();

@@ -45,7 +45,8 @@ struct Scene {
     int band_count() const { return static_cast<int>(bands.size()); }
     std::size_t triangle_count() const { return triangles.size(); }
     double total_area_m2() const;
-    // Length scale for ray offsets: a small fraction of the scene's extent.
+    // Length scale for the renderer's ray offsets: a small fraction of the scene's size
+    // (the photon tracer derives its offsets from each hit point's error, ray_offset.hpp).
     double ray_epsilon_m() const;
 };
 

@@ -2,6 +2,7 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/atomic_file.hpp"
+#include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include <hdf5.h>
@@ -85,19 +86,20 @@ struct MemoryImage {
     }
 };
 
-// Length of the HDF5 file in `image`: the "end of file address" of its version 2/3
-// superblock (HDF5 File Format Specification, section II.A), which H5F_LIBVER_V18
-// selects: signature (8 bytes), versions and sizes (4), base address (8), extension
-// address (8), end of file address (8, little-endian).
+// Length of the HDF5 file in `image`: the user block plus the "end of file address" of
+// its version 2/3 superblock (HDF5 File Format Specification, section II.A), which
+// H5F_LIBVER_V18 selects: signature (8 bytes), versions and sizes (4), base address (8),
+// extension address (8), end of file address (8, little-endian, from the superblock on).
 std::size_t file_length(const std::vector<char>& image) {
     static const unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-    if (image.size() < 48 || std::memcmp(image.data(), kSignature, 8) != 0 || (image[8] != 2 && image[8] != 3) ||
-        image[9] != 8)
+    const char* sb = image.data() + kSealBytes;
+    if (image.size() < kSealBytes + 48 || std::memcmp(sb, kSignature, 8) != 0 || (sb[8] != 2 && sb[8] != 3) ||
+        sb[9] != 8)
         throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
     std::uint64_t eof = 0;
-    for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(image[28 + i]);
-    if (eof < 48 || eof > image.size()) throw std::runtime_error("HDF5: the in-memory file image is incomplete");
-    return static_cast<std::size_t>(eof);
+    for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(sb[28 + i]);
+    if (eof < 48 || eof > image.size() - kSealBytes) throw std::runtime_error("HDF5: the in-memory file image is incomplete");
+    return kSealBytes + static_cast<std::size_t>(eof);
 }
 
 void check(herr_t status, const std::string& what) {
@@ -331,9 +333,12 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         // Format of HDF5 1.8 and later: every metadata block carries a checksum, so a
         // damaged file is refused by the reader instead of being misread.
         check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST), "format bounds");
-        H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose, "create in memory");
+        // The first 512 bytes are kept for luxtrace's seal (file_seal.hpp).
+        H5Id fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation list");
+        check(H5Pset_userblock(fcpl, kSealBytes), "user block");
+        H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
         attr(file, "format", checkpoint != nullptr ? "luxtrace-checkpoint" : "luxtrace-result");
-        attr(file, "format_version", std::uint64_t{1});
+        attr(file, "format_version", std::uint64_t{1});  // layout unchanged by the seal
         attr(file, "luxtrace_version", info.luxtrace_version);
         attr(file, "scene_file", info.scene_file);
         attr(file, "scene_name", scene.name);
@@ -367,6 +372,7 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         file.close();
         image = std::move(captured.bytes);
         image.resize(file_length(image));  // the driver's buffer grows in whole increments
+        seal_image(image);
     }
     H5E_END_TRY;
     write_file_atomically(path, image);

@@ -1,5 +1,6 @@
 // Reading result files back (luxtrace info, tests, later the renderer).
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/io/result_file.hpp"
 
 #include <hdf5.h>
@@ -24,9 +25,11 @@ struct Closer {
     throw InputError(path.string() + ": " + what);
 }
 
-// Datasets of a luxtrace result are stored uncompressed, so a dataset cannot hold more
-// elements than its storage has bytes; a larger claim is damage (and must not allocate).
+// A dataset's elements come from its stored bytes: uncompressed one for one, deflated
+// (large datasets) at most about 1032 to 1 (zlib's limit). A claim of more than that is
+// damage, and must not allocate gigabytes.
 constexpr std::size_t kMaxUnbackedBytes = std::size_t{64} << 20;
+constexpr std::size_t kMaxDeflateRatio = 1100;
 
 template <class T>
 std::vector<T> read_dataset(const std::filesystem::path& path, hid_t file, const std::string& name, hid_t mem_type,
@@ -51,7 +54,7 @@ std::vector<T> read_dataset(const std::filesystem::path& path, hid_t file, const
         hsize_t stored = 0;
         H5E_BEGIN_TRY { stored = H5Dget_storage_size(ds.id); }
         H5E_END_TRY;
-        if (stored < total)
+        if (stored * kMaxDeflateRatio < total * sizeof(T))
             fail(path, "dataset " + name + " claims " + std::to_string(total) + " elements but stores " +
                            std::to_string(stored) + " bytes");
     }
@@ -86,6 +89,7 @@ std::size_t attr_points(const std::filesystem::path& path, hid_t space, const st
 
 ResultReader::ResultReader(const std::filesystem::path& path) : path_(path) {
     if (!std::filesystem::is_regular_file(path)) throw InputError(path.string() + ": no such result file");
+    sealed_ = check_seal(path);  // before HDF5 parses a byte of it
     H5E_BEGIN_TRY { file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); }
     H5E_END_TRY;
     if (file_ < 0) throw InputError(path.string() + ": not an HDF5 file");
@@ -215,6 +219,10 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
     const std::string where = path.string() + ": ";
     if (r.attr_str("/", "format") != "luxtrace-checkpoint" || !r.has("/checkpoint"))
         throw InputError(where + "not a luxtrace checkpoint (it is a result file; restart needs a checkpoint)");
+    // Unsealed checkpoints come from luxtrace 0.1, whose photons drew other random numbers.
+    if (!r.sealed())
+        throw InputError(where + "this checkpoint has no luxtrace seal: it was written by luxtrace 0.1 (photon layout 1); "
+                                 "continue it with that version or start anew");
     CheckpointState s;
     try {
         s.tallies = r.u64("/checkpoint/tallies");

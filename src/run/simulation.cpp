@@ -406,7 +406,7 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         const std::vector<std::string> labels = r.attr_strs("/history", "target_labels");
         const std::vector<double> goals = r.f64_attr_array("/history", "target_goals");
         const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
-        for (std::size_t i = 0; i < nt && i < labels.size() && shape[0] > 0; ++i) {
+        for (std::size_t i = 0; i < nt && i < labels.size() && i < goals.size() && shape[0] > 0; ++i) {
             const double last = v[(shape[0] - 1) * nt + i];
             const bool count = labels[i].find("received") != std::string::npos;
             const bool rel = labels[i].find(" rel") != std::string::npos;

@@ -90,9 +90,12 @@ public:
     std::vector<std::string> attr_strs(const std::string& object, const std::string& name) const;
     std::vector<std::string> children(const std::string& group) const;
     const std::filesystem::path& path() const { return path_; }
+    // The file carries luxtrace's seal (file_seal.hpp) and matched it.
+    bool sealed() const { return sealed_; }
 
 private:
     std::filesystem::path path_;
+    bool sealed_ = false;
     std::int64_t file_ = -1;  // hid_t
 };
 

@@ -51,9 +51,18 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
     std::vector<double> sorted = recent_stalls_;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    if (scene_.run.report_every_photons == 0) period_s_ = std::max(period_s_, 50.0 * sorted[sorted.size() / 2]);
+    const double min_period_s = 50.0 * sorted[sorted.size() / 2];
+    if (scene_.run.report_every_photons == 0) period_s_ = std::max(period_s_, min_period_s);
     Decision d;
     d.next_period_s = period_s_;
+    // When a target's forecast falls before the next reduction, reduce then instead: the
+    // run stops close to the moment the target is met, not up to a period later. (Not
+    // with reductions at photon counts, whose schedule is fixed.)
+    if (scene_.run.report_every_photons == 0)
+        for (const Forecast& f : forecast_)
+            if (f.valid && f.time_s > in.elapsed_s)
+                d.next_period_s = std::min(d.next_period_s, std::max({kMinPeriod_s, min_period_s,
+                                                                       1.02 * (f.time_s - in.elapsed_s)}));
     bool error_targets_unmet = false;
     for (const TargetStatus& s : status_) {
         if (s.met) {
@@ -87,7 +96,7 @@ Decision RunController::after_reduction(const ReductionInput& in) {
         return d;
     }
     // The next reduction comes no later than the last moment to stop.
-    if (run.time_limit_s > 0.0) d.next_period_s = std::min(period_s_, run.time_limit_s - margin_s - in.elapsed_s);
+    if (run.time_limit_s > 0.0) d.next_period_s = std::min(d.next_period_s, run.time_limit_s - margin_s - in.elapsed_s);
     if (run.checkpoint_every_s > 0.0 && in.elapsed_s - last_checkpoint_s_ >= run.checkpoint_every_s) {
         d.checkpoint = true;
         last_checkpoint_s_ = in.elapsed_s;

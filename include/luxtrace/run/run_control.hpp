@@ -37,6 +37,8 @@ class RunController {
 public:
     // With reductions at photon counts, the longest wait for one (seconds).
     static constexpr double kPhotonPeriodBound_s = 3600.0;
+    // The shortest period a forecast may ask for.
+    static constexpr double kMinPeriod_s = 0.05;
     // `previous`: history of the run being continued (times since its start).
     RunController(const Scene& scene, const TallyLayout& layout, std::vector<HistoryRow> previous,
                   double previous_elapsed_s, std::uint64_t previous_photons);

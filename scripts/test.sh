@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # The README's test command: install dependencies, build, run every test (unit tests,
 # statistical and end-to-end validation, MPI bit-identity under mpirun).
-#   scripts/test.sh --sanitize   instead: the whole suite under ASan+UBSan (build-asan/) and
-#                                the threaded tests under TSan (build-tsan/); see
-#                                docs/SANITIZERS.md
+#   scripts/test.sh --sanitize   instead: the suite under ASan+UBSan (build-asan/), then
+#                                under TSan (build-tsan/); see docs/SANITIZERS.md
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = --sanitize ]; then

@@ -2,7 +2,9 @@
 # The sanitized test run (docs/SANITIZERS.md), what `scripts/test.sh --sanitize` does:
 #   build-asan/  -DLUXTRACE_SANITIZE=address (ASan + UBSan, leaks on): the whole ctest suite
 #                but slurm_end_to_end (see below)
-#   build-tsan/  -DLUXTRACE_SANITIZE=thread  (ThreadSanitizer): the tests labelled "threads"
+#   build-tsan/  -DLUXTRACE_SANITIZE=thread  (ThreadSanitizer): the same suite; the tests
+#                labelled "threads" (ctest -L threads) are the ones that run several
+#                threads or ranks, the rest costs two minutes more
 # Both RelWithDebInfo (-O2 -g, frame pointers) for usable stacks. Fails if any test fails.
 # Usage: run.sh [address|thread]...   (default: both, ASan first)
 # Environment: JOBS (parallel compile jobs, default nproc), CTEST_JOBS (default 2).
@@ -18,7 +20,7 @@ bash "$root/scripts/install_deps.sh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 declare -A dir=([address]=build-asan [thread]=build-tsan)
-declare -A what=([address]="ASan+UBSan, whole suite" [thread]="TSan, label threads")
+declare -A what=([address]="ASan+UBSan" [thread]="TSan")
 summary=() status=0
 for k in "${kinds[@]}"; do
     build=$root/${dir[$k]}
@@ -37,14 +39,10 @@ for k in "${kinds[@]}"; do
         # ENVIRONMENT property, where it has one, sets the same.
         while IFS= read -r kv; do [ -n "$kv" ] && export "$kv"; done <"$build/sanitizer.env"
         cd "$build"
-        if [ "$k" = thread ]; then
-            ctest --output-on-failure -j"${CTEST_JOBS:-2}" --timeout 3600 --no-tests=error -L threads
-        else
-            # slurm_end_to_end is left out: its limits (jobs of 1 to 5 minutes, 330 s for
-            # the whole test) are set for the optimised build, and the sanitized luxtrace
-            # is 3 to 5 times slower, so it fails on time, not on a finding.
-            ctest --output-on-failure -j"${CTEST_JOBS:-2}" --timeout 3600 -E '^slurm_end_to_end$'
-        fi
+        # slurm_end_to_end is left out: its limits (jobs of 1 to 5 minutes, 330 s for the
+        # whole test) are set for the optimised build, and the sanitized luxtrace is 3 to 5
+        # times slower, so it fails on time, not on a finding.
+        ctest --output-on-failure -j"${CTEST_JOBS:-2}" --timeout 3600 --no-tests=error -E '^slurm_end_to_end$'
     ) || rc=$?
     tt=$((SECONDS - t0))
     ((rc == 0)) || status=1

@@ -4,7 +4,7 @@
 #                but slurm_end_to_end (see below)
 #   build-tsan/  -DLUXTRACE_SANITIZE=thread  (ThreadSanitizer): the same suite; the tests
 #                labelled "threads" (ctest -L threads) are the ones that run several
-#                threads or ranks, the rest costs two minutes more
+#                threads or ranks; the rest adds a few minutes
 # Both RelWithDebInfo (-O2 -g, frame pointers) for usable stacks. Fails if any test fails.
 # Usage: run.sh [address|thread]...   (default: both, ASan first)
 # Environment: JOBS (parallel compile jobs, default nproc), CTEST_JOBS (default 2).

@@ -1,7 +1,7 @@
 // Chi-square tests of every emission sampling routine, driven by the production
 // PhiloxSampler, and tests of the sampler itself (range, order independence, seeds,
 // uniformity, pair correlation). Each chi-square test is rejected at p = 0.999.
-#include "luxtrace/light/guided_cdf.hpp"
+#include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/ies.hpp"
 #include "luxtrace/light/light.hpp"
 #include "luxtrace/material/material.hpp"
@@ -477,30 +477,32 @@ TEST(Philox, PairsOfDimensionsAndPhotonsAreIndependent) {
 }  // namespace
 }  // namespace luxtrace
 
-// The guide table changes the search, never the answer: on random tables with runs of
-// zero-width cells, every u (and the cell edges themselves) lands in the cell a binary
-// search finds.
-TEST(GuidedCdf, FindsTheCellABinarySearchFinds) {
+// The alias table gives each cell its probability (chi-square over many draws on random
+// tables with empty cells), never an empty cell, and a uniform position within the cell.
+TEST(AliasTable, CellsComeWithTheirProbabilityAndUniformPositions) {
     using namespace luxtrace;
     PhiloxSampler s(77);
     s.start_photon(0);
-    for (int trial = 0; trial < 40; ++trial) {
-        const int n = 1 + static_cast<int>(s.next() * 400);
-        std::vector<double> cdf(static_cast<std::size_t>(n) + 1, 0.0);
-        for (int k = 0; k < n; ++k) cdf[k + 1] = cdf[k] + (s.next() < 0.3 ? 0.0 : s.next());
-        if (cdf[n] == 0.0) cdf[n] = 1.0;
-        for (double& c : cdf) c /= cdf[n];
-        cdf[n] = 1.0;
-        const int slices = std::max(1, n / 4);
-        const std::vector<std::uint32_t> guide = build_guide(cdf.data(), n, slices);
-        std::vector<double> us;
-        for (int i = 0; i < 2000; ++i) us.push_back(s.next());
-        for (int k = 0; k < n; ++k) us.push_back(cdf[k]);
-        for (double u : us) {
-            if (!(u < 1.0)) continue;
-            const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
-            const int want = std::clamp(static_cast<int>(it - cdf.begin()) - 1, 0, n - 1);
-            ASSERT_EQ(find_cell(cdf.data(), n, guide.data(), slices, u), want) << "n " << n << ", u " << u;
+    for (int trial = 0; trial < 6; ++trial) {
+        const int n = 1 + static_cast<int>(s.next() * 300);
+        std::vector<double> w(static_cast<std::size_t>(n));
+        double sum = 0.0;
+        for (double& x : w) sum += (x = s.next() < 0.3 ? 0.0 : s.next());
+        if (sum == 0.0) sum += (w[0] = 1.0);
+        const AliasTable table(w);
+        for (int i = 0; i < n; ++i) EXPECT_NEAR(table.probability(i), w[i] / sum, 1e-6) << "cell " << i;
+        constexpr int kDraws = 400000;
+        std::vector<std::int64_t> obs(static_cast<std::size_t>(n), 0), pos(10, 0);
+        PhiloxSampler draw(1000 + trial);
+        for (int k = 0; k < kDraws; ++k) {
+            draw.start_photon(static_cast<std::uint64_t>(k));
+            const AliasTable::Pick p = table.sample(draw.next());
+            ASSERT_GT(w[p.cell], 0.0) << "an empty cell was drawn";
+            ASSERT_TRUE(p.t >= 0.0 && p.t < 1.0) << p.t;
+            ++obs[p.cell];
+            ++pos[std::min(9, static_cast<int>(p.t * 10))];
         }
+        expect_chi_square(obs, w, "alias cells");
+        expect_chi_square(pos, std::vector<double>(10, 1.0), "position in the cell");
     }
 }

@@ -2,6 +2,7 @@
 // where it should; built-in shapes and transformed meshes have the right areas,
 // positions and front sides; and each class of bad input is an InputError whose
 // message names the scene file, the line (or key) and what is wrong.
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include "luxtrace/core/error.hpp"
@@ -711,10 +712,22 @@ TEST_F(Loader, DetectorTooSmallToMeasureIsRefused) {
 }
 
 TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
-    // Light only within 0.1 degree of the nadir: no sampling-table direction sees it.
-    write("narrow.ies", "TILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 0.1\n0\n100 100\n");
+    // Light only within 0.1 degree of the nadir, in a file whose angles run to 90: no
+    // direction of the 0.5-degree sampling table sees it.
+    write("narrow.ies", "TILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 0\n0 0.1 90\n0\n100 0 0\n");
     expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"narrow.ies\"\n", "ies =",
                {"key 'ies'", "narrow.ies", "too narrow a beam"});
+    // The same beam in a file that ends at 0.1 degree: the table covers the file's range,
+    // and every direction lies within it.
+    write("pencil.ies", "TILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 0.1\n0\n100 100\n");
+    const Scene s = load(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"pencil.ies\"\n");
+    const Light& l = s.lights.lights().at(0);
+    PhiloxSampler u(5);
+    for (std::uint64_t k = 0; k < 1000; ++k) {
+        u.start_photon(k);
+        const double a = u.next(), b = u.next();
+        EXPECT_GE(l.ies->sample(a, b).z, std::cos(0.1 * kPi / 180.0) - 1e-12);
+    }
 }
 
 }  // namespace

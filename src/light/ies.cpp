@@ -21,7 +21,6 @@
 #include "luxtrace/light/ies.hpp"
 
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/light/guided_cdf.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -353,62 +352,91 @@ IesPhotometry load_ies(const std::filesystem::path& file) {
     return p;
 }
 
-IesDistribution::IesDistribution(const IesPhotometry& p, int n_gamma, int n_c)
-    : n_gamma_(n_gamma), n_c_(n_c) {
+IesDistribution::IesDistribution(const IesPhotometry& p, int n_gamma, int n_c) {
     if (n_gamma < 1 || n_c < 1) throw std::invalid_argument("IesDistribution: grid size < 1");
-    const double dg = kPi / n_gamma, dc = 2.0 * kPi / n_c;
-    cos_edge_.resize(n_gamma + 1);
-    for (int i = 0; i <= n_gamma; ++i) cos_edge_[i] = std::cos(i * dg);
-    cos_edge_[n_gamma] = -1.0;
+    // The table covers only where light can go: the file's vertical range (the
+    // interpolant is zero outside it) and one copy of its C-planes (the symmetry repeats
+    // it `copies_` times around the circle; sample() picks the copy). Cell sizes stay
+    // those of an n_gamma x n_c grid over the whole sphere, and the table shrinks with the
+    // range: a downlight's quadrant-symmetric file needs an eighth of the full grid, which
+    // stays in the core's cache.
+    gamma0_ = std::clamp(p.vertical_deg.front(), 0.0, 180.0) * kDeg;
+    const double gamma1 = std::clamp(p.vertical_deg.back(), 0.0, 180.0) * kDeg;
+    n_gamma_ = std::max(1, static_cast<int>(std::ceil(n_gamma * (gamma1 - gamma0_) / kPi - 1e-9)));
+    const double dg = (gamma1 - gamma0_) / n_gamma_;
+    symmetry_ = p.symmetry();
+    switch (symmetry_) {
+    case IesSymmetry::Rotational: copies_ = 1; c0_ = 0.0; c_span_ = 2.0 * kPi; break;
+    case IesSymmetry::Quadrant: copies_ = 4; c0_ = 0.0; c_span_ = 0.5 * kPi; break;
+    case IesSymmetry::Bilateral: copies_ = 2; c0_ = 0.0; c_span_ = kPi; break;
+    case IesSymmetry::Bilateral90: copies_ = 2; c0_ = 0.5 * kPi; c_span_ = kPi; break;
+    case IesSymmetry::Full: copies_ = 1; c0_ = 0.0; c_span_ = 2.0 * kPi; break;
+    }
+    // Rotational symmetry: the same in every C-plane, so one column.
+    n_c_ = symmetry_ == IesSymmetry::Rotational
+               ? 1
+               : std::max(1, static_cast<int>(std::ceil(n_c * c_span_ / (2.0 * kPi) - 1e-9)));
+    const double dc = c_span_ / n_c_;
+    cos_edge_.resize(n_gamma_ + 1);
+    for (int i = 0; i <= n_gamma_; ++i) cos_edge_[i] = std::cos(gamma0_ + i * dg);
+    if (gamma1 >= kPi) cos_edge_[n_gamma_] = -1.0;
 
     // Cell weight: intensity at the cell centre times the cell's exact solid angle.
-    marginal_cdf_.assign(n_gamma + 1, 0.0);
-    conditional_cdf_.assign(static_cast<std::size_t>(n_gamma) * (n_c + 1), 0.0);
-    for (int i = 0; i < n_gamma; ++i) {
-        const double g = (i + 0.5) * dg;
+    std::vector<double> row_flux(static_cast<std::size_t>(n_gamma_), 0.0), cells(static_cast<std::size_t>(n_c_));
+    rows_.reserve(static_cast<std::size_t>(n_gamma_));
+    for (int i = 0; i < n_gamma_; ++i) {
+        const double g = gamma0_ + (i + 0.5) * dg;
         const double solid = (cos_edge_[i] - cos_edge_[i + 1]) * dc;
-        double* row = &conditional_cdf_[static_cast<std::size_t>(i) * (n_c + 1)];
-        for (int j = 0; j < n_c; ++j)
-            row[j + 1] = row[j] + p.intensity_cd(g, (j + 0.5) * dc) * solid;
-        const double row_sum = row[n_c];
-        marginal_cdf_[i + 1] = marginal_cdf_[i] + row_sum;
-        // Normalise; a dark row keeps a uniform CDF (never chosen, but well formed).
-        for (int j = 1; j <= n_c; ++j) row[j] = row_sum > 0.0 ? row[j] / row_sum : double(j) / n_c;
-        row[n_c] = 1.0;
+        double sum = 0.0;
+        for (int j = 0; j < n_c_; ++j) sum += (cells[j] = p.intensity_cd(g, c0_ + (j + 0.5) * dc) * solid);
+        row_flux[i] = sum;
+        // A dark row is never chosen; it keeps a uniform table to stay well formed.
+        if (!(sum > 0.0)) std::fill(cells.begin(), cells.end(), 1.0);
+        rows_.emplace_back(cells);
     }
-    flux_lm_ = marginal_cdf_[n_gamma];
-    if (!(flux_lm_ > 0.0)) throw std::invalid_argument("IesDistribution: zero flux");
-    for (double& m : marginal_cdf_) m /= flux_lm_;
-    marginal_cdf_[n_gamma] = 1.0;
-    guide_slices_ = std::max(1, std::min(n_gamma, n_c) / 4);
-    marginal_guide_ = build_guide(marginal_cdf_.data(), n_gamma, guide_slices_);
-    for (int i = 0; i < n_gamma; ++i) {
-        const auto g = build_guide(&conditional_cdf_[static_cast<std::size_t>(i) * (n_c + 1)], n_c, guide_slices_);
-        conditional_guide_.insert(conditional_guide_.end(), g.begin(), g.end());
-    }
+    double total = 0.0;
+    for (double f : row_flux) total += f;
+    flux_lm_ = total * copies_;
+    if (!(flux_lm_ > 0.0) || !std::isfinite(flux_lm_)) throw std::invalid_argument("IesDistribution: zero flux");
+    marginal_ = AliasTable(row_flux);
 }
-
-namespace {
-// Cell k with cdf[k] <= u < cdf[k+1] (never a zero-width cell) and u's position in it.
-std::pair<int, double> invert(const double* cdf, int n, const std::uint32_t* guide, int slices, double u) {
-    const int k = find_cell(cdf, n, guide, slices, u);
-    const double width = cdf[k + 1] - cdf[k];
-    const double t = width > 0.0 ? (u - cdf[k]) / width : 0.5;
-    return {k, std::clamp(t, 0.0, 1.0)};
-}
-}  // namespace
 
 Vec3 IesDistribution::sample(double u1, double u2) const {
     constexpr double kOneMinus = 1.0 - 0x1p-53;
     u1 = std::clamp(u1, 0.0, kOneMinus);
     u2 = std::clamp(u2, 0.0, kOneMinus);
-    const auto [i, t1] = invert(marginal_cdf_.data(), n_gamma_, marginal_guide_.data(), guide_slices_, u1);
-    const auto [j, t2] = invert(&conditional_cdf_[static_cast<std::size_t>(i) * (n_c_ + 1)], n_c_,
-                                &conditional_guide_[static_cast<std::size_t>(i) * guide_slices_], guide_slices_, u2);
+    const auto [i, t1] = marginal_.sample(u1);
     const double cg = cos_edge_[i] + t1 * (cos_edge_[i + 1] - cos_edge_[i]);
     const double sg = std::sqrt(std::max(0.0, 1.0 - cg * cg));
-    const double c = (j + t2) * (2.0 * kPi / n_c_);
-    return {sg * std::cos(c), sg * std::sin(c), cg};
+    // Which copy of the table's C-planes: u2's leading part; the rest of u2 samples c.
+    const int copy = std::min(copies_ - 1, static_cast<int>(u2 * copies_));
+    const double u_c = std::clamp(u2 * copies_ - copy, 0.0, kOneMinus);
+    double c = 0.0;
+    if (symmetry_ == IesSymmetry::Rotational) {
+        c = 2.0 * kPi * u_c;
+    } else {
+        const auto [j, t2] = rows_[static_cast<std::size_t>(i)].sample(u_c);
+        c = c0_ + (j + t2) * (c_span_ / n_c_);
+        // The copy by the file's mirror planes (IesPhotometry::intensity_cd folds back).
+        switch (symmetry_) {
+        case IesSymmetry::Quadrant:
+            if (copy == 1) c = kPi - c;
+            else if (copy == 2) c = kPi + c;
+            else if (copy == 3) c = 2.0 * kPi - c;
+            break;
+        case IesSymmetry::Bilateral:
+            if (copy == 1) c = 2.0 * kPi - c;
+            break;
+        case IesSymmetry::Bilateral90:
+            if (copy == 1) c = kPi - c;  // mirrored about the 90-270 plane
+            break;
+        default:
+            break;
+        }
+    }
+    // The azimuth in float (good to 1e-7, as Embree takes directions), renormalised.
+    const auto cf = static_cast<float>(c);
+    return glm::normalize(Vec3(sg * static_cast<double>(std::cos(cf)), sg * static_cast<double>(std::sin(cf)), cg));
 }
 
 }  // namespace luxtrace

@@ -45,7 +45,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k) {
     if (ray.emitter_triangle >= 0) {
         const TriangleRecord& t = surfaces_.triangle(static_cast<std::size_t>(ray.emitter_triangle));
         p.origin = spawn_origin(point_on_triangle(t.p0, t.p1, t.p2, static_cast<float>(ray.emitter_u),
-                                                  static_cast<float>(ray.emitter_v), t.margin),
+                                                  static_cast<float>(ray.emitter_v), t.margin, t.min_height),
                                 t.normal, t.margin);
         if (!luminance_dets_.empty()) check_luminance(p, ray.origin);
     }
@@ -82,7 +82,7 @@ bool PhotonTracer::step(Photon& p, TallyBuffer& out) {
     }
     // Leave the surface on the side the photon goes to, just past the hit point's
     // rounding error.
-    const SurfacePoint sp = point_on_triangle(t.p0, t.p1, t.p2, hit.u, hit.v, t.margin);
+    const SurfacePoint sp = point_on_triangle(t.p0, t.p1, t.p2, hit.u, hit.v, t.margin, t.min_height);
     const Vec3 n_in = glm::dot(p.direction, ng) < 0.0 ? ng : -ng;
     p.origin = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), t.margin);
     p.direction = s.direction;

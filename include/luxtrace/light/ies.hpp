@@ -7,6 +7,7 @@
 // frame used here local +z is the nadir and local +x is the plane C = 0, so a direction
 // is (sin g cos c, sin g sin c, cos g); the light places this frame along its `aim`.
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/light/alias_table.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -58,8 +59,10 @@ IesPhotometry load_ies(const std::filesystem::path& file);
 
 // Sampling emission directions proportional to the intensity: a piecewise-constant 2D
 // distribution built on a fine regular (gamma, c) grid from intensity_cd, sampled by
-// inversion (marginal in gamma, conditional in c), uniform in cos(gamma) and c within a
-// cell.
+// alias tables (marginal in gamma, conditional in c), uniform in cos(gamma)
+// and c within a cell. The grid has the cell size of n_gamma x n_c cells over the whole
+// sphere but covers only the file's vertical range and one copy of its C-planes under
+// its symmetry (the copy is chosen by the leading part of u2).
 class IesDistribution {
 public:
     // Throws std::invalid_argument if a grid size is < 1 or the distribution has no flux.
@@ -74,14 +77,15 @@ public:
     double flux_lm() const { return flux_lm_; }
 
 private:
-    int n_gamma_;
-    int n_c_;
+    int n_gamma_ = 1, n_c_ = 1;           // cells of the table (over the ranges below)
+    double gamma0_ = 0.0;                 // the table's first gamma (the file's first angle)
+    double c0_ = 0.0, c_span_ = 0.0;      // the C range one copy covers
+    int copies_ = 1;                      // copies of it around the circle (symmetry)
+    IesSymmetry symmetry_ = IesSymmetry::Full;
     double flux_lm_ = 0.0;
     std::vector<double> cos_edge_;        // cos of the gamma cell edges, n_gamma + 1
-    std::vector<double> marginal_cdf_;    // over gamma rows, n_gamma + 1, ends at 1
-    std::vector<double> conditional_cdf_; // per row over c cells, n_gamma x (n_c + 1)
-    int guide_slices_ = 1;                // guide tables (guided_cdf.hpp): n / 4 slices each
-    std::vector<std::uint32_t> marginal_guide_, conditional_guide_;
+    AliasTable marginal_;                 // over gamma rows
+    std::vector<AliasTable> rows_;        // per row over its c cells
 };
 
 }  // namespace luxtrace

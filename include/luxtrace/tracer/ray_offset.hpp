@@ -45,15 +45,19 @@ constexpr float float_gamma(int n) {
 // twice its error bound plus `margin` (the largest error Embree's test makes on this
 // triangle, see self_hit_margin), a few micrometres at most: the same triangle, and
 // strictly inside the room.
+// `min_height`, the triangle's smallest height (0 if unknown), lets a point that is
+// farther than that from every edge skip the move (b_i times the height from vertex i is
+// the distance to the opposite edge).
 inline SurfacePoint point_on_triangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, float b1, float b2,
-                                      float margin) {
+                                      float margin, float min_height = 0.0f) {
     b1 = std::clamp(b1, 0.0f, 1.0f);
     b2 = std::clamp(b2, 0.0f, 1.0f - b1);
     const float b0 = std::max(0.0f, (1.0f - b1) - b2);
     const Vec3f p = b0 * p0 + b1 * p1 + b2 * p2;
     Vec3f error = float_gamma(7) * (glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
-    const Vec3f to_centroid = (p0 + p1 + p2) * (1.0f / 3.0f) - p;
     const float inset = 2.0f * (std::max({error.x, error.y, error.z}) + margin);
+    if (std::min({b0, b1, b2}) * min_height > 2.0f * inset) return {p, error};
+    const Vec3f to_centroid = (p0 + p1 + p2) * (1.0f / 3.0f) - p;
     const float l = glm::length(to_centroid);
     SurfacePoint s;
     s.p = l > inset ? p + to_centroid * (inset / l) : p + to_centroid;

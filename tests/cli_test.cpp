@@ -151,3 +151,53 @@ TEST_F(Cli, InfoRejectsWhatIsNotAResult) {
     EXPECT_EQ(o.code, 2);
     EXPECT_NE(o.out.find("x.h5"), std::string::npos) << o.out;
 }
+
+// Every file luxtrace writes is sealed (io/file_seal.hpp): a copy that was cut short,
+// appended to, changed in one byte anywhere (data, metadata, HDF5's unchecksummed global
+// heap) or whose seal line was damaged is refused by `info`, `render` and `--restart`
+// with exit 2 before HDF5 reads it. A byte changed at random would otherwise be read back
+// silently or crash HDF5 (tests/fuzz/library_bugs).
+TEST_F(Cli, DamagedSealedResultsAreRefusedBeforeHdf5ReadsThem) {
+    const fs::path scene = write("s.toml", kSmallScene);
+    const fs::path good = dir / "good.h5";
+    ASSERT_EQ(run("run " + scene.string() + " --photons 5k --seed 3 --threads 1 --output " + good.string()).code, 0);
+    std::string bytes;
+    {
+        std::ifstream in(good, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 2048u);
+    ASSERT_EQ(bytes.compare(0, 17, "luxtrace-seal v1 "), 0) << "the result begins with its seal";
+    ASSERT_EQ(bytes.compare(512, 4, "\x89HDF"), 0) << "HDF5 begins after the 512-byte seal";
+    EXPECT_EQ(run("info " + good.string()).code, 0);
+
+    struct Damage {
+        std::string name, expect;
+        std::string bytes;
+    };
+    std::vector<Damage> damages;
+    auto flipped = [&](std::size_t at) { std::string b = bytes; b[at] = static_cast<char>(b[at] ^ 0x10); return b; };
+    damages.push_back({"cut", "cut short", bytes.substr(0, bytes.size() - 100)});
+    damages.push_back({"appended", "appended to", bytes + "x"});
+    damages.push_back({"superblock", "checksum mismatch", flipped(512 + 20)});
+    for (std::size_t k = 1; k <= 5; ++k)  // spread over the HDF5 body
+        damages.push_back({"body" + std::to_string(k), "checksum mismatch", flipped(512 + k * (bytes.size() - 512) / 6)});
+    damages.push_back({"last_byte", "checksum mismatch", flipped(bytes.size() - 1)});
+    damages.push_back({"crc_digit", "checksum mismatch", [&] { std::string b = bytes; b[23] = b[23] == '0' ? '1' : '0'; return b; }()});
+    damages.push_back({"magic", "does not begin with a luxtrace seal", [&] { std::string b = bytes; b[3] = 'X'; return b; }()});
+    damages.push_back({"seal_text", "seal cannot be read", [&] { std::string b = bytes; b.replace(17, 5, "CRC32"); return b; }()});
+    for (const Damage& d : damages) {
+        const fs::path f = dir / (d.name + ".h5");
+        std::ofstream(f, std::ios::binary) << d.bytes;
+        for (const std::string& cmd : {"info " + f.string(), "render " + f.string() + " --output " + (dir / "pic").string(),
+                                       "run " + scene.string() + " --restart " + f.string() + " --photons 10k --output " +
+                                           (dir / "r2.h5").string()}) {
+            const Outcome o = run(cmd);
+            EXPECT_EQ(o.code, 2) << d.name << ": " << cmd << "\n" << o.out;
+            EXPECT_NE(o.out.find(f.string() + ": damaged file"), std::string::npos) << d.name << ": " << cmd << "\n" << o.out;
+            EXPECT_NE(o.out.find(d.expect), std::string::npos) << d.name << ": " << cmd << "\n" << o.out;
+        }
+    }
+    EXPECT_FALSE(fs::exists(dir / "r2.h5")) << "nothing written by a refused restart";
+    EXPECT_FALSE(fs::exists(dir / "pic")) << "nothing written by a refused render";
+}

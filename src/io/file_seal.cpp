@@ -35,8 +35,16 @@ bool check_seal(const std::filesystem::path& path) {
     char head[kSealBytes] = {};
     in.read(head, kSealBytes);
     if (in.gcount() < static_cast<std::streamsize>(sizeof kMagic - 1) ||
-        std::memcmp(head, kMagic, sizeof kMagic - 1) != 0)
-        return false;
+        std::memcmp(head, kMagic, sizeof kMagic - 1) != 0) {
+        // luxtrace 0.1 wrote unsealed files, whose HDF5 signature is at byte 0. Anything else
+        // without a seal is a sealed file whose seal line was damaged (HDF5 would still find
+        // the superblock at byte 512 and trust the unchecked rest), or not a result at all.
+        static constexpr char kHdf5Signature[] = "\x89HDF\r\n\x1a\n";
+        if (in.gcount() >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0)
+            return false;
+        throw InputError(path.string() + ": damaged file: it does not begin with a luxtrace seal "
+                         "(a result or checkpoint whose first bytes were changed, or not a luxtrace file)");
+    }
     std::uint32_t want_crc = 0;
     std::size_t want_length = 0;
     if (std::sscanf(head + sizeof kMagic - 1, "crc32 %8" SCNx32 " length %zu", &want_crc, &want_length) != 2)

@@ -500,7 +500,11 @@ void histogram_picture(const DetectorData& d, const fs::path& path) {
     const double top = nice_top(emax * 1.04);  // the largest error not on the frame
     const int bins = std::clamp(static_cast<int>(std::lround(std::sqrt(static_cast<double>(e.size())))), 10, 60);
     std::vector<int> hist(static_cast<std::size_t>(bins), 0);
-    for (double x : e) ++hist[static_cast<std::size_t>(std::clamp(static_cast<int>(x / top * bins), 0, bins - 1))];
+    // Clamped as a double: a damaged file's error can be far beyond int (or 0/0 when top is 0).
+    for (double x : e) {
+        const double pos = top > 0.0 ? x / top * bins : 0.0;
+        ++hist[static_cast<std::size_t>(std::isfinite(pos) ? std::clamp(pos, 0.0, bins - 1.0) : bins - 1.0)];
+    }
     int hmax = 1;
     for (int c : hist) hmax = std::max(hmax, c);
     const std::size_t empty = d.sigma_rel.size() - e.size();

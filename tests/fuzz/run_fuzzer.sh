@@ -4,16 +4,25 @@
 #   bash tests/fuzz/run_fuzzer.sh TARGET SECONDS [more libFuzzer options]
 # TARGET is scene, ies, mesh or result. New inputs go to build-fuzz/fuzz/TARGET/corpus,
 # crashes to build-fuzz/fuzz/TARGET/artifacts/, the log to build-fuzz/fuzz/TARGET/log.
+# LUXTRACE_FUZZ_WORK=DIR puts corpus/, artifacts/ and log there instead; LUXTRACE_FUZZ_SEEDS
+# lists the seed files or folders to copy into it (globs allowed) instead of the whole
+# committed corpus, e.g. LUXTRACE_FUZZ_SEEDS='tests/fuzz/corpus/result/sealed_*'.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 target=$1 seconds=$2
 shift 2
 bin=${LUXTRACE_FUZZ_BUILD:-$root/build-fuzz}/tests/fuzz/fuzz_$target
-work=${LUXTRACE_FUZZ_BUILD:-$root/build-fuzz}/fuzz/$target
+work=${LUXTRACE_FUZZ_WORK:-${LUXTRACE_FUZZ_BUILD:-$root/build-fuzz}/fuzz/$target}
+work=$(realpath -m "$work")  # the fuzzer runs inside it
 [ -x "$bin" ] || { echo "no $bin: build with -DLUXTRACE_FUZZ=ON first" >&2; exit 2; }
 mkdir -p "$work/corpus" "$work/artifacts"
-cp -n "$here/corpus/$target"/* "$work/corpus/" 2>/dev/null || true
+# shellcheck disable=SC2086  # word splitting and globbing of LUXTRACE_FUZZ_SEEDS wanted
+for seed in ${LUXTRACE_FUZZ_SEEDS:-$here/corpus/$target}; do
+  if [ -d "$seed" ]; then cp -n "$seed"/* "$work/corpus/" 2>/dev/null || true
+  elif [ -f "$seed" ]; then cp -n "$seed" "$work/corpus/"
+  else echo "no seed $seed" >&2; exit 2; fi
+done
 opts=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
       -artifact_prefix="$work/artifacts/")
 asan=detect_leaks=1

@@ -7,6 +7,7 @@
 //   replay - rtcIntersect1 on exactly those rays, threads taking chunks of 1024;
 //   cosine - rtcIntersect1 on rays leaving random points of the surfaces with cosine
 //            directions (the older baseline, a second column);
+//   packets - with --packets, the replayed rays through rtcIntersect8 in groups of 8;
 //   tracer - run_simulation, the code `luxtrace run` runs: the work plan, the pausable
 //            worker pool, snapshots and reductions at the scene's period, on the same
 //            EmbreeScene; its rays are the intersections it made (arrivals + escapes),
@@ -163,6 +164,60 @@ Timed replay(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, in
     return {seconds_since(t0), process_cpu_seconds() - c0, rays.size(), hits.load()};
 }
 
+// rtcIntersect8 on groups of 8 consecutive rays (the last group masked): the packet the
+// tracer could form, since its consecutive calls come from its 8 photons in flight in
+// turn. `--packets` only: an upper bound on what packets of those photons could give.
+Timed replay_packets(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, int threads) {
+    constexpr std::size_t kChunk = 1024;  // a multiple of 8
+    const RTCScene handle = embree.handle();
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::uint64_t> hits{0};
+    auto worker = [&] {
+        std::uint64_t mine = 0;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        alignas(32) RTCRayHit8 rh;
+        alignas(32) int valid[8];
+        while (true) {
+            const std::size_t first = next.fetch_add(kChunk);
+            if (first >= rays.size()) break;
+            const std::size_t last = std::min(rays.size(), first + kChunk);
+            for (std::size_t g = first; g < last; g += 8) {
+                for (std::size_t k = 0; k < 8; ++k) {
+                    const bool on = g + k < last;
+                    valid[k] = on ? -1 : 0;
+                    const RecordedRay& r = rays[on ? g + k : g];
+                    rh.ray.org_x[k] = r.origin.x;
+                    rh.ray.org_y[k] = r.origin.y;
+                    rh.ray.org_z[k] = r.origin.z;
+                    rh.ray.dir_x[k] = r.direction.x;
+                    rh.ray.dir_y[k] = r.direction.y;
+                    rh.ray.dir_z[k] = r.direction.z;
+                    rh.ray.tnear[k] = r.t_near;
+                    rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+                    rh.ray.time[k] = 0.0f;
+                    rh.ray.mask[k] = 0xFFFFFFFFu;
+                    rh.ray.id[k] = 0;
+                    rh.ray.flags[k] = 0;
+                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect8(valid, handle, &ctx, &rh);
+                for (std::size_t k = 0; k < 8; ++k) mine += valid[k] != 0 && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+            }
+        }
+        hits += mine;
+    };
+    const auto t0 = Clock::now();
+    const double c0 = process_cpu_seconds();
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+        worker();
+    }
+    return {seconds_since(t0), process_cpu_seconds() - c0, rays.size(), hits.load()};
+}
+
 // FNV-1a over every tally of a result: equal checksums mean identical counts.
 std::uint64_t tally_checksum(const fs::path& result) {
     const ResultReader r(result);
@@ -227,10 +282,11 @@ struct Settings {
     double seconds = 1.5;  // auto sizing: length of one single-thread measurement
     std::uint64_t seed = 1;
     bool verbose = false;
+    bool packets = false;
 };
 
 struct Series {
-    std::vector<double> replay, cosine, tracer, paired, busy;
+    std::vector<double> replay, cosine, tracer, paired, busy, packets;
 };
 
 int run(const Settings& set, const Communicator& comm) {
@@ -285,6 +341,11 @@ int run(const Settings& set, const Communicator& comm) {
             Series& se = series[ti];
             const Timed r = replay(embree, rays, threads);
             const Timed c = replay(embree, cosine, threads);
+            if (set.packets) {
+                const Timed p = replay_packets(embree, rays, threads);
+                if (p.hits != r.hits) throw std::runtime_error("rtcIntersect8 and rtcIntersect1 disagree on the replayed rays");
+                se.packets.push_back(double(p.rays) / p.seconds / (double(r.rays) / r.seconds));
+            }
             std::uint64_t sum = 0;
             const Timed t = run_tracer(scene, embree, comm, photons, threads, dir / "bench.h5", &sum);
             se.replay.push_back(double(r.rays) / r.seconds);
@@ -323,6 +384,11 @@ int run(const Settings& set, const Communicator& comm) {
                     median(se.cosine) * 1e-6, median(se.tracer) * 1e-6, lo(se.tracer) * 1e-6, hi(se.tracer) * 1e-6,
                     100.0 * median(se.tracer) / median(se.replay), 100.0 * median(se.paired), 100.0 * median(se.busy));
     }
+    if (set.packets)
+        for (std::size_t ti = 0; ti < thread_counts.size(); ++ti)
+            std::printf("packets, %d thread(s): rtcIntersect8 on the same rays in groups of 8 consecutive ones: "
+                        "%.1f%% of rtcIntersect1's rate (paired median; same hits)\n",
+                        thread_counts[ti], 100.0 * median(series[ti].packets));
     for (std::size_t i = 1; i < series.size(); ++i) {
         std::vector<double> tr, rp;
         for (int rep = 0; rep < set.repeats; ++rep) {
@@ -351,6 +417,7 @@ int main(int argc, char** argv) {
     app.add_option("--seconds", set.seconds, "auto: single-thread length of one measurement")->capture_default_str();
     app.add_option("--seed", set.seed, "seed of the cosine rays")->capture_default_str();
     app.add_flag("--verbose", set.verbose, "print every measurement");
+    app.add_flag("--packets", set.packets, "also replay the rays through rtcIntersect8 in groups of 8");
     CLI11_PARSE(app, argc, argv);
     try {
         return run(set, comm);

@@ -117,41 +117,17 @@ struct Timed {
     std::uint64_t rays = 0, hits = 0;
 };
 
-// rtcIntersect1 on every ray, `threads` threads taking chunks of 1024.
-Timed replay(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, int threads) {
-    constexpr std::size_t kChunk = 1024;
-    const RTCScene handle = embree.handle();
+// Runs `hits_in(first, last)` over every chunk of 1024 rays, `threads` threads taking
+// chunks from one counter (as the tracer's threads take photons); times the whole.
+template <class Chunk>
+Timed on_threads(std::size_t rays, int threads, const Chunk& hits_in) {
+    constexpr std::size_t kChunk = 1024;  // a multiple of 8, for the packets
     std::atomic<std::size_t> next{0};
     std::atomic<std::uint64_t> hits{0};
     auto worker = [&] {
         std::uint64_t mine = 0;
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);  // default flags, as EmbreeScene::intersect_local
-        while (true) {
-            const std::size_t first = next.fetch_add(kChunk);
-            if (first >= rays.size()) break;
-            const std::size_t last = std::min(rays.size(), first + kChunk);
-            for (std::size_t i = first; i < last; ++i) {
-                const RecordedRay& r = rays[i];
-                RTCRayHit rh;
-                rh.ray.org_x = r.origin.x;
-                rh.ray.org_y = r.origin.y;
-                rh.ray.org_z = r.origin.z;
-                rh.ray.dir_x = r.direction.x;
-                rh.ray.dir_y = r.direction.y;
-                rh.ray.dir_z = r.direction.z;
-                rh.ray.tnear = r.t_near;
-                rh.ray.tfar = std::numeric_limits<float>::infinity();
-                rh.ray.time = 0.0f;
-                rh.ray.mask = 0xFFFFFFFFu;
-                rh.ray.id = 0;
-                rh.ray.flags = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(handle, &ctx, &rh);
-                mine += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-            }
-        }
+        for (std::size_t first; (first = next.fetch_add(kChunk)) < rays;)
+            mine += hits_in(first, std::min(rays, first + kChunk));
         hits += mine;
     };
     const auto t0 = Clock::now();
@@ -161,61 +137,56 @@ Timed replay(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, in
         for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
         worker();
     }
-    return {seconds_since(t0), process_cpu_seconds() - c0, rays.size(), hits.load()};
+    return {seconds_since(t0), process_cpu_seconds() - c0, rays, hits.load()};
+}
+
+// rtcIntersect1 on every ray through EmbreeScene::intersect_local, the call the tracer
+// makes (same context, same ray set-up).
+Timed replay(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, int threads) {
+    return on_threads(rays.size(), threads, [&](std::size_t first, std::size_t last) {
+        std::uint64_t hits = 0;
+        for (std::size_t i = first; i < last; ++i)
+            hits += embree.intersect_local(rays[i].origin, rays[i].direction, rays[i].t_near).found;
+        return hits;
+    });
 }
 
 // rtcIntersect8 on groups of 8 consecutive rays (the last group masked): the packet the
 // tracer could form, since its consecutive calls come from its 8 photons in flight in
 // turn. `--packets` only: an upper bound on what packets of those photons could give.
 Timed replay_packets(const EmbreeScene& embree, const std::vector<RecordedRay>& rays, int threads) {
-    constexpr std::size_t kChunk = 1024;  // a multiple of 8
     const RTCScene handle = embree.handle();
-    std::atomic<std::size_t> next{0};
-    std::atomic<std::uint64_t> hits{0};
-    auto worker = [&] {
-        std::uint64_t mine = 0;
+    return on_threads(rays.size(), threads, [&](std::size_t first, std::size_t last) {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         alignas(32) RTCRayHit8 rh;
         alignas(32) int valid[8];
-        while (true) {
-            const std::size_t first = next.fetch_add(kChunk);
-            if (first >= rays.size()) break;
-            const std::size_t last = std::min(rays.size(), first + kChunk);
-            for (std::size_t g = first; g < last; g += 8) {
-                for (std::size_t k = 0; k < 8; ++k) {
-                    const bool on = g + k < last;
-                    valid[k] = on ? -1 : 0;
-                    const RecordedRay& r = rays[on ? g + k : g];
-                    rh.ray.org_x[k] = r.origin.x;
-                    rh.ray.org_y[k] = r.origin.y;
-                    rh.ray.org_z[k] = r.origin.z;
-                    rh.ray.dir_x[k] = r.direction.x;
-                    rh.ray.dir_y[k] = r.direction.y;
-                    rh.ray.dir_z[k] = r.direction.z;
-                    rh.ray.tnear[k] = r.t_near;
-                    rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-                    rh.ray.time[k] = 0.0f;
-                    rh.ray.mask[k] = 0xFFFFFFFFu;
-                    rh.ray.id[k] = 0;
-                    rh.ray.flags[k] = 0;
-                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-                }
-                rtcIntersect8(valid, handle, &ctx, &rh);
-                for (std::size_t k = 0; k < 8; ++k) mine += valid[k] != 0 && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        std::uint64_t hits = 0;
+        for (std::size_t g = first; g < last; g += 8) {
+            for (std::size_t k = 0; k < 8; ++k) {
+                const bool on = g + k < last;
+                valid[k] = on ? -1 : 0;
+                const RecordedRay& r = rays[on ? g + k : g];
+                rh.ray.org_x[k] = r.origin.x;
+                rh.ray.org_y[k] = r.origin.y;
+                rh.ray.org_z[k] = r.origin.z;
+                rh.ray.dir_x[k] = r.direction.x;
+                rh.ray.dir_y[k] = r.direction.y;
+                rh.ray.dir_z[k] = r.direction.z;
+                rh.ray.tnear[k] = r.t_near;
+                rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+                rh.ray.time[k] = 0.0f;
+                rh.ray.mask[k] = 0xFFFFFFFFu;
+                rh.ray.id[k] = 0;
+                rh.ray.flags[k] = 0;
+                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
             }
+            rtcIntersect8(valid, handle, &ctx, &rh);
+            for (std::size_t k = 0; k < 8; ++k) hits += valid[k] != 0 && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
         }
-        hits += mine;
-    };
-    const auto t0 = Clock::now();
-    const double c0 = process_cpu_seconds();
-    {
-        std::vector<std::jthread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-        worker();
-    }
-    return {seconds_since(t0), process_cpu_seconds() - c0, rays.size(), hits.load()};
+        return hits;
+    });
 }
 
 // FNV-1a over every tally of a result: equal checksums mean identical counts.

@@ -196,8 +196,8 @@ TEST_F(EveryKey, Lights) {
     expect_vec(d.aim, glm::normalize(Vec3(1, 0, -1)));
     EXPECT_EQ(d.illuminance_lx, 100.0);
     EXPECT_NEAR(d.flux_lm, 100.0 * kPi * d.beam_radius * d.beam_radius, 1e-9 * d.flux_lm);
-    for (const glm::vec3& v : s().vertices) {
-        const Vec3 r = Vec3(v) - d.beam_center;
+    for (const Vec3& v : s().vertices) {
+        const Vec3 r = v - d.beam_center;
         EXPECT_GT(glm::dot(r, d.aim), 0.0);
         EXPECT_LE(glm::length(r - glm::dot(r, d.aim) * d.aim), d.beam_radius);
     }

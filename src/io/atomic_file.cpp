@@ -21,8 +21,17 @@ fs::path directory_of(const fs::path& path) {
     return path.parent_path().empty() ? fs::path(".") : path.parent_path();
 }
 
+// ".NAME.tmp." (appended to, not built with "." + name: GCC 12 warns falsely on that,
+// -Wrestrict, its bug 105329).
+std::string temporary_prefix(const fs::path& path) {
+    std::string prefix(1, '.');
+    prefix += path.filename().string();
+    prefix += ".tmp.";
+    return prefix;
+}
+
 fs::path temporary_for(const fs::path& path, long pid) {
-    return directory_of(path) / ("." + path.filename().string() + ".tmp." + std::to_string(pid));
+    return directory_of(path) / (temporary_prefix(path) + std::to_string(pid));
 }
 
 // Closes the descriptor and removes the temporary unless released.
@@ -52,7 +61,7 @@ private:
 }  // namespace
 
 int remove_stale_temporaries(const fs::path& path) {
-    const std::string prefix = "." + path.filename().string() + ".tmp.";
+    const std::string prefix = temporary_prefix(path);
     std::error_code ec;
     int removed = 0;
     for (fs::directory_iterator it(directory_of(path), ec), end; !ec && it != end; it.increment(ec)) {

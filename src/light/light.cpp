@@ -7,24 +7,15 @@
 
 namespace luxtrace {
 
-namespace {
-// (cos, sin) of 2 pi u with the angle in float: good to 1e-7, as Embree takes directions;
-// normalised with z into a unit vector.
-Vec3 on_circle(double r, double z, double u) {
-    const float phi = static_cast<float>(2.0 * kPi * u);
-    return glm::normalize(Vec3(r * static_cast<double>(std::cos(phi)), r * static_cast<double>(std::sin(phi)), z));
-}
-}  // namespace
-
 Vec3 sample_uniform_sphere(double u1, double u2) {
     const double z = 1.0 - 2.0 * u1;
-    return on_circle(std::sqrt(std::max(0.0, 1.0 - z * z)), z, u2);
+    return unit_at_azimuth(std::sqrt(std::max(0.0, 1.0 - z * z)), z, u2);
 }
 
 Vec3 sample_uniform_cone(double cos_max, double u1, double u2) {
     // Uniform in solid angle: cos(theta) uniform in [cos_max, 1].
     const double z = 1.0 - u1 * (1.0 - cos_max);
-    return on_circle(std::sqrt(std::max(0.0, 1.0 - z * z)), z, u2);
+    return unit_at_azimuth(std::sqrt(std::max(0.0, 1.0 - z * z)), z, u2);
 }
 
 std::size_t sample_cdf(const std::vector<double>& cdf, double u) {

@@ -17,12 +17,7 @@ double fresnel_dielectric(double cos_i, double eta) {
 
 Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2) {
     // Uniform point on the unit disk, lifted to the hemisphere: pdf = cos(theta) / pi.
-    // The azimuth in float: a direction good to 1e-7, as Embree takes it.
-    const double r = std::sqrt(u1);
-    const float phi = static_cast<float>(2.0 * kPi * u2);
-    const double z = std::sqrt(std::max(0.0, 1.0 - u1));
-    const Vec3 local(r * static_cast<double>(std::cos(phi)), r * static_cast<double>(std::sin(phi)), z);
-    return Frame::around(n).to_world(glm::normalize(local));
+    return Frame::around(n).to_world(unit_at_azimuth(std::sqrt(u1), std::sqrt(std::max(0.0, 1.0 - u1)), u2));
 }
 
 namespace {

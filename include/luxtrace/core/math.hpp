@@ -12,6 +12,14 @@ using Vec3f = glm::vec3;
 
 inline constexpr double kPi = std::numbers::pi;
 
+// The unit vector (r cos phi, r sin phi, z) normalised, phi = 2 pi u, for r^2 + z^2 = 1
+// up to rounding. The azimuth is taken in float: directions are good to 1e-7, which is
+// what Embree takes, and float sin/cos cost a fraction of double ones.
+inline Vec3 unit_at_azimuth(double r, double z, double u) {
+    const float phi = static_cast<float>(2.0 * kPi * u);
+    return glm::normalize(Vec3(r * static_cast<double>(std::cos(phi)), r * static_cast<double>(std::sin(phi)), z));
+}
+
 // Right-handed orthonormal frame (t, b, n) around a unit vector n.
 // Duff et al., "Building an Orthonormal Basis, Revisited" (2017): branch-free, no
 // singularity except the sign flip at n.z = 0, which it handles.

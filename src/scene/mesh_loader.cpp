@@ -19,10 +19,16 @@ namespace {
 // assimp 5.2.5's PLY reader never returns on a header that has no "end_header" line (a
 // file cut short inside its header, a damaged header): it seeks for ever. Such a file
 // is refused before assimp sees it. The header is ASCII lines even in binary PLY files.
-bool is_ply(const std::filesystem::path& file, const std::string& head) {
+// A PLY file by its extension or its "ply" magic; `in` is left at the start.
+bool is_ply(const std::filesystem::path& file, std::ifstream& in) {
     std::string ext = file.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".ply" || head.rfind("ply", 0) == 0;
+    char magic[3] = {};
+    in.read(magic, sizeof magic);
+    const bool ply = ext == ".ply" || (in.gcount() == 3 && std::string_view(magic, 3) == "ply");
+    in.clear();
+    in.seekg(0);
+    return ply;
 }
 
 bool ply_header_ends(const std::string& head) {
@@ -61,14 +67,16 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
     if (!std::filesystem::is_regular_file(file))
         throw InputError(context + ": mesh file '" + file.string() + "' does not exist");
     {
-        constexpr std::size_t kMaxPlyHeader = std::size_t{1} << 20;
         std::ifstream in(file, std::ios::binary);
-        std::string head(kMaxPlyHeader, '\0');
-        in.read(head.data(), static_cast<std::streamsize>(head.size()));
-        head.resize(static_cast<std::size_t>(in.gcount()));
-        if (is_ply(file, head) && !ply_header_ends(head))
-            throw InputError(context + ": cannot read mesh '" + file.string() +
-                             "': its PLY header has no 'end_header' line (in its first MiB); is the file cut short?");
+        if (is_ply(file, in)) {  // only a PLY file's header is read, up to 1 MiB
+            constexpr std::size_t kMaxPlyHeader = std::size_t{1} << 20;
+            std::string head(kMaxPlyHeader, '\0');
+            in.read(head.data(), static_cast<std::streamsize>(head.size()));
+            head.resize(static_cast<std::size_t>(in.gcount()));
+            if (!ply_header_ends(head))
+                throw InputError(context + ": cannot read mesh '" + file.string() +
+                                 "': its PLY header has no 'end_header' line (in its first MiB); is the file cut short?");
+        }
     }
     Assimp::Importer importer;
     // Keep the file's winding and vertices; only triangulate polygons and bake node

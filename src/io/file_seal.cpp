@@ -39,7 +39,6 @@ bool check_seal(const std::filesystem::path& path) {
         // luxtrace 0.1 wrote unsealed files, whose HDF5 signature is at byte 0. Anything else
         // without a seal is a sealed file whose seal line was damaged (HDF5 would still find
         // the superblock at byte 512 and trust the unchecked rest), or not a result at all.
-        static constexpr char kHdf5Signature[] = "\x89HDF\r\n\x1a\n";
         if (in.gcount() >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0)
             return false;
         throw InputError(path.string() + ": damaged file: it does not begin with a luxtrace seal "

@@ -91,9 +91,8 @@ struct MemoryImage {
 // H5F_LIBVER_V18 selects: signature (8 bytes), versions and sizes (4), base address (8),
 // extension address (8), end of file address (8, little-endian, from the superblock on).
 std::size_t file_length(const std::vector<char>& image) {
-    static const unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
     const char* sb = image.data() + kSealBytes;
-    if (image.size() < kSealBytes + 48 || std::memcmp(sb, kSignature, 8) != 0 || (sb[8] != 2 && sb[8] != 3) ||
+    if (image.size() < kSealBytes + 48 || std::memcmp(sb, kHdf5Signature, 8) != 0 || (sb[8] != 2 && sb[8] != 3) ||
         sb[9] != 8)
         throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
     std::uint64_t eof = 0;

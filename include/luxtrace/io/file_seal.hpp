@@ -13,6 +13,9 @@
 namespace luxtrace {
 
 inline constexpr std::size_t kSealBytes = 512;
+// HDF5's 8-byte format signature: at byte kSealBytes of a sealed file, at byte 0 of an
+// unsealed one (HDF5 File Format Specification, superblock).
+inline constexpr char kHdf5Signature[] = "\x89HDF\r\n\x1a\n";
 
 // Writes the seal into image[0, kSealBytes) over image[kSealBytes, end).
 void seal_image(std::vector<char>& image);

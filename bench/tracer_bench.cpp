@@ -8,6 +8,8 @@
 //   cosine - rtcIntersect1 on rays leaving random points of the surfaces with cosine
 //            directions (the older baseline, a second column);
 //   packets - with --packets, the replayed rays through rtcIntersect8 in groups of 8;
+//   floor  - with --floor, a minimal analog photon tracer (FloorTracer) against the
+//            replay of its own rays: the least any tracer of this kind adds to Embree;
 //   tracer - run_simulation, the code `luxtrace run` runs: the work plan, the pausable
 //            worker pool, snapshots and reductions at the scene's period, on the same
 //            EmbreeScene; its rays are the intersections it made (arrivals + escapes),
@@ -112,6 +114,122 @@ std::vector<RecordedRay> make_cosine_rays(const Scene& scene, const EmbreeScene&
     return rays;
 }
 
+// The floor (--floor): what no analog photon tracer can leave out around Embree, and
+// nothing more, to tell how far above Embree's own time any tracer of this kind must be
+// on these scenes. Like the tracer it keeps 8 photons in flight per thread and draws
+// their Philox blocks together; per photon one isotropic ray from the first light's
+// position; per arrival one count on the triangle (a plain per-thread array), absorption
+// with the band-0 reflectance of the triangle's material, a cosine direction about the
+// normal on the incoming side, and the hit point moved off the surface by the triangle's
+// margin. All float; no bands, detectors, odd/even maps, edge test or tally buffer.
+class FloorTracer {
+public:
+    FloorTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces, std::uint64_t seed)
+        : embree_(embree), surfaces_(surfaces), sampler_(seed),
+          light_(embree.to_local(scene.lights.lights().front().emit(0.5, 0.5, 0.5, 0.5).origin)),
+          max_bounces_(scene.run.max_bounces) {
+        for (const Material& m : scene.materials) {
+            const ScatterModel sm = scatter_model(m, 0);
+            reflectance_.push_back(static_cast<float>(sm.diffuse_reflection + sm.specular_reflection));
+        }
+    }
+
+    // Photons [first, last); returns the rays cast.
+    std::uint64_t trace(std::uint64_t first, std::uint64_t last, std::vector<std::uint32_t>& counts,
+                        std::vector<RecordedRay>* record) {
+        struct P {
+            std::uint64_t k = 0;
+            std::uint32_t bounce = 0;
+            Vec3f o, d;
+            Hit hit;
+        };
+        constexpr int kN = PhotonTracer::kInFlight;
+        constexpr std::uint64_t kDone = UINT64_MAX;
+        P flight[kN];
+        std::uint64_t ks[kN], next = first, rays = 0;
+        std::uint32_t bs[kN];
+        PhiloxSampler::Block u[kN];
+        int fresh[kN], n_fresh = 0, active = 0;
+        auto begin = [&](int i) {
+            flight[i].k = next++;
+            flight[i].bounce = 0;
+            fresh[n_fresh++] = i;
+        };
+        // The photons started since the last draw take their block 0 together.
+        auto emit_fresh = [&] {
+            for (int j = 0; j < n_fresh; ++j) {
+                ks[j] = flight[fresh[j]].k;
+                bs[j] = 0;
+            }
+            sampler_.blocks(ks, bs, static_cast<std::size_t>(n_fresh), u);
+            for (int j = 0; j < n_fresh; ++j) {
+                P& p = flight[fresh[j]];
+                const float z = 1.0f - 2.0f * to_float(u[j][0]), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+                const float phi = 6.2831853f * to_float(u[j][1]);
+                p.o = light_;
+                p.d = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
+            }
+            n_fresh = 0;
+        };
+        while (active < kN && next < last) begin(active++);
+        emit_fresh();
+        while (active > 0) {
+            for (int i = 0; i < active; ++i) {
+                P& p = flight[i];
+                if (record != nullptr) record->push_back({p.o, p.d, 0.0f});
+                p.hit = embree_.intersect_local(p.o, p.d);
+                if (p.hit.found) __builtin_prefetch(&surfaces_.triangle(p.hit.triangle));
+                ks[i] = p.k;
+                bs[i] = 2 + p.bounce;
+            }
+            rays += static_cast<std::uint64_t>(active);
+            sampler_.blocks(ks, bs, static_cast<std::size_t>(active), u);
+            for (int i = 0; i < active; ++i) {
+                P& p = flight[i];
+                bool alive = p.hit.found;
+                if (alive) {
+                    ++counts[p.hit.triangle];
+                    const TriangleRecord& t = surfaces_.triangle(p.hit.triangle);
+                    alive = to_float(u[i][0]) < reflectance_[t.material] &&
+                            ++p.bounce < static_cast<std::uint32_t>(max_bounces_);
+                    if (alive) {
+                        // Cosine direction in the frame of Frame::around (math.hpp), in float.
+                        const Vec3f n = glm::dot(p.d, t.normal) < 0.0f ? t.normal : -t.normal;
+                        const float r2 = to_float(u[i][1]), r = std::sqrt(r2), phi = 6.2831853f * to_float(u[i][2]);
+                        const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+                        const Vec3f tx(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+                        const Vec3f ty(b, sign + n.y * n.y * a, -n.y);
+                        // Off the surface by a few margins: not leak-proof like spawn_origin,
+                        // and not meant to be; the floor's own rays are what it is timed against.
+                        p.o = p.o + p.hit.t * p.d + 4.0f * t.margin * n;
+                        p.d = r * std::cos(phi) * tx + r * std::sin(phi) * ty + std::sqrt(std::max(0.0f, 1.0f - r2)) * n;
+                    }
+                }
+                if (!alive) {
+                    if (next < last) begin(i);
+                    else p.k = kDone;
+                }
+            }
+            emit_fresh();
+            for (int i = 0; i < active;) {
+                if (flight[i].k == kDone) flight[i] = flight[--active];
+                else ++i;
+            }
+        }
+        return rays;
+    }
+
+private:
+    static float to_float(std::uint32_t w) { return (static_cast<float>(w >> 8) + 0.5f) * 0x1p-24f; }
+
+    const EmbreeScene& embree_;
+    const SurfaceTable& surfaces_;
+    PhiloxSampler sampler_;
+    Vec3f light_;
+    int max_bounces_;
+    std::vector<float> reflectance_;
+};
+
 struct Timed {
     double seconds = 0.0, cpu_seconds = 0.0;
     std::uint64_t rays = 0, hits = 0;
@@ -189,6 +307,35 @@ Timed replay_packets(const EmbreeScene& embree, const std::vector<RecordedRay>& 
     });
 }
 
+// The floor tracer on `threads` threads taking chunks of photons from one counter; every
+// thread keeps its own counts. `arrivals` gets the sum of all counts (the same for any
+// thread count, as every photon's path depends only on its index).
+Timed run_floor(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces, std::uint64_t photons,
+                int threads, std::uint64_t* arrivals) {
+    constexpr std::uint64_t kChunk = 256;
+    std::atomic<std::uint64_t> next{0}, rays{0}, counted{0};
+    auto worker = [&] {
+        FloorTracer floor(scene, embree, surfaces, scene.run.seed);
+        std::vector<std::uint32_t> counts(scene.triangle_count(), 0);
+        std::uint64_t mine = 0;
+        for (std::uint64_t first; (first = next.fetch_add(kChunk)) < photons;)
+            mine += floor.trace(first, std::min(photons, first + kChunk), counts, nullptr);
+        rays += mine;
+        std::uint64_t sum = 0;
+        for (std::uint32_t c : counts) sum += c;
+        counted += sum;
+    };
+    const auto t0 = Clock::now();
+    const double c0 = process_cpu_seconds();
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+        worker();
+    }
+    *arrivals = counted.load();
+    return {seconds_since(t0), process_cpu_seconds() - c0, rays.load(), 0};
+}
+
 // FNV-1a over every tally of a result: equal checksums mean identical counts.
 std::uint64_t tally_checksum(const fs::path& result) {
     const ResultReader r(result);
@@ -254,10 +401,12 @@ struct Settings {
     std::uint64_t seed = 1;
     bool verbose = false;
     bool packets = false;
+    bool floor = false;
 };
 
 struct Series {
     std::vector<double> replay, cosine, tracer, paired, busy, packets;
+    std::vector<double> floor, floor_replay, floor_paired;
 };
 
 int run(const Settings& set, const Communicator& comm) {
@@ -294,6 +443,14 @@ int run(const Settings& set, const Communicator& comm) {
     const std::vector<RecordedRay> rays = record_tracer_rays(scene, embree, probe, scene.run.seed);
     const std::vector<RecordedRay> cosine = make_cosine_rays(scene, embree, rays.size(), set.seed);
     const double t_gen = seconds_since(t0);
+    // --floor: the floor tracer's own rays, recorded on one thread, replayed like the tracer's.
+    const SurfaceTable surfaces(scene, embree);
+    std::vector<RecordedRay> floor_rays;
+    if (set.floor) {
+        FloorTracer floor(scene, embree, surfaces, scene.run.seed);
+        std::vector<std::uint32_t> counts(scene.triangle_count(), 0);
+        floor.trace(0, photons, counts, &floor_rays);
+    }
     std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n", set.scene_file.c_str(),
                 scene.triangle_count(), scene.lights.lights().size(), scene.detectors.size(), scene.run.max_bounces);
     std::printf("load %.2f s, BVH build %.2f s; %llu photons per tracer run (seed %llu); replay: the %zu rays of "
@@ -316,6 +473,16 @@ int run(const Settings& set, const Communicator& comm) {
                 const Timed p = replay_packets(embree, rays, threads);
                 if (p.hits != r.hits) throw std::runtime_error("rtcIntersect8 and rtcIntersect1 disagree on the replayed rays");
                 se.packets.push_back(double(p.rays) / p.seconds / (double(r.rays) / r.seconds));
+            }
+            if (set.floor) {
+                const Timed fr = replay(embree, floor_rays, threads);
+                std::uint64_t arrivals = 0;
+                const Timed f = run_floor(scene, embree, surfaces, photons, threads, &arrivals);
+                if (f.rays != floor_rays.size() || arrivals != fr.hits)
+                    throw std::runtime_error("the floor tracer's rays differ between runs");
+                se.floor.push_back(double(f.rays) / f.seconds);
+                se.floor_replay.push_back(double(fr.rays) / fr.seconds);
+                se.floor_paired.push_back(se.floor.back() / se.floor_replay.back());
             }
             std::uint64_t sum = 0;
             const Timed t = run_tracer(scene, embree, comm, photons, threads, dir / "bench.h5", &sum);
@@ -360,6 +527,15 @@ int run(const Settings& set, const Communicator& comm) {
             std::printf("packets, %d thread(s): rtcIntersect8 on the same rays in groups of 8 consecutive ones: "
                         "%.1f%% of rtcIntersect1's rate (paired median; same hits)\n",
                         thread_counts[ti], 100.0 * median(series[ti].packets));
+    if (set.floor)
+        for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+            const Series& se = series[ti];
+            std::printf("floor, %d thread(s): %.3f Mrays/s (%.3f rays/photon), replay of its rays %.3f Mrays/s: "
+                        "floor/replay %.1f%% (paired %.1f%%)\n",
+                        thread_counts[ti], median(se.floor) * 1e-6, double(floor_rays.size()) / double(photons),
+                        median(se.floor_replay) * 1e-6, 100.0 * median(se.floor) / median(se.floor_replay),
+                        100.0 * median(se.floor_paired));
+        }
     for (std::size_t i = 1; i < series.size(); ++i) {
         std::vector<double> tr, rp;
         for (int rep = 0; rep < set.repeats; ++rep) {
@@ -389,6 +565,7 @@ int main(int argc, char** argv) {
     app.add_option("--seed", set.seed, "seed of the cosine rays")->capture_default_str();
     app.add_flag("--verbose", set.verbose, "print every measurement");
     app.add_flag("--packets", set.packets, "also replay the rays through rtcIntersect8 in groups of 8");
+    app.add_flag("--floor", set.floor, "also time the floor: a minimal analog photon tracer, against its own rays");
     CLI11_PARSE(app, argc, argv);
     try {
         return run(set, comm);

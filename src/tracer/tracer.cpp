@@ -22,12 +22,22 @@ void PhotonTracer::check_luminance(Photon& p, const Vec3& point) {
     }
 }
 
-void PhotonTracer::start(Photon& p, std::uint64_t k) {
+const PhiloxSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
+    if (start_base_ == UINT64_MAX || k < start_base_ || k - start_base_ >= PhiloxSampler::kBatch) {
+        std::uint64_t ks[PhiloxSampler::kBatch];
+        const std::uint32_t zero[PhiloxSampler::kBatch] = {};
+        for (std::size_t i = 0; i < PhiloxSampler::kBatch; ++i) ks[i] = k + i;
+        sampler_.blocks(ks, zero, PhiloxSampler::kBatch, start_blocks_.data());
+        start_base_ = k;
+    }
+    return start_blocks_[k - start_base_];
+}
+
+void PhotonTracer::start(Photon& p, std::uint64_t k, const PhiloxSampler::Block& b0) {
     p.k = k;
     p.bounce = 0;
     p.regs.clear();
     const LightSet& lights = scene_.lights;
-    const auto b0 = sampler_.block(k, 0);
     const std::size_t li = lights.pick_light(PhiloxSampler::uniform(b0[0]));
     p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
     const Light& light = lights.lights()[li];
@@ -51,7 +61,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k) {
     }
 }
 
-bool PhotonTracer::step(Photon& p, TallyBuffer& out) {
+bool PhotonTracer::step(Photon& p, const PhiloxSampler::Block& u, TallyBuffer& out) {
     const Hit& hit = p.hit;
     const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
     if (!illuminance_dets_.empty()) {
@@ -72,7 +82,6 @@ bool PhotonTracer::step(Photon& p, TallyBuffer& out) {
         out.add(layout_.surface(hit.triangle, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
 
     const TriangleRecord& t = surfaces_.triangle(hit.triangle);
-    const auto u = sampler_.block(p.k, 2 + static_cast<std::uint32_t>(p.bounce));
     const Vec3 ng(t.normal);
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
@@ -130,7 +139,13 @@ void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out
 void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out) {
     std::uint64_t next = first;
     int active = 0;
-    while (active < kInFlight && next < last) start(flight_[active++], next++);
+    while (active < kInFlight && next < last) {
+        start(flight_[active++], next, start_block(next));
+        ++next;
+    }
+    std::uint64_t ks[kInFlight];
+    std::uint32_t bs[kInFlight];
+    PhiloxSampler::Block arrival[kInFlight];
     while (active > 0) {
         for (int i = 0; i < active; ++i) {
             Photon& p = flight_[i];
@@ -138,15 +153,24 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
             if (record_ != nullptr) record_->push_back({p.origin, d, 0.0f});
             p.hit = embree_.intersect_local(p.origin, d);
             if (p.hit.found) __builtin_prefetch(&surfaces_.triangle(p.hit.triangle));
+            ks[i] = p.k;
+            bs[i] = 2 + static_cast<std::uint32_t>(p.bounce);
         }
+        // The arrival blocks of all photons in flight together (those that escaped too:
+        // cheaper than sorting them out).
+        sampler_.blocks(ks, bs, static_cast<std::size_t>(active), arrival);
         for (int i = 0; i < active;) {
-            if (step(flight_[i], out)) {
+            if (step(flight_[i], arrival[i], out)) {
                 ++i;
             } else if (next < last) {
-                start(flight_[i++], next++);
+                start(flight_[i++], next, start_block(next));
+                ++next;
             } else {
-                // Keep the photons in flight at the front.
-                std::swap(flight_[i], flight_[--active]);
+                // Keep the photons in flight at the front; the one moved into slot i has
+                // not taken its step yet, so its arrival block moves with it.
+                --active;
+                std::swap(flight_[i], flight_[active]);
+                arrival[i] = arrival[active];
             }
         }
     }

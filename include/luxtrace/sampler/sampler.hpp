@@ -7,6 +7,7 @@
 #include <Random123/philox.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -14,17 +15,29 @@ namespace luxtrace {
 
 class PhiloxSampler {
 public:
-    explicit PhiloxSampler(std::uint64_t seed) : seed_(seed) {}
+    using Block = std::array<std::uint32_t, 4>;
+    // Blocks computed together by `blocks` (one AVX2 lane each).
+    static constexpr std::size_t kBatch = 8;
+    // The counter's fourth word: "luxt".
+    static constexpr std::uint32_t kCounterTag = 0x6c757874u;
+
+    explicit PhiloxSampler(std::uint64_t seed);
 
     // The four words of block `b` of photon `k`.
-    std::array<std::uint32_t, 4> block(std::uint64_t k, std::uint32_t b) const {
+    Block block(std::uint64_t k, std::uint32_t b) const {
         const r123::Philox4x32::ctr_type ctr = {
-            {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(k >> 32), b, 0x6c757874u /* "luxt" */}};
+            {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(k >> 32), b, kCounterTag}};
         const r123::Philox4x32::key_type key = {
             {static_cast<std::uint32_t>(seed_), static_cast<std::uint32_t>(seed_ >> 32)}};
         const auto out = r123::Philox4x32()(ctr, key);
         return {out.v[0], out.v[1], out.v[2], out.v[3]};
     }
+    // out[i] = block(k[i], b[i]) for i < n <= kBatch, the same words, computed eight
+    // lanes at a time where the CPU has AVX2 (the tracer's photons in flight ask
+    // together), one by one otherwise.
+    void blocks(const std::uint64_t* k, const std::uint32_t* b, std::size_t n, Block* out) const;
+    // Whether `blocks` uses the AVX2 lanes on this CPU.
+    bool vectorised() const { return avx2_; }
     // 32 random bits, centred in their interval: strictly inside (0, 1).
     static double uniform(std::uint32_t w) { return (static_cast<double>(w) + 0.5) * 0x1p-32; }
 
@@ -45,6 +58,7 @@ public:
 
 private:
     std::uint64_t seed_;
+    bool avx2_ = false;
     std::uint64_t photon_ = 0;
     std::uint32_t dim_ = 0;
     std::uint32_t block_ = UINT32_MAX;

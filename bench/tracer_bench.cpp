@@ -79,7 +79,8 @@ std::vector<RecordedRay> record_tracer_rays(const Scene& scene, const EmbreeScen
     std::vector<RecordedRay> rays;
     {
         const SurfaceTable surfaces(scene, embree);
-        PhotonTracer tracer(scene, embree, surfaces, store.layout(), seed);
+        PhotonTracer tracer(scene, embree, surfaces, store.layout(),
+                            PhotonSampler(sampler_kind(scene.run.sampler), seed));
         TallyBuffer buffer(store);
         tracer.record_rays(&rays);
         tracer.trace(0, n, buffer);
@@ -402,6 +403,7 @@ struct Settings {
     bool verbose = false;
     bool packets = false;
     bool floor = false;
+    std::string sampler = "random";
 };
 
 struct Series {
@@ -417,7 +419,8 @@ int run(const Settings& set, const Communicator& comm) {
     if (set.probe != "auto") count_arg("--probe-photons", set.probe);
 
     auto t0 = Clock::now();
-    const Scene scene = load_scene(set.scene_file);
+    Scene scene = load_scene(set.scene_file);
+    scene.run.sampler = set.sampler;  // the tracer's; sobol before the CLI offers it (issue 11)
     const double t_load = seconds_since(t0);
     t0 = Clock::now();
     const EmbreeScene embree(scene);
@@ -451,6 +454,8 @@ int run(const Settings& set, const Communicator& comm) {
         std::vector<std::uint32_t> counts(scene.triangle_count(), 0);
         floor.trace(0, photons, counts, &floor_rays);
     }
+    sampler_kind(scene.run.sampler);  // refuses an unknown name
+    std::printf("sampler %s\n", scene.run.sampler.c_str());
     std::printf("scene %s: %zu triangles, %zu lights, %zu detectors, max_bounces %d\n", set.scene_file.c_str(),
                 scene.triangle_count(), scene.lights.lights().size(), scene.detectors.size(), scene.run.max_bounces);
     std::printf("load %.2f s, BVH build %.2f s; %llu photons per tracer run (seed %llu); replay: the %zu rays of "
@@ -565,6 +570,7 @@ int main(int argc, char** argv) {
     app.add_option("--seed", set.seed, "seed of the cosine rays")->capture_default_str();
     app.add_flag("--verbose", set.verbose, "print every measurement");
     app.add_flag("--packets", set.packets, "also replay the rays through rtcIntersect8 in groups of 8");
+    app.add_option("--sampler", set.sampler, "the tracer's sampler: random or sobol")->capture_default_str();
     app.add_flag("--floor", set.floor, "also time the floor: a minimal analog photon tracer, against its own rays");
     CLI11_PARSE(app, argc, argv);
     try {

@@ -1,11 +1,13 @@
 // Chi-square tests of every emission sampling routine, driven by the production
 // PhiloxSampler, and tests of the sampler itself (range, order independence, seeds,
 // uniformity, pair correlation). Each chi-square test is rejected at p = 0.999.
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/ies.hpp"
 #include "luxtrace/light/light.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/sampler/sobol.hpp"
 
 #include "test_support.hpp"
@@ -638,6 +640,66 @@ TEST(Sobol, IndependentScramblesGiveUncorrelatedEstimates) {
     EXPECT_LT(std::abs(mean - (0.25 + 1.0 / 3.0)), 4.0 * std::sqrt(var / kRuns));
     std::printf("  correlation z = %.2f; mean %.7f (exact %.7f), sd of one estimate %.2e\n", z, mean,
                 0.25 + 1.0 / 3.0, std::sqrt(var));
+}
+
+TEST(PhotonSampler, SobolBlocksAreScrambledPointsOfTheirStreamInAnyOrder) {
+    // Photon k is point k / R of stream k mod R; block 0 holds dimensions 0, 1, 4, 5,
+    // block 1 dimensions 2, 3, block 2 + b dimensions 6 + 3b .. 8 + 3b, unused words 0,
+    // and blocks past the Sobol dimensions are the photon's Philox blocks. The sampler
+    // steps each dimension from the last point asked for, so it is asked in a random
+    // order, in batches of 1 to 8, with indices near and far apart.
+    constexpr std::uint64_t seed = 77;
+    constexpr std::uint32_t R = PhotonSampler::kDefaultReplicates;
+    PhotonSampler sampler(SamplerKind::sobol, seed);
+    const SobolSequence seq(PhotonSampler::kSobolDimensions);
+    const PhiloxSampler philox(seed);
+    std::mt19937_64 pick(5);
+    for (int trial = 0; trial < 20000; ++trial) {
+        const std::size_t n = 1 + static_cast<std::size_t>(pick() % PhiloxSampler::kBatch);
+        std::uint64_t k[PhiloxSampler::kBatch];
+        std::uint32_t b[PhiloxSampler::kBatch];
+        PhotonSampler::Block got[PhiloxSampler::kBatch];
+        for (std::size_t i = 0; i < n; ++i) {
+            k[i] = trial % 4 == 0 ? pick() % (std::uint64_t{1} << 34) : 1000 + pick() % 64;
+            b[i] = static_cast<std::uint32_t>(pick() % (4 + PhotonSampler::kSobolBounces));
+        }
+        sampler.blocks(k, b, n, got);
+        for (std::size_t i = 0; i < n; ++i) {
+            PhotonSampler::Block want{};
+            const auto stream = static_cast<std::uint32_t>(k[i] % R);
+            const auto index = static_cast<std::uint32_t>(k[i] / R);
+            auto word = [&](std::uint32_t d) {
+                return seq.scrambled(index, d, SobolSequence::scramble_seed(seed, stream, d));
+            };
+            if (b[i] >= 2 + PhotonSampler::kSobolBounces) want = philox.block(k[i], b[i]);
+            else if (b[i] == 0) want = {word(0), word(1), word(4), word(5)};
+            else if (b[i] == 1) want = {word(2), word(3), 0, 0};
+            else want = {word(6 + 3 * (b[i] - 2)), word(7 + 3 * (b[i] - 2)), word(8 + 3 * (b[i] - 2)), 0};
+            ASSERT_EQ(got[i], want) << "photon " << k[i] << " block " << b[i] << " (trial " << trial << ")";
+        }
+    }
+    // Past 2^32 points a stream goes on with a fresh scramble (stream number + R per epoch).
+    const std::uint64_t far = (std::uint64_t{3} << 32) * R + 13;  // epoch 3, point 1, stream 5
+    const std::uint32_t far_stream = 5 + 3 * R;
+    EXPECT_EQ(sampler.block(far, 0), (PhotonSampler::Block{seq.scrambled(1, 0, SobolSequence::scramble_seed(seed, far_stream, 0)),
+                                                           seq.scrambled(1, 1, SobolSequence::scramble_seed(seed, far_stream, 1)),
+                                                           seq.scrambled(1, 4, SobolSequence::scramble_seed(seed, far_stream, 4)),
+                                                           seq.scrambled(1, 5, SobolSequence::scramble_seed(seed, far_stream, 5))}));
+    EXPECT_EQ(sampler.block(12345, 3), (PhotonSampler::Block{seq.scrambled(12345 / R, 9, SobolSequence::scramble_seed(seed, 12345 % R, 9)),
+                                                             seq.scrambled(12345 / R, 10, SobolSequence::scramble_seed(seed, 12345 % R, 10)),
+                                                             seq.scrambled(12345 / R, 11, SobolSequence::scramble_seed(seed, 12345 % R, 11)), 0}));
+}
+
+TEST(PhotonSampler, RandomBlocksArePhiloxBlocksAndReplicatesAreChecked) {
+    PhotonSampler random(SamplerKind::random, 9);
+    const PhiloxSampler philox(9);
+    for (std::uint64_t k = 0; k < 100; ++k)
+        for (std::uint32_t b = 0; b < 5; ++b) ASSERT_EQ(random.block(k, b), philox.block(k, b));
+    // R must be even (odd photons, the odd map, then come from odd streams only).
+    for (const std::uint32_t bad : {0u, 1u, 3u, 7u, 2048u}) EXPECT_THROW(PhotonSampler(SamplerKind::sobol, 1, bad), InputError);
+    EXPECT_NO_THROW(PhotonSampler(SamplerKind::sobol, 1, 6));  // even, not a power of two
+    EXPECT_EQ(sampler_kind("sobol"), SamplerKind::sobol);
+    EXPECT_THROW(sampler_kind("halton"), InputError);
 }
 
 }  // namespace

@@ -82,6 +82,8 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
             throw InputError("--seed: the checkpoint " + a.restart + " was made with seed " + std::to_string(seed));
         run.seed = seed;
         run.sampler = ck.attr_str("/", "sampler");
+        if (const std::string why = sampler_unavailable(run.sampler); !why.empty())
+            throw InputError(a.restart + ": the checkpoint's sampler: " + why);
         if (a.photons.empty()) run.photons = ck.attr_u64("/checkpoint", "budget");
     }
     const fs::path out(run.output);

@@ -33,8 +33,8 @@ void WorkerPool::worker() {
 }
 
 void WorkerPool::trace_until_stopped() {
-    if (const std::string why = sampler_unavailable(opt_.sampler); !why.empty()) throw InputError("sampler: " + why);
-    PhotonTracer tracer(scene_, embree_, surfaces_, store_.layout(), opt_.seed);
+    PhotonTracer tracer(scene_, embree_, surfaces_, store_.layout(),
+                        PhotonSampler(sampler_kind(opt_.sampler), opt_.seed, opt_.replicates));
     TallyBuffer buffer(store_);
     bool out_of_work = false, at_fence = false;
     while (true) {

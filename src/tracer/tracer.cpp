@@ -4,12 +4,13 @@
 #include "luxtrace/tracer/surface_table.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace luxtrace {
 
 PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
-                           const TallyLayout& layout, std::uint64_t seed)
-    : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(seed) {
+                           const TallyLayout& layout, PhotonSampler sampler)
+    : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(std::move(sampler)) {
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
         (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_).push_back(i);
     for (Photon& p : flight_) p.regs.reserve(32);

@@ -20,6 +20,7 @@ namespace luxtrace {
 struct TraceOptions {
     std::uint64_t seed = 1;
     std::string sampler = "random";
+    std::uint32_t replicates = PhotonSampler::kDefaultReplicates;  // sobol's R
     int threads = 1;
     std::uint64_t chunk = 256;  // photons a thread takes at a time (pause latency)
 };

@@ -46,14 +46,21 @@ public:
     // Nested uniform scrambling of a 32-bit fraction (Burley 2020, eq. for the
     // Laine-Karras permutation with his improved constants, on the reversed bits).
     static std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
-        x = reverse_bits(x);
-        x ^= x * 0x3d20adeau;
-        x += seed;
-        x *= (seed >> 16) | 1u;
-        x ^= x * 0x05526c56u;
-        x ^= x * 0x53a22864u;
-        return reverse_bits(x);
+        return scramble_reversed(reverse_bits(x), seed);
     }
+    // The same from the bit-reversed point (a caller that keeps its points reversed
+    // saves one reversal).
+    static std::uint32_t scramble_reversed(std::uint32_t r, std::uint32_t seed) {
+        r ^= r * 0x3d20adeau;
+        r += seed;
+        r *= (seed >> 16) | 1u;
+        r ^= r * 0x05526c56u;
+        r ^= r * 0x53a22864u;
+        return reverse_bits(r);
+    }
+    // scramble_reversed on n words at once: words[i] = scramble_reversed(words[i], seeds[i]);
+    // eight AVX2 lanes at a time where the CPU has them.
+    static void scramble_reversed(std::uint32_t* words, const std::uint32_t* seeds, std::size_t n);
     static std::uint32_t reverse_bits(std::uint32_t x) {
         x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
         x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);

@@ -15,7 +15,7 @@
 // others. Photons never interact, and tallies are integer sums, so the order in which
 // their steps are taken changes no count.
 #include "luxtrace/core/math.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
@@ -42,7 +42,7 @@ struct RecordedRay {
 class PhotonTracer {
 public:
     PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
-                 const TallyLayout& layout, std::uint64_t seed);
+                 const TallyLayout& layout, PhotonSampler sampler);
     // Trace photons [first, last) and add their contributions to `out`.
     void trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out);
     // Append every ray traced from now on to `sink` (null: stop recording).
@@ -75,7 +75,7 @@ private:
     const EmbreeScene& embree_;
     const SurfaceTable& surfaces_;
     const TallyLayout& layout_;
-    PhiloxSampler sampler_;
+    PhotonSampler sampler_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));

@@ -2,7 +2,6 @@
 
 #include "luxtrace/core/error.hpp"
 
-#include <algorithm>
 
 namespace luxtrace {
 
@@ -43,36 +42,45 @@ void PhotonSampler::sobol_blocks(const std::uint64_t* k, const std::uint32_t* b,
         const std::uint64_t stream = replicate_shift_ >= 0 ? k[i] & (replicates_ - 1) : k[i] % replicates_;
         const std::uint64_t index = replicate_shift_ >= 0 ? k[i] >> replicate_shift_ : k[i] / replicates_;
         const auto point = static_cast<std::uint32_t>(index);
-        std::uint32_t dims[3];
-        int used = 3;
-        if (bi == 0) {
-            dims[0] = 0, dims[1] = 1, dims[2] = 4;
-            w[3] = reversed_point(point, 5);  // the fourth word: dimension 5
-            used = 4;
-        } else if (bi == 1) {
-            dims[0] = 2, dims[1] = 3;
-            used = 2;
-        } else {
-            dims[0] = 6 + 3 * (bi - 2), dims[1] = dims[0] + 1, dims[2] = dims[0] + 2;
+        if ((index >> 32) != 0) {
+            out[i] = far_block(stream, index, bi);
+            continue;
         }
-        for (int j = 0; j < std::min(used, 3); ++j) w[j] = reversed_point(point, dims[j]);
-        if ((index >> 32) == 0) {
-            const std::uint32_t* scramble = &scrambles_[stream * kSobolDimensions];
-            for (int j = 0; j < std::min(used, 3); ++j) sd[j] = scramble[dims[j]];
-            if (used == 4) sd[3] = scramble[5];
-            done[i] = false;
+        const std::uint32_t* scramble = &scrambles_[stream * kSobolDimensions];
+        done[i] = false;
+        if (bi >= 2) {
+            const std::uint32_t d = 6 + 3 * (bi - 2);
+            w[0] = reversed_point(point, d), sd[0] = scramble[d];
+            w[1] = reversed_point(point, d + 1), sd[1] = scramble[d + 1];
+            w[2] = reversed_point(point, d + 2), sd[2] = scramble[d + 2];
+        } else if (bi == 0) {
+            w[0] = reversed_point(point, 0), sd[0] = scramble[0];
+            w[1] = reversed_point(point, 1), sd[1] = scramble[1];
+            w[2] = reversed_point(point, 4), sd[2] = scramble[4];
+            w[3] = reversed_point(point, 5), sd[3] = scramble[5];
         } else {
-            // A stream's 32-bit index runs out after 2^32 points (2^35 photons at R = 8):
-            // its next 2^32 points are a fresh scramble (stream number raised by R per epoch).
-            const auto id = static_cast<std::uint32_t>(stream + replicates_ * (index >> 32));
-            for (int j = 0; j < used; ++j)
-                out[i][j] = SobolSequence::scramble_reversed(w[j], SobolSequence::scramble_seed(seed_, id, j < 3 ? dims[j] : 5));
-            for (int j = used; j < 4; ++j) out[i][j] = 0;
+            w[0] = reversed_point(point, 2), sd[0] = scramble[2];
+            w[1] = reversed_point(point, 3), sd[1] = scramble[3];
         }
     }
     SobolSequence::scramble_reversed(words, seeds, 4 * n);
     for (std::size_t i = 0; i < n; ++i)
         if (!done[i]) out[i] = {words[4 * i], words[4 * i + 1], words[4 * i + 2], words[4 * i + 3]};
+}
+
+// A stream's 32-bit index runs out after 2^32 points (2^35 photons at R = 8): its next
+// 2^32 points are a fresh scramble (stream number raised by R per epoch), computed here,
+// off the common path.
+PhotonSampler::Block PhotonSampler::far_block(std::uint64_t stream, std::uint64_t index, std::uint32_t b) {
+    const auto id = static_cast<std::uint32_t>(stream + replicates_ * (index >> 32));
+    const auto point = static_cast<std::uint32_t>(index);
+    auto word = [&](std::uint32_t d) {
+        return SobolSequence::scramble_reversed(reversed_point(point, d), SobolSequence::scramble_seed(seed_, id, d));
+    };
+    if (b == 0) return {word(0), word(1), word(4), word(5)};
+    if (b == 1) return {word(2), word(3), 0u, 0u};
+    const std::uint32_t d = 6 + 3 * (b - 2);
+    return {word(d), word(d + 1), word(d + 2), 0u};
 }
 
 SamplerKind sampler_kind(const std::string& name) {

@@ -57,6 +57,7 @@ public:
 
 private:
     void sobol_blocks(const std::uint64_t* k, const std::uint32_t* b, std::size_t n, Block* out);
+    Block far_block(std::uint64_t stream, std::uint64_t index, std::uint32_t b);
     // Scrambled point `index` of dimension d with scramble s. The Sobol points are linear
     // in the bits of the index over GF(2), x(i) = x(j) ^ x(i ^ j), so the point is stepped
     // from the last one asked for in that dimension: photons in flight are close in index,

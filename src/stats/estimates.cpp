@@ -102,4 +102,31 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
     return out;
 }
 
+ReplicateEstimate replicate_estimate(std::span<const double> sums, std::span<const std::uint64_t> photons) {
+    ReplicateEstimate e;
+    double total = 0.0, n = 0.0;
+    bool all_have_photons = sums.size() == photons.size();
+    for (std::size_t r = 0; r < sums.size() && all_have_photons; ++r) {
+        total += sums[r];
+        n += static_cast<double>(photons[r]);
+        all_have_photons = photons[r] > 0;
+    }
+    if (!all_have_photons || sums.size() < 2) {
+        e.sigma = std::numeric_limits<double>::quiet_NaN();
+        e.mean = n > 0.0 ? total / n : 0.0;
+        return e;
+    }
+    e.mean = total / n;
+    double s = 0.0;
+    for (std::size_t r = 0; r < sums.size(); ++r) {
+        const double w = static_cast<double>(photons[r]) / n;
+        const double d = sums[r] / static_cast<double>(photons[r]) - e.mean;
+        s += w * w * d * d;
+    }
+    const double R = static_cast<double>(sums.size());
+    e.sigma = std::sqrt(s * R / (R - 1.0));
+    e.dof = static_cast<int>(sums.size()) - 1;
+    return e;
+}
+
 }  // namespace luxtrace

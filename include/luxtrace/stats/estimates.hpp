@@ -44,6 +44,21 @@ struct DetectorEstimate {
     std::uint64_t registrations = 0;      // sum of n_c over the range
 };
 
+// A mean from R independent randomisations of a QMC estimator (replicates, issue 11;
+// docs/QMC.md): replicate r scored `sums[r]` over `photons[r]` photons. Eq. (8)'s
+// per-photon variance assumes independent photons, which QMC points are not; the
+// replicates are independent of each other, so the spread of their means is an honest
+// error. mean = sum / N (N = sum of photons[r]); sigma^2 = R / (R - 1) * sum over r of
+// (photons[r] / N)^2 (m_r - mean)^2, m_r = sums[r] / photons[r], which for equal
+// photons[r] is s^2 / R with s^2 the sample variance of the m_r; R - 1 degrees of freedom.
+struct ReplicateEstimate {
+    double mean = 0.0;   // per photon
+    double sigma = 0.0;  // standard error of mean
+    int dof = 0;         // R - 1
+};
+// Needs R >= 2 replicates with photons each; otherwise sigma is NaN and dof 0.
+ReplicateEstimate replicate_estimate(std::span<const double> sums, std::span<const std::uint64_t> photons);
+
 // photons = N, the photons emitted so far.
 DetectorEstimate estimate_detector(const Detector& det, std::size_t det_index, const TallyLayout& layout,
                                    std::span<const std::uint64_t> data, double e0,

@@ -236,6 +236,20 @@ struct Timed {
     std::uint64_t rays = 0, hits = 0;
 };
 
+// Runs `worker` on `threads` threads (the calling one among them) and times the whole:
+// wall and process CPU seconds.
+template <class Worker>
+Timed run_on_threads(int threads, const Worker& worker) {
+    const auto t0 = Clock::now();
+    const double c0 = process_cpu_seconds();
+    {
+        std::vector<std::jthread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+        worker();
+    }
+    return {seconds_since(t0), process_cpu_seconds() - c0, 0, 0};
+}
+
 // Runs `hits_in(first, last)` over every chunk of 1024 rays, `threads` threads taking
 // chunks from one counter (as the tracer's threads take photons); times the whole.
 template <class Chunk>
@@ -249,14 +263,10 @@ Timed on_threads(std::size_t rays, int threads, const Chunk& hits_in) {
             mine += hits_in(first, std::min(rays, first + kChunk));
         hits += mine;
     };
-    const auto t0 = Clock::now();
-    const double c0 = process_cpu_seconds();
-    {
-        std::vector<std::jthread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-        worker();
-    }
-    return {seconds_since(t0), process_cpu_seconds() - c0, rays, hits.load()};
+    Timed t = run_on_threads(threads, worker);
+    t.rays = rays;
+    t.hits = hits.load();
+    return t;
 }
 
 // rtcIntersect1 on every ray through EmbreeScene::intersect_local, the call the tracer
@@ -326,15 +336,10 @@ Timed run_floor(const Scene& scene, const EmbreeScene& embree, const SurfaceTabl
         for (std::uint32_t c : counts) sum += c;
         counted += sum;
     };
-    const auto t0 = Clock::now();
-    const double c0 = process_cpu_seconds();
-    {
-        std::vector<std::jthread> pool;
-        for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-        worker();
-    }
+    Timed t = run_on_threads(threads, worker);
     *arrivals = counted.load();
-    return {seconds_since(t0), process_cpu_seconds() - c0, rays.load(), 0};
+    t.rays = rays.load();
+    return t;
 }
 
 // FNV-1a over every tally of a result: equal checksums mean identical counts.

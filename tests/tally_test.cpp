@@ -11,30 +11,40 @@
 using namespace luxtrace;
 
 TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
-    const TallyLayout L(7, 3, {4, 9});
-    std::set<std::size_t> seen;
-    auto take = [&](std::size_t i) {
-        EXPECT_LT(i, L.size());
-        EXPECT_TRUE(seen.insert(i).second) << "index " << i << " used twice";
-    };
-    for (std::size_t c = 0; c < TallyLayout::kCounters; ++c) take(c);
-    for (std::size_t t = 0; t < 7; ++t)
-        for (std::size_t b = 0; b < 3; ++b)
-            for (auto s : {TallyLayout::kCountOdd, TallyLayout::kCountEven, TallyLayout::kDirectOdd,
-                           TallyLayout::kDirectEven})
-                take(L.surface(t, b, s));
-    const int cells[] = {4, 9};
-    for (std::size_t d = 0; d < 2; ++d) {
-        for (int c = 0; c < cells[d]; ++c)
-            for (std::size_t b = 0; b < 3; ++b) {
-                take(L.detector_n(d, c, b));
-                take(L.detector_q(d, c, b));
-            }
-        take(L.detector_received(d));
-        take(L.detector_total_n(d));
-        take(L.detector_total_q(d));
+    // Without replicates (random) and with R = 4 (sobol): the first slots are the same.
+    for (const std::size_t R : {std::size_t{0}, std::size_t{4}}) {
+        const TallyLayout L(7, 3, {4, 9}, R);
+        std::set<std::size_t> seen;
+        auto take = [&](std::size_t i) {
+            EXPECT_LT(i, L.size());
+            EXPECT_TRUE(seen.insert(i).second) << "index " << i << " used twice (R = " << R << ")";
+        };
+        for (std::size_t c = 0; c < TallyLayout::kCounters; ++c) take(c);
+        for (std::size_t t = 0; t < 7; ++t)
+            for (std::size_t b = 0; b < 3; ++b)
+                for (auto s : {TallyLayout::kCountOdd, TallyLayout::kCountEven, TallyLayout::kDirectOdd,
+                               TallyLayout::kDirectEven})
+                    take(L.surface(t, b, s));
+        const int cells[] = {4, 9};
+        const TallyLayout plain(7, 3, {4, 9});
+        for (std::size_t d = 0; d < 2; ++d) {
+            for (int c = 0; c < cells[d]; ++c)
+                for (std::size_t b = 0; b < 3; ++b) {
+                    take(L.detector_n(d, c, b));
+                    take(L.detector_q(d, c, b));
+                    EXPECT_EQ(L.detector_n(d, c, b), plain.detector_n(d, c, b));
+                    for (std::size_t r = 0; r < R; ++r) {
+                        take(L.detector_replicate_n(d, r, c, b));
+                        EXPECT_EQ(L.detector_replicate_of(d, L.detector_n(d, c, b), r), L.detector_replicate_n(d, r, c, b));
+                    }
+                }
+            take(L.detector_received(d));
+            take(L.detector_total_n(d));
+            take(L.detector_total_q(d));
+            for (std::size_t r = 0; r < R; ++r) take(L.detector_replicate_total_n(d, r));
+        }
+        EXPECT_EQ(seen.size(), L.size()) << "the layout has unused slots (R = " << R << ")";
     }
-    EXPECT_EQ(seen.size(), L.size()) << "the layout has unused slots";
 }
 
 TEST(TallyBuffer, ThreadedBuffersGiveExactSerialSums) {

@@ -112,6 +112,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     TraceOptions topt;
     topt.seed = run.seed;
     topt.sampler = run.sampler;
+    topt.replicates = run.replicates;
     topt.threads = threads;
     topt.chunk = 256;  // pause latency: a thread finishes its chunk before parking
 

@@ -4,6 +4,8 @@
 #include "luxtrace/tracer/surface_table.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace luxtrace {
@@ -11,6 +13,11 @@ namespace luxtrace {
 PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
                            const TallyLayout& layout, PhotonSampler sampler)
     : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(std::move(sampler)) {
+    // The tallies keep per-replicate counts for exactly the sampler's streams.
+    const std::size_t streams = sampler_.kind() == SamplerKind::sobol ? sampler_.replicates() : 0;
+    if (layout_.replicates() != streams)
+        throw std::logic_error("tally layout for " + std::to_string(layout_.replicates()) + " replicates, sampler with " +
+                               std::to_string(streams));
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
         (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_).push_back(i);
     for (Photon& p : flight_) p.regs.reserve(32);
@@ -112,11 +119,15 @@ void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out
     std::sort(regs.begin(), regs.end(), [](const Registration& a, const Registration& b) { return a.index < b.index; });
     std::uint32_t last_detector = UINT32_MAX;
     std::uint64_t in_detector = 0;  // this photon's registrations in last_detector
+    // sobol: the photon's replicate (its stream, photon_sampler.hpp) keeps its own counts.
+    const std::size_t R = layout_.replicates();
+    const std::size_t replicate = R > 0 ? p.k % R : 0;
     auto close_detector = [&] {
         if (last_detector == UINT32_MAX) return;
         out.add(layout_.detector_received(last_detector), 1);
         out.add(layout_.detector_total_n(last_detector), in_detector);
         out.add(layout_.detector_total_q(last_detector), in_detector * in_detector);
+        if (R > 0) out.add(layout_.detector_replicate_total_n(last_detector, replicate), in_detector);
     };
     for (std::size_t i = 0; i < regs.size();) {
         std::size_t j = i;
@@ -124,6 +135,7 @@ void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out
         const std::uint64_t e = j - i;
         out.add(regs[i].index, e);          // n_c
         out.add(regs[i].index + 1, e * e);  // q_c
+        if (R > 0) out.add(layout_.detector_replicate_of(regs[i].detector, regs[i].index, replicate), e);
         // Detectors occupy disjoint ascending index ranges, so sorted order groups them.
         if (regs[i].detector != last_detector) {
             close_detector();

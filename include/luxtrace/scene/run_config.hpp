@@ -32,6 +32,7 @@ struct RunConfig {
     double checkpoint_every_s = 0.0; // 0 = none
     std::string checkpoint;          // checkpoint path
     std::string sampler = "random";
+    std::uint32_t replicates = 8;    // sobol: independent randomisations (docs/QMC.md)
     int max_bounces = 10000;         // safety bound for lossless mirror traps
     std::vector<Target> targets;
 };

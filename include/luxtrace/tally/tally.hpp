@@ -25,7 +25,10 @@ public:
     enum SurfaceSlot : std::size_t { kCountOdd = 0, kCountEven = 1, kDirectOdd = 2, kDirectEven = 3, kSurfaceSlots = 4 };
 
     TallyLayout() = default;
-    TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells);
+    // replicates: R of the sobol sampler (docs/QMC.md), 0 for random; with R > 0 every
+    // detector also keeps per replicate its cells' registrations and its total.
+    TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
+                std::size_t replicates = 0);
     explicit TallyLayout(const Scene& scene);
 
     std::size_t size() const { return size_; }
@@ -53,9 +56,22 @@ public:
     std::size_t detector_total_n(std::size_t det) const { return detector_received(det) + 1; }
     std::size_t detector_total_q(std::size_t det) const { return detector_received(det) + 2; }
 
+    // Per replicate (R > 0 only): n_c of the photons of replicate r, and their sum of E.
+    std::size_t replicates() const { return replicates_; }
+    std::size_t detector_replicate_n(std::size_t det, std::size_t r, std::size_t cell, std::size_t band) const {
+        return rep_offset_[det] + (r * det_cells_[det] + cell) * bands_ + band;
+    }
+    // The replicate-r slot of the cell and band whose n_c sits at `n_index`.
+    std::size_t detector_replicate_of(std::size_t det, std::size_t n_index, std::size_t r) const {
+        return rep_offset_[det] + r * det_cells_[det] * bands_ + (n_index - det_offset_[det]) / 2;
+    }
+    std::size_t detector_replicate_total_n(std::size_t det, std::size_t r) const {
+        return rep_offset_[det] + replicates_ * det_cells_[det] * bands_ + r;
+    }
+
 private:
-    std::size_t triangles_ = 0, bands_ = 0, size_ = kCounters;
-    std::vector<std::size_t> det_offset_;
+    std::size_t triangles_ = 0, bands_ = 0, size_ = kCounters, replicates_ = 0;
+    std::vector<std::size_t> det_offset_, rep_offset_;
     std::vector<std::size_t> det_cells_;
 };
 

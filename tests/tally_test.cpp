@@ -43,6 +43,7 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
             take(L.detector_total_q(d));
             for (std::size_t r = 0; r < R; ++r) take(L.detector_replicate_total_n(d, r));
         }
+        for (std::size_t r = 0; r < R; ++r) take(L.replicate_photons(r));
         EXPECT_EQ(seen.size(), L.size()) << "the layout has unused slots (R = " << R << ")";
     }
 }

@@ -64,12 +64,34 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
     auto rel = [&](double n, double q) {
         return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n)) : nan;
     };
+    // sobol: the spread of the replicate means instead (docs/QMC.md). `slot(r)` gives the
+    // replicate-r count of what is estimated; the bands of a cell are summed by calling
+    // it once per band.
+    const std::size_t R = L.replicates();
+    std::vector<std::uint64_t> rep_photons(R);
+    std::vector<double> rep_sums(R);
+    for (std::size_t q = 0; q < R; ++q) rep_photons[q] = data[L.replicate_photons(q)];
+    out.replicate_spread = R > 0;
+    out.dof = R > 0 ? static_cast<int>(R) - 1 : 0;
+    auto replicate_rel = [&](auto&& slot) {
+        for (std::size_t q = 0; q < R; ++q) rep_sums[q] = slot(q);
+        const ReplicateEstimate e = replicate_estimate(rep_sums, rep_photons);
+        return e.mean > 0.0 ? e.sigma / e.mean : nan;
+    };
+    auto cell_rel = [&](int c, std::size_t b0, std::size_t b1, double n, double q) {
+        if (R == 0) return rel(n, q);
+        return replicate_rel([&](std::size_t rep) {
+            double sum = 0.0;
+            for (std::size_t b = b0; b < b1; ++b) sum += static_cast<double>(data[L.detector_replicate_n(di, rep, c, b)]);
+            return sum;
+        });
+    };
     for (int c = 0; c < det.cells(); ++c)
         for (std::size_t b = 0; b < nb; ++b) {
             const double n = static_cast<double>(data[L.detector_n(di, c, b)]);
             const double q = static_cast<double>(data[L.detector_q(di, c, b)]);
             out.value[c * nb + b] = n * per_count;
-            out.sigma_rel[c * nb + b] = rel(n, q);
+            out.sigma_rel[c * nb + b] = cell_rel(c, b, b + 1, n, q);
         }
     // Eq. (9) over the range on band-summed cells (a photon has one band, so n and q add).
     double sum_l = 0.0, sum_l2 = 0.0, sum_s2 = 0.0;
@@ -83,7 +105,7 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
                 q += static_cast<double>(data[L.detector_q(di, c, b)]);
             }
             const double l = n * per_count;
-            const double sigma_c = n > 0.0 ? rel(n, q) * l : 0.0;
+            const double sigma_c = n > 0.0 ? cell_rel(c, 0, nb, n, q) * l : 0.0;
             sum_l += l;
             sum_l2 += l * l;
             sum_s2 += sigma_c * sigma_c;
@@ -98,7 +120,9 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
     const double tn = static_cast<double>(data[L.detector_total_n(di)]);
     const double tq = static_cast<double>(data[L.detector_total_q(di)]);
     out.mean_value = tn * per_count / det.cells();
-    out.mean_sigma_rel = rel(tn, tq);
+    out.mean_sigma_rel = R == 0 ? rel(tn, tq) : replicate_rel([&](std::size_t rep) {
+        return static_cast<double>(data[L.detector_replicate_total_n(di, rep)]);
+    });
     return out;
 }
 

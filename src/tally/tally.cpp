@@ -18,6 +18,7 @@ TallyLayout::TallyLayout(std::size_t triangles, std::size_t bands, const std::ve
         rep_offset_.push_back(size_);
         size_ += replicates_ * (det_cells_[d] * bands + 1);
     }
+    size_ += replicates_;  // photons per replicate
 }
 
 namespace {

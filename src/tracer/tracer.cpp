@@ -113,15 +113,16 @@ bool PhotonTracer::step(Photon& p, const PhiloxSampler::Block& u, TallyBuffer& o
 
 void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) {
     out.add(layout_.counter(fate), 1);
+    // sobol: the photon's replicate (its stream, photon_sampler.hpp) keeps its own counts.
+    const std::size_t R = layout_.replicates();
+    const std::size_t replicate = R > 0 ? p.k % R : 0;
+    if (R > 0) out.add(layout_.replicate_photons(replicate), 1);
     if (p.regs.empty()) return;
     // E_i of eq. (6): how many times this photon registered in each cell.
     std::vector<Registration>& regs = p.regs;
     std::sort(regs.begin(), regs.end(), [](const Registration& a, const Registration& b) { return a.index < b.index; });
     std::uint32_t last_detector = UINT32_MAX;
     std::uint64_t in_detector = 0;  // this photon's registrations in last_detector
-    // sobol: the photon's replicate (its stream, photon_sampler.hpp) keeps its own counts.
-    const std::size_t R = layout_.replicates();
-    const std::size_t replicate = R > 0 ? p.k % R : 0;
     auto close_detector = [&] {
         if (last_detector == UINT32_MAX) return;
         out.add(layout_.detector_received(last_detector), 1);

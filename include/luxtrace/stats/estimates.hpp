@@ -42,6 +42,11 @@ struct DetectorEstimate {
     double mean_sigma_rel = 0.0;
     std::uint64_t photons_received = 0;   // whole detector
     std::uint64_t registrations = 0;      // sum of n_c over the range
+    // How sigma_rel and the summaries were estimated: eq. (8) (independent photons,
+    // random) or the spread of the R replicate means (sobol, replicate_estimate), with
+    // `dof` = R - 1 degrees of freedom (0 for eq. 8).
+    bool replicate_spread = false;
+    int dof = 0;
 };
 
 // A mean from R independent randomisations of a QMC estimator (replicates, issue 11;

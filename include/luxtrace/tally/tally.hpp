@@ -68,6 +68,8 @@ public:
     std::size_t detector_replicate_total_n(std::size_t det, std::size_t r) const {
         return rep_offset_[det] + replicates_ * det_cells_[det] * bands_ + r;
     }
+    // Photons traced of replicate r (the last R slots).
+    std::size_t replicate_photons(std::size_t r) const { return size_ - replicates_ + r; }
 
 private:
     std::size_t triangles_ = 0, bands_ = 0, size_ = kCounters, replicates_ = 0;

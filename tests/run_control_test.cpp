@@ -131,6 +131,38 @@ TEST(Forecast, RecoversTheInverseSquareRootLawFromNoisyHistory) {
     EXPECT_NEAR(photon_rate(h) / rate, 1.0, 1e-9);
 }
 
+TEST(Forecast, FittedExponentRecoversFasterLawsAndNeverGoesBelowMonteCarlo) {
+    // sigma = C / N^alpha with 3 % noise over a factor 30 in N: alpha = 0.75 is recovered
+    // and the photons to the goal within 10 %; a law slower than 1/sqrt(N) (alpha 0.4,
+    // e.g. a noisy start) is floored at 1/2; too short a history keeps 1/2.
+    const double rate = 2.0e5;
+    std::mt19937_64 g(12);
+    std::normal_distribution<double> noise(0.0, 0.03);
+    for (const double alpha : {0.75, 0.4}) {
+        const double c = 40.0 * std::pow(1e5, alpha - 0.5);
+        std::vector<HistoryPoint> h;
+        for (int i = 1; i <= 30; ++i) {
+            const double t = 0.5 * i, n = rate * t;
+            h.push_back({t, n, c / std::pow(n, alpha) * (1.0 + noise(g))});
+        }
+        const double goal = 0.001;
+        const Forecast f = forecast_error_fitted(h, goal, photon_rate(h));
+        ASSERT_TRUE(f.valid);
+        if (alpha > 0.5) {
+            EXPECT_NEAR(f.exponent, alpha, 0.03);
+            EXPECT_NEAR(f.photons_needed / std::pow(c / goal, 1.0 / alpha), 1.0, 0.1);
+        } else {
+            EXPECT_EQ(f.exponent, 0.5);
+        }
+    }
+    const std::vector<HistoryPoint> short_history = {{1.0, 1e5, 0.02}, {2.0, 2e5, 0.01}, {3.0, 3e5, 0.006}};
+    EXPECT_EQ(forecast_error_fitted(short_history, 0.001, 1e5).exponent, 0.5);  // spans a factor 3 only
+    // On an exact 1/sqrt(N) history both forecasts agree.
+    std::vector<HistoryPoint> h;
+    for (int i = 1; i <= 10; ++i) h.push_back({1.0 * i, 1e5 * i, 10.0 / std::sqrt(1e5 * i)});
+    EXPECT_NEAR(forecast_error_fitted(h, 1e-3, 1e5).photons_needed / forecast_error(h, 1e-3, 1e5).photons_needed, 1.0, 1e-9);
+}
+
 TEST(Forecast, CountTargetsGrowLinearly) {
     std::vector<HistoryPoint> h;
     for (int i = 1; i <= 10; ++i) h.push_back({1.0 * i, 1000.0 * i, 0.25 * 1000.0 * i});

@@ -1,5 +1,6 @@
 #include "luxtrace/forecast/forecast.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace luxtrace {
@@ -47,6 +48,33 @@ Forecast forecast_error(const std::vector<HistoryPoint>& h, double goal, double 
     if (sw <= 0.0) return {};
     const double c = std::exp(swl / sw);
     return finish(h, (c / goal) * (c / goal), rate);
+}
+
+Forecast forecast_error_fitted(const std::vector<HistoryPoint>& h, double goal, double rate) {
+    if (h.empty() || !(goal > 0.0)) return {};
+    const double n_last = h.back().photons;
+    double sw = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, n_min = n_last;
+    int points = 0;
+    for (const HistoryPoint& p : h) {
+        if (p.photons < 0.1 * n_last || !(p.value > 0.0) || !std::isfinite(p.value) || !(p.photons > 0.0)) continue;
+        const double w = p.photons, x = std::log(p.photons), y = std::log(p.value);
+        sw += w;
+        sx += w * x;
+        sy += w * y;
+        sxx += w * x * x;
+        sxy += w * x * y;
+        n_min = std::min(n_min, p.photons);
+        ++points;
+    }
+    if (sw <= 0.0) return {};
+    double alpha = 0.5;
+    const double den = sw * sxx - sx * sx;
+    if (points >= 3 && n_last >= 4.0 * n_min && den > 0.0) alpha = std::max(0.5, -(sw * sxy - sx * sy) / den);
+    // log C = mean(log sigma + alpha log N) over the weighted points.
+    const double log_c = (sy + alpha * sx) / sw;
+    Forecast f = finish(h, std::pow(std::exp(log_c) / goal, 1.0 / alpha), rate);
+    f.exponent = alpha;
+    return f;
 }
 
 Forecast forecast_count(const std::vector<HistoryPoint>& h, double goal, double rate) {

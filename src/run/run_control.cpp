@@ -35,8 +35,10 @@ Decision RunController::after_reduction(const ReductionInput& in) {
         // Forecasts use this part of the run only: rates differ between parts.
         if (in.photons > photon_offset_ && std::isfinite(s.value))
             points_[i].push_back({in.elapsed_s, static_cast<double>(in.photons), s.value});
+        // sobol errors may fall faster than 1/sqrt(N): fit the exponent (docs/QMC.md).
         Forecast f = s.kind == TargetKind::photons_received ? forecast_count(points_[i], s.goal, rate_)
-                                                           : forecast_error(points_[i], s.goal, rate_);
+                     : layout_.replicates() > 0             ? forecast_error_fitted(points_[i], s.goal, rate_)
+                                                            : forecast_error(points_[i], s.goal, rate_);
         forecast_.push_back(f);
         row.target_value.push_back(s.value);
         row.target_forecast_s.push_back(f.valid ? time_offset_s_ + f.time_s : std::nan(""));

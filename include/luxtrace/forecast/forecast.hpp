@@ -16,6 +16,7 @@ struct Forecast {
     bool valid = false;
     double photons_needed = 0.0;  // total photons at which the goal is reached
     double time_s = 0.0;          // wall time (since the run's start) at which it is reached
+    double exponent = 0.5;        // alpha of sigma = C / N^alpha used
 };
 
 // Photon rate from (time, photons) points of one part of a run: least-squares slope
@@ -26,6 +27,12 @@ double photon_rate(const std::vector<HistoryPoint>& points);
 // later points more (weights N), then solves C / sqrt(N) = goal; the wall time follows
 // at `rate` photons per second from the last point.
 Forecast forecast_error(const std::vector<HistoryPoint>& history, double goal, double rate);
+
+// The same with the exponent fitted, for QMC (docs/QMC.md), whose error falls faster than
+// 1/sqrt(N) where the integrand allows: least squares of log sigma = log C - alpha log N
+// over the same points and weights, alpha floored at 1/2 (never forecast slower than
+// Monte Carlo) and taken as 1/2 until the points span a factor 4 in N (three at least).
+Forecast forecast_error_fitted(const std::vector<HistoryPoint>& history, double goal, double rate);
 
 // Count target: fits value = a N (through the origin) and solves a N = goal.
 Forecast forecast_count(const std::vector<HistoryPoint>& history, double goal, double rate);

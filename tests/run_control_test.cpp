@@ -2,6 +2,7 @@
 // number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/forecast/forecast.hpp"
+#include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/run/work_plan.hpp"
@@ -40,6 +41,12 @@ void expect_exact_cover(const WorkPlan& plan, std::uint64_t budget, const std::v
 }
 
 }  // namespace
+
+// MPI may be initialised once per process, and the tests of a binary run in one.
+const Communicator& test_communicator() {
+    static const Communicator comm(nullptr, nullptr);
+    return comm;
+}
 
 TEST(WorkPlan, CoversTheBudgetExactlyOnceForAnyRankCount) {
     for (int ranks : {1, 2, 3, 7})
@@ -306,6 +313,45 @@ TEST(WorkerPool, SobolCellErrorsMatchTheScatterOverSeeds) {
     EXPECT_LT(room.replicates, 1.25);
 }
 
+// A sobol run's result says how its errors were estimated and keeps the replicates'
+// grids: their counts add up to the cells' counts, and `luxtrace info` names both.
+TEST(RunSimulation, SobolResultNamesItsEstimatorAndKeepsTheReplicates) {
+    const Communicator& comm = test_communicator();
+    Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/qmc/spot_on_table.toml");
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("luxtrace_sobol_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    scene.run.sampler = "sobol";
+    scene.run.photons = 50000;
+    scene.run.output = (dir / "r.h5").string();
+    RunOptions opt;
+    opt.threads = 2;
+    opt.quiet = true;
+    std::ostringstream out;
+    const RunSummary s = run_simulation(scene, comm, opt, out);
+    ASSERT_FALSE(s.failed) << s.error;
+    const ResultReader r(dir / "r.h5");
+    EXPECT_EQ(r.attr_str("/", "sampler"), "sobol");
+    EXPECT_EQ(r.attr_u64("/", "replicates"), scene.run.replicates);
+    EXPECT_EQ(r.attr_str("/detectors/table", "error_estimator"), "replicate_spread");
+    EXPECT_EQ(r.attr_u64("/detectors/table", "error_dof"), scene.run.replicates - 1);
+    std::vector<std::size_t> shape;
+    const std::vector<std::uint64_t> rep = r.u64("/detectors/table/replicate_count", &shape);
+    const std::vector<std::uint64_t> count = r.u64("/detectors/table/count");
+    ASSERT_EQ(shape.size(), 4u);
+    ASSERT_EQ(shape[0], scene.run.replicates);
+    for (std::size_t c = 0; c < count.size(); ++c) {
+        std::uint64_t sum = 0;
+        for (std::size_t q = 0; q < shape[0]; ++q) sum += rep[q * count.size() + c];
+        EXPECT_EQ(sum, count[c]) << "cell " << c;
+    }
+    std::ostringstream info;
+    print_result_summary(r, info);
+    EXPECT_NE(info.str().find("sobol (8 replicates)"), std::string::npos) << info.str();
+    EXPECT_NE(info.str().find("errors from the replicate spread, 7 dof"), std::string::npos) << info.str();
+    std::filesystem::remove_all(dir);
+}
+
 // A fault inside a tracing thread reaches the main thread as the exception it was, and
 // the pool still pauses and stops (it must never end in std::terminate). A sampler the
 // loader would refuse is the fault: it can only get here by bypassing the loader.
@@ -330,7 +376,7 @@ TEST(WorkerPool, AThreadsExceptionIsKeptAndThePoolStillPausesAndStops) {
 
 // The same fault in a whole run: exit code 2, the message, and no file written.
 TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
-    static Communicator comm(nullptr, nullptr);  // MPI is initialised once per process
+    const Communicator& comm = test_communicator();
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("luxtrace_fault_" + std::to_string(::getpid()));

@@ -271,6 +271,21 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         attr(g, "photons_received", e.photons_received);
         attr(g, "mean_value", e.mean_value);
         attr(g, "mean_sigma_rel", e.mean_sigma_rel);
+        // What sigma_rel and the summaries are (docs/QMC.md): eq. (8) for independent
+        // photons, or the spread of the R replicate means (sobol) with R - 1 dof.
+        attr(g, "error_estimator", e.replicate_spread ? "replicate_spread" : "independent_photons_eq8");
+        attr(g, "error_dof", static_cast<std::uint64_t>(e.dof));
+        if (const std::size_t R = L.replicates(); R > 0) {
+            std::vector<std::uint64_t> rn(R * d.cells() * B), rt(R);
+            for (std::size_t r = 0; r < R; ++r) {
+                rt[r] = data[L.detector_replicate_total_n(di, r)];
+                for (int c = 0; c < d.cells(); ++c)
+                    for (std::size_t b = 0; b < B; ++b)
+                        rn[(r * d.cells() + c) * B + b] = data[L.detector_replicate_n(di, r, c, b)];
+            }
+            dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
+            attr(g, "replicate_total", rt);
+        }
         if (d.type == DetectorType::luminance) {
             attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});
             attr(g, "half_angle_deg", d.half_angle_deg);
@@ -351,6 +366,12 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "stop_reason", info.stop_reason);
         attr_strings(file, "bands", scene.bands, false);
         attr(file, "sampler", info.sampler);
+        attr(file, "replicates", static_cast<std::uint64_t>(layout.replicates()));  // 0: random
+        if (layout.replicates() > 0) {
+            std::vector<std::uint64_t> per(layout.replicates());
+            for (std::size_t r = 0; r < per.size(); ++r) per[r] = tallies[layout.replicate_photons(r)];
+            attr(file, "replicate_photons", per);
+        }
         attr(file, "photon_layout", info.photon_layout);
         attr(file, "reductions", info.reductions);
         attr(file, "reduction_stall_s", info.reduction_stall_s);

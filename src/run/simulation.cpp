@@ -363,7 +363,11 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
     const double elapsed = r.attr_f64("/", "elapsed_s");
     out << "scene          " << r.attr_str("/", "scene_file") << '\n'
         << "luxtrace       " << r.attr_str("/", "luxtrace_version") << ", sampler "
-        << r.attr_str("/", "sampler") << ", seed " << r.attr_u64("/", "seed") << '\n'
+        << r.attr_str("/", "sampler")
+        << (r.has_attr("/", "replicates") && r.attr_u64("/", "replicates") > 0
+                ? " (" + std::to_string(r.attr_u64("/", "replicates")) + " replicates)"
+                : std::string())
+        << ", seed " << r.attr_u64("/", "seed") << '\n'
         << "run            " << r.attr_u64("/", "ranks") << " rank(s) x " << r.attr_u64("/", "threads_per_rank")
         << " thread(s), stopped by: " << r.attr_str("/", "stop_reason") << '\n'
         << "photons        " << photons << " in " << std::fixed << std::setprecision(2) << elapsed << " s ("
@@ -399,7 +403,10 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             << ", mean " << std::setprecision(2) << r.attr_f64(g, "mean_value") << " " << units << " +- "
             << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
             << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " % (eq. 9), "
-            << r.attr_u64(g, "photons_received") << " photons received\n";
+            << r.attr_u64(g, "photons_received") << " photons received";
+        if (r.has_attr(g, "error_estimator") && r.attr_str(g, "error_estimator") == "replicate_spread")
+            out << "; errors from the replicate spread, " << r.attr_u64(g, "error_dof") << " dof";
+        out << '\n';
     }
     if (r.has("/history/target_value")) {
         std::vector<std::size_t> shape;

@@ -107,6 +107,23 @@ TEST_F(Cli, RunAcceptsCountFormsAndInfoReportsThem) {
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+TEST_F(Cli, SobolRunsAndBadSamplerOptionsExitTwo) {
+    const fs::path scene = write("s.toml", kSmallScene);
+    const fs::path out = dir / "q.h5";
+    Outcome o = run("run " + scene.string() + " --photons 1k --quiet --sampler halton --output " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("unknown sampler 'halton'"), std::string::npos) << o.out;
+    o = run("run " + scene.string() + " --photons 1k --quiet --sampler sobol --replicates 7 --output " + out.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("--replicates"), std::string::npos) << o.out;
+    EXPECT_FALSE(fs::exists(out));
+    o = run("run " + scene.string() + " --photons 20k --quiet --sampler sobol --replicates 4 --output " + out.string());
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_EQ(luxtrace::ResultReader(out).attr_u64("/", "replicates"), 4u);
+    const Outcome info = run("info " + out.string());
+    EXPECT_NE(info.out.find("sobol (4 replicates)"), std::string::npos) << info.out;
+}
+
 TEST_F(Cli, CheckSummarisesAndWarnsAboutALightInABlackBox) {
     const fs::path scene = write("boxed.toml", R"(
 [[material]]

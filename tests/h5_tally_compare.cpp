@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
         for (const std::string& d : a.children("/detectors")) {
             names.push_back("/detectors/" + d + "/count");
             names.push_back("/detectors/" + d + "/sumsq");
+            if (a.has("/detectors/" + d + "/replicate_count") || b.has("/detectors/" + d + "/replicate_count"))
+                names.push_back("/detectors/" + d + "/replicate_count");  // sobol
         }
         int differ = 0;
         if (a.attr_u64("/", "photons") != b.attr_u64("/", "photons")) {

@@ -2,19 +2,20 @@
 # Bit-identical tallies whatever the split: the same seed and photon budget must give the
 # same uint64 counts on 1 rank x 1 thread, 1 rank x 2 threads, 2 ranks x 1 thread and
 # 3 ranks x 2 threads; a different seed must not (so the comparison can fail).
-# Usage: mpi_identity.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR
+# Usage: mpi_identity.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER]
+# (SAMPLER: random, the default, or sobol, whose per-replicate grids are compared too.)
 set -euo pipefail
-lux=$1 cmp=$2 mpiexec=$3 work=$4
+lux=$1 cmp=$2 mpiexec=$3 work=$4 sampler=${5:-random}
 here=$(cd "$(dirname "$0")" && pwd)
 scene=$here/data/run/room.toml
 mkdir -p "$work"
 mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tcp_if_include lo)
-common=(--photons 300000 --seed 7 --quiet)
+common=(--photons 300000 --seed 7 --quiet --sampler "$sampler")
 "$lux" run "$scene" "${common[@]}" --threads 1 --output "$work/r1t1.h5"
 "$lux" run "$scene" "${common[@]}" --threads 2 --output "$work/r1t2.h5"
 "${mpi[@]}" -n 2 "$lux" run "$scene" "${common[@]}" --threads 1 --output "$work/r2t1.h5"
 "${mpi[@]}" -n 3 "$lux" run "$scene" "${common[@]}" --threads 2 --output "$work/r3t2.h5"
-"$lux" run "$scene" --photons 300000 --seed 8 --quiet --threads 2 --output "$work/seed8.h5"
+"$lux" run "$scene" --photons 300000 --seed 8 --quiet --sampler "$sampler" --threads 2 --output "$work/seed8.h5"
 status=0
 for other in r1t2 r2t1 r3t2; do
     if "$cmp" "$work/r1t1.h5" "$work/$other.h5"; then echo "identical: r1t1 vs $other"

@@ -8,9 +8,10 @@
 # first progress line is printed, and the restart then sets the budget to a little more
 # than the checkpoint holds (`--photons` on a restart), which the uninterrupted reference
 # run gets too.
-# Usage: restart_test.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR
+# Usage: restart_test.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER]
+# (SAMPLER: random, the default, or sobol; a restart takes the checkpoint's sampler.)
 set -uo pipefail
-lux=$1 cmp=$2 mpiexec=$3 work=$4
+lux=$1 cmp=$2 mpiexec=$3 work=$4 sampler=${5:-random}
 here=$(cd "$(dirname "$0")" && pwd)
 scene=$here/data/run/room.toml
 rm -rf "$work"; mkdir -p "$work"
@@ -31,7 +32,7 @@ covered() { "$lux" info "$1" | sed -n 's/^checkpoint .* below index \([0-9]*\),.
 # 1. Two ranks with a checkpoint at every reduction; kill -9 one rank as soon as a
 #    checkpoint exists. Restart on 3 ranks up to 200k photons beyond what it covers
 #    (so the restart fills the holes the other rank left and goes on past them).
-"${mpi[@]}" -n 2 "$lux" run "$scene" --photons $endless --seed 11 --quiet --threads 1 \
+"${mpi[@]}" -n 2 "$lux" run "$scene" --photons $endless --seed 11 --sampler "$sampler" --quiet --threads 1 \
     --report-every-photons 100k --checkpoint-every 0.001 --output "$work/a.h5" --checkpoint "$work/a.ck.h5" &
 job=$!
 wait_for $job test -f "$work/a.ck.h5" || fail "the run ended before writing a checkpoint"
@@ -47,15 +48,23 @@ budget_a=$(( $(covered "$work/a.ck.h5") + 200000 ))
 code=$?
 [ $code -eq 2 ] && grep -q "already holds photons" "$work/small.err" || fail "a too small restart budget: exit $code, $(cat "$work/small.err")"
 [ -f "$work/a.h5" ] && fail "a refused restart wrote a result"
+if [ "$sampler" = sobol ]; then
+    # The replicates are part of the photon sequence: a restart with another R is refused.
+    "$lux" run "$scene" --quiet --restart "$work/a.ck.h5" --replicates 4 --photons $budget_a --output "$work/a.h5" \
+        2>"$work/reps.err"
+    code=$?
+    [ $code -eq 2 ] && grep -q "made with 8" "$work/reps.err" || fail "a restart with other replicates: exit $code, $(cat "$work/reps.err")"
+    [ -f "$work/a.h5" ] && fail "a refused restart wrote a result"
+fi
 "${mpi[@]}" -n 3 "$lux" run "$scene" --quiet --threads 1 --restart "$work/a.ck.h5" --photons $budget_a \
     --output "$work/a.h5" || fail "restart on 3 ranks"
-"$lux" run "$scene" --photons $budget_a --seed 11 --quiet --threads 2 --output "$work/ref_a.h5" || fail "reference run"
+"$lux" run "$scene" --photons $budget_a --seed 11 --sampler "$sampler" --quiet --threads 2 --output "$work/ref_a.h5" || fail "reference run"
 "$cmp" "$work/ref_a.h5" "$work/a.h5" || fail "kill -9 + restart on 3 ranks differs from the uninterrupted run"
 echo "kill -9 at the first checkpoint, restart on 3 ranks to $budget_a photons: identical"
 
 # 2. SIGTERM once the run prints its first progress line: checkpoint and exit code 3.
 #    Restart on 2 ranks.
-"$lux" run "$scene" --photons $endless --seed 11 --threads 2 --report-every-photons 100k \
+"$lux" run "$scene" --photons $endless --seed 11 --sampler "$sampler" --threads 2 --report-every-photons 100k \
     --output "$work/b.h5" --checkpoint "$work/b.ck.h5" >"$work/b.log" 2>&1 &
 job=$!
 wait_for $job reported "$work/b.log" || fail "the run ended before reporting: $(cat "$work/b.log")"
@@ -66,7 +75,7 @@ wait $job; code=$?
 budget_b=$(( $(covered "$work/b.ck.h5") + 200000 ))
 "${mpi[@]}" -n 2 "$lux" run "$scene" --quiet --threads 1 --restart "$work/b.ck.h5" --photons $budget_b \
     --output "$work/b.h5" || fail "restart after SIGTERM"
-"$lux" run "$scene" --photons $budget_b --seed 11 --quiet --threads 2 --output "$work/ref_b.h5" || fail "reference run"
+"$lux" run "$scene" --photons $budget_b --seed 11 --sampler "$sampler" --quiet --threads 2 --output "$work/ref_b.h5" || fail "reference run"
 "$cmp" "$work/ref_b.h5" "$work/b.h5" || fail "SIGTERM + restart differs from the uninterrupted run"
 echo "SIGTERM at the first progress line, restart on 2 ranks to $budget_b photons: identical"
 

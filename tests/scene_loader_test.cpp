@@ -542,13 +542,18 @@ TEST_F(Loader, DetectorCellLimitIsNamed) {
     EXPECT_EQ(load(head + "cells = [10000, 10000]\n").detectors.at(0).cells(), 100'000'000);
 }
 
-TEST_F(Loader, SamplerThisBuildDoesNotHave) {
-    // 'sobol' is in the scene-file contract but not built yet: a clear error, not a
-    // failure inside a tracing thread.
-    expect_bad(kMat + kFloor + kLamp + "[run]\nsampler = \"sobol\"\n", "sampler",
-               {"key 'sampler'", "'sobol' is not available in this build (it has: random)"});
+TEST_F(Loader, SamplersAndReplicates) {
+    // sobol with its R; an unknown sampler and a bad R are clear errors naming the key,
+    // not failures inside a tracing thread.
+    const Scene s = load(kMat + kFloor + kLamp + "[run]\nsampler = \"sobol\"\nreplicates = 16\n");
+    EXPECT_EQ(s.run.sampler, "sobol");
+    EXPECT_EQ(s.run.replicates, 16u);
+    EXPECT_EQ(load(kMat + kFloor + kLamp).run.replicates, 8u);
     expect_bad(kMat + kFloor + kLamp + "[run]\nsampler = \"halton\"\n", "sampler",
-               {"key 'sampler'", "unknown sampler 'halton'"});
+               {"key 'sampler'", "unknown sampler 'halton'", "random, sobol"});
+    for (const char* bad : {"7", "0", "2048", "-2"})
+        expect_bad(kMat + kFloor + kLamp + "[run]\nsampler = \"sobol\"\nreplicates = " + bad + "\n", "replicates",
+                   {"key 'replicates'", "even number from 2 to 1024"});
 }
 
 TEST_F(Loader, MissingMeshFile) {

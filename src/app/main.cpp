@@ -30,6 +30,7 @@ struct RunArgs {
     std::string photons, seed, report_every_photons;
     std::optional<double> time_limit, target, report_every, checkpoint_every;
     std::optional<int> threads;
+    std::optional<std::int64_t> replicates;
     std::string output, checkpoint, restart, sampler;
     bool quiet = false;
 };
@@ -70,6 +71,12 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
         if (const std::string why = sampler_unavailable(a.sampler); !why.empty()) throw InputError("--sampler: " + why);
         run.sampler = a.sampler;
     }
+    if (a.replicates) {
+        if (*a.replicates < 2 || *a.replicates > 1024 || *a.replicates % 2 != 0)
+            throw InputError("--replicates: " + std::to_string(*a.replicates) +
+                             " (an even number from 2 to 1024: sobol's independent randomisations)");
+        run.replicates = static_cast<std::uint32_t>(*a.replicates);
+    }
     if (!a.checkpoint.empty()) run.checkpoint = a.checkpoint;
     if (!a.restart.empty()) {
         // A restart continues the checkpoint's photon sequence: same seed and sampler, and
@@ -82,6 +89,12 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
             throw InputError("--seed: the checkpoint " + a.restart + " was made with seed " + std::to_string(seed));
         run.seed = seed;
         run.sampler = ck.attr_str("/", "sampler");
+        if (ck.has_attr("/", "replicates") && ck.attr_u64("/", "replicates") > 0) {
+            const std::uint64_t reps = ck.attr_u64("/", "replicates");
+            if (a.replicates && static_cast<std::uint64_t>(*a.replicates) != reps)
+                throw InputError("--replicates: the checkpoint " + a.restart + " was made with " + std::to_string(reps));
+            run.replicates = static_cast<std::uint32_t>(reps);
+        }
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty())
             throw InputError(a.restart + ": the checkpoint's sampler: " + why);
         if (a.photons.empty()) run.photons = ck.attr_u64("/checkpoint", "budget");
@@ -186,7 +199,8 @@ int main(int argc, char** argv) {
     run->add_option("--report-every", ra.report_every, "seconds between progress lines");
     run->add_option("--report-every-photons", ra.report_every_photons,
                     "reduce and report every N photons instead (a history that is the same on any machine)");
-    run->add_option("--sampler", ra.sampler, "random | sobol");
+    run->add_option("--sampler", ra.sampler, "random (Philox) | sobol (Owen-scrambled, docs/QMC.md)");
+    run->add_option("--replicates", ra.replicates, "sobol: independent randomisations R, even (default 8)");
     run->add_flag("--quiet", ra.quiet, "no progress output");
     std::string check_path, info_path;
     auto* check = app.add_subcommand("check", "parse and validate a scene, print a summary");

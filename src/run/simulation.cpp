@@ -77,6 +77,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     double elapsed_before = 0.0;
     if (!opt.restart.empty()) {
         const CheckpointState ck = read_checkpoint(opt.restart);
+        if (ck.sampler == run.sampler && ck.replicates != layout.replicates())
+            throw InputError(opt.restart + ": the checkpoint was made with " + std::to_string(ck.replicates) +
+                             " replicates; restart with the same (drop --replicates)");
         if (ck.layout_size != layout.size() || ck.triangles != layout.triangles() || ck.bands != layout.bands())
             throw InputError(opt.restart + ": the checkpoint was made for another scene (" +
                              std::to_string(ck.triangles) + " triangles, " + std::to_string(ck.bands) +

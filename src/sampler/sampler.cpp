@@ -81,9 +81,8 @@ void PhiloxSampler::blocks(const std::uint64_t* k, const std::uint32_t* b, std::
 }
 
 std::string sampler_unavailable(const std::string& kind) {
-    if (kind == "random") return {};
-    if (kind == "sobol") return "'sobol' is not available in this build (it has: random)";
-    return "unknown sampler '" + kind + "' (this build has: random)";
+    if (kind == "random" || kind == "sobol") return {};
+    return "unknown sampler '" + kind + "' (this build has: random, sobol)";
 }
 
 }  // namespace luxtrace

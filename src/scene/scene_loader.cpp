@@ -501,6 +501,11 @@ struct Loader {
         if (auto c = r.string("checkpoint")) run.checkpoint = resolve(*c).string();
         run.sampler = r.string("sampler").value_or(run.sampler);
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty()) r.fail("sampler", why);
+        if (const auto reps = r.integer("replicates")) {
+            if (*reps < 2 || *reps > 1024 || *reps % 2 != 0)
+                r.fail("replicates", "must be an even number from 2 to 1024 (sobol's independent randomisations)");
+            run.replicates = static_cast<std::uint32_t>(*reps);
+        }
         if (const auto mb = r.integer("max_bounces")) {
             if (*mb < 1 || *mb > 1000000) r.fail("max_bounces", "must lie in [1, 1000000]");
             run.max_bounces = static_cast<int>(*mb);

@@ -57,6 +57,7 @@ struct CheckpointState {
     std::uint64_t seed = 0;
     std::string sampler;
     std::uint64_t photon_layout = 1;  // files without the attribute were made with layout 1
+    std::uint64_t replicates = 0;     // sobol's R; 0 for random (and files before it)
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;
     std::vector<HistoryRow> history;

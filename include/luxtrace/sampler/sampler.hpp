@@ -66,8 +66,8 @@ private:
 };
 
 // Samplers this build has, by the name used in the scene file and on the command line.
-// Empty if `kind` is available, otherwise what to tell the user ("'sobol' is not
-// available in this build (it has: random)"). The loader and the CLI check with it.
+// Empty if `kind` is available, otherwise what to tell the user ("unknown sampler
+// 'halton' (this build has: random, sobol)"). The loader and the CLI check with it.
 std::string sampler_unavailable(const std::string& kind);
 
 }  // namespace luxtrace

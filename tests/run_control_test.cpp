@@ -184,7 +184,38 @@ TEST(Forecast, NoForecastWithoutProgress) {
     EXPECT_FALSE(forecast_error({{1.0, 100.0, 0.5}}, 0.01, 0.0).valid);
 }
 
-// sobol (not yet offered by the CLI, docs/QMC.md): the tallies are the same on 1 and 2
+// The tallies of `photons` sobol photons traced by a worker pool to the end (the pool
+// reports every photon traced: no clock involved).
+std::vector<std::uint64_t> trace_sobol(const Scene& scene, const EmbreeScene& embree, std::uint64_t photons,
+                                       std::uint64_t seed, int threads) {
+    TallyStore store{TallyLayout(scene)};
+    const WorkPlan plan({}, photons, 4096, 1);
+    RankWork work(plan, 0);
+    TraceOptions opt;
+    opt.sampler = "sobol";
+    opt.seed = seed;
+    opt.replicates = scene.run.replicates;
+    opt.threads = threads;
+    WorkerPool pool(scene, embree, store, work, opt);
+    while (!pool.exhausted() && !pool.failed()) std::this_thread::yield();
+    pool.stop();
+    EXPECT_FALSE(pool.failed());
+    return store.data();
+}
+
+// A run of `scene` (its sampler, budget and output as set) on 2 threads into a fresh
+// temporary directory `dir` (created here, removed by the caller).
+RunSummary run_into(Scene& scene, const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    scene.run.output = (dir / "r.h5").string();
+    RunOptions opt;
+    opt.threads = 2;
+    opt.quiet = true;
+    std::ostringstream out;
+    return run_simulation(scene, test_communicator(), opt, out);
+}
+
+// sobol (docs/QMC.md): the tallies are the same on 1 and 2
 // threads, slot for slot, the per-replicate slots among them; each cell's replicate
 // counts add up to its n_c, each detector's replicate totals to its total, and every
 // replicate of the interleaved streams got photons in a table cell.
@@ -196,20 +227,7 @@ TEST(WorkerPool, SobolTalliesAreBitIdenticalOverThreadsAndReplicatesAddUp) {
     ASSERT_EQ(layout.replicates(), scene.run.replicates);
     std::vector<std::vector<std::uint64_t>> runs;
     for (const int threads : {1, 2}) {
-        TallyStore store{TallyLayout(scene)};
-        const WorkPlan plan({}, 200000, 4096, 1);
-        RankWork work(plan, 0);
-        TraceOptions opt;
-        opt.sampler = "sobol";
-        opt.replicates = scene.run.replicates;
-        opt.threads = threads;
-        {
-            WorkerPool pool(scene, embree, store, work, opt);
-            while (!pool.exhausted() && !pool.failed()) std::this_thread::yield();  // all photons traced
-            pool.stop();
-            ASSERT_FALSE(pool.failed());
-        }
-        runs.push_back(store.data());
+        runs.push_back(trace_sobol(scene, embree, 200000, 1, threads));
     }
     ASSERT_EQ(runs[0], runs[1]);
     const std::vector<std::uint64_t>& d = runs[0];
@@ -249,19 +267,7 @@ Calibration calibrate_sobol_cells(const std::string& scene_file) {
     std::vector<std::vector<double>> value(cells), var_est(cells), var_eq8(cells);
     for (int seed = 1; seed <= kSeeds; ++seed) {
         TallyStore store{TallyLayout(scene)};
-        const WorkPlan plan({}, N, 4096, 1);
-        RankWork work(plan, 0);
-        TraceOptions opt;
-        opt.sampler = "sobol";
-        opt.seed = static_cast<std::uint64_t>(seed) * 7919;
-        opt.replicates = scene.run.replicates;
-        opt.threads = 2;
-        {
-            WorkerPool pool(scene, embree, store, work, opt);
-            while (!pool.exhausted() && !pool.failed()) std::this_thread::yield();  // all photons traced
-            pool.stop();
-            EXPECT_FALSE(pool.failed());
-        }
+        store.data() = trace_sobol(scene, embree, N, static_cast<std::uint64_t>(seed) * 7919, 2);
         const DetectorEstimate e = estimate_detector(det, 0, layout, store.data(), 1.0, N);
         EXPECT_TRUE(e.replicate_spread);
         EXPECT_EQ(e.dof, static_cast<int>(scene.run.replicates) - 1);
@@ -316,19 +322,12 @@ TEST(WorkerPool, SobolCellErrorsMatchTheScatterOverSeeds) {
 // A sobol run's result says how its errors were estimated and keeps the replicates'
 // grids: their counts add up to the cells' counts, and `luxtrace info` names both.
 TEST(RunSimulation, SobolResultNamesItsEstimatorAndKeepsTheReplicates) {
-    const Communicator& comm = test_communicator();
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/qmc/spot_on_table.toml");
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("luxtrace_sobol_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
     scene.run.sampler = "sobol";
     scene.run.photons = 50000;
-    scene.run.output = (dir / "r.h5").string();
-    RunOptions opt;
-    opt.threads = 2;
-    opt.quiet = true;
-    std::ostringstream out;
-    const RunSummary s = run_simulation(scene, comm, opt, out);
+    const RunSummary s = run_into(scene, dir);
     ASSERT_FALSE(s.failed) << s.error;
     const ResultReader r(dir / "r.h5");
     EXPECT_EQ(r.attr_str("/", "sampler"), "sobol");
@@ -376,19 +375,12 @@ TEST(WorkerPool, AThreadsExceptionIsKeptAndThePoolStillPausesAndStops) {
 
 // The same fault in a whole run: exit code 2, the message, and no file written.
 TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
-    const Communicator& comm = test_communicator();
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("luxtrace_fault_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
     scene.run.sampler = "halton";  // past the loader's check: the tracing threads refuse it
     scene.run.photons = 100000;
-    scene.run.output = (dir / "r.h5").string();
-    RunOptions opt;
-    opt.threads = 2;
-    opt.quiet = true;
-    std::ostringstream out;
-    const RunSummary s = run_simulation(scene, comm, opt, out);
+    const RunSummary s = run_into(scene, dir);
     EXPECT_TRUE(s.failed);
     EXPECT_EQ(s.exit_code, 2);
     EXPECT_NE(s.error.find("unknown sampler 'halton'"), std::string::npos) << s.error;

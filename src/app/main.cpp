@@ -5,7 +5,7 @@
 #include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
@@ -72,9 +72,8 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
         run.sampler = a.sampler;
     }
     if (a.replicates) {
-        if (*a.replicates < 2 || *a.replicates > 1024 || *a.replicates % 2 != 0)
-            throw InputError("--replicates: " + std::to_string(*a.replicates) +
-                             " (an even number from 2 to 1024: sobol's independent randomisations)");
+        if (const std::string why = replicates_invalid(*a.replicates); !why.empty())
+            throw InputError("--replicates: " + why);
         run.replicates = static_cast<std::uint32_t>(*a.replicates);
     }
     if (!a.checkpoint.empty()) run.checkpoint = a.checkpoint;
@@ -89,12 +88,10 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
             throw InputError("--seed: the checkpoint " + a.restart + " was made with seed " + std::to_string(seed));
         run.seed = seed;
         run.sampler = ck.attr_str("/", "sampler");
-        if (ck.has_attr("/", "replicates") && ck.attr_u64("/", "replicates") > 0) {
-            const std::uint64_t reps = ck.attr_u64("/", "replicates");
-            if (a.replicates && static_cast<std::uint64_t>(*a.replicates) != reps)
-                throw InputError("--replicates: the checkpoint " + a.restart + " was made with " + std::to_string(reps));
-            run.replicates = static_cast<std::uint32_t>(reps);
-        }
+        // The checkpoint's R unless --replicates names one; run_simulation refuses a
+        // different one, as it does a different seed or sampler.
+        if (!a.replicates && ck.has_attr("/", "replicates") && ck.attr_u64("/", "replicates") > 0)
+            run.replicates = static_cast<std::uint32_t>(ck.attr_u64("/", "replicates"));
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty())
             throw InputError(a.restart + ": the checkpoint's sampler: " + why);
         if (a.photons.empty()) run.photons = ck.attr_u64("/checkpoint", "budget");

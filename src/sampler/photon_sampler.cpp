@@ -8,8 +8,7 @@ namespace luxtrace {
 PhotonSampler::PhotonSampler(SamplerKind kind, std::uint64_t seed, std::uint32_t replicates)
     : kind_(kind), seed_(seed), replicates_(replicates), philox_(seed) {
     if (kind_ != SamplerKind::sobol) return;
-    if (replicates_ < 2 || replicates_ > 1024 || replicates_ % 2 != 0)
-        throw InputError("replicates: " + std::to_string(replicates_) + " (an even number from 2 to 1024)");
+    if (const std::string why = replicates_invalid(replicates_); !why.empty()) throw InputError("replicates: " + why);
     if ((replicates_ & (replicates_ - 1)) == 0) replicate_shift_ = __builtin_ctz(replicates_);
     const SobolSequence sobol(kSobolDimensions);
     reversed_directions_.resize(static_cast<std::size_t>(kSobolDimensions) * 32u);
@@ -83,10 +82,33 @@ PhotonSampler::Block PhotonSampler::far_block(std::uint64_t stream, std::uint64_
     return {word(d), word(d + 1), word(d + 2), 0u};
 }
 
+namespace {
+struct NamedSampler {
+    const char* name;
+    SamplerKind kind;
+};
+constexpr NamedSampler kSamplers[] = {{"random", SamplerKind::random}, {"sobol", SamplerKind::sobol}};
+}  // namespace
+
 SamplerKind sampler_kind(const std::string& name) {
-    if (name == "random") return SamplerKind::random;
-    if (name == "sobol") return SamplerKind::sobol;
-    throw InputError("unknown sampler '" + name + "' (random or sobol)");
+    for (const NamedSampler& s : kSamplers)
+        if (name == s.name) return s.kind;
+    throw InputError(sampler_unavailable(name));
+}
+
+std::string sampler_unavailable(const std::string& name) {
+    std::string have;
+    for (const NamedSampler& s : kSamplers) {
+        if (name == s.name) return {};
+        have += (have.empty() ? "" : ", ") + std::string(s.name);
+    }
+    return "unknown sampler '" + name + "' (this build has: " + have + ")";
+}
+
+std::string replicates_invalid(std::int64_t replicates) {
+    if (replicates >= 2 && replicates <= 1024 && replicates % 2 == 0) return {};
+    return "must be an even number from 2 to 1024 (sobol's independent randomisations), not " +
+           std::to_string(replicates);
 }
 
 }  // namespace luxtrace

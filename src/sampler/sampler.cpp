@@ -80,9 +80,4 @@ void PhiloxSampler::blocks(const std::uint64_t* k, const std::uint32_t* b, std::
     for (std::size_t i = 0; i < n; ++i) out[i] = block(k[i], b[i]);
 }
 
-std::string sampler_unavailable(const std::string& kind) {
-    if (kind == "random" || kind == "sobol") return {};
-    return "unknown sampler '" + kind + "' (this build has: random, sobol)";
-}
-
 }  // namespace luxtrace

@@ -1,7 +1,7 @@
 // Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
 // thrown as an InputError naming the file, the line and the key.
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/scene/shapes.hpp"
@@ -502,8 +502,7 @@ struct Loader {
         run.sampler = r.string("sampler").value_or(run.sampler);
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty()) r.fail("sampler", why);
         if (const auto reps = r.integer("replicates")) {
-            if (*reps < 2 || *reps > 1024 || *reps % 2 != 0)
-                r.fail("replicates", "must be an even number from 2 to 1024 (sobol's independent randomisations)");
+            if (const std::string why = replicates_invalid(*reps); !why.empty()) r.fail("replicates", why);
             run.replicates = static_cast<std::uint32_t>(*reps);
         }
         if (const auto mb = r.integer("max_bounces")) {

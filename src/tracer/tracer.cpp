@@ -30,7 +30,7 @@ void PhotonTracer::check_luminance(Photon& p, const Vec3& point) {
     }
 }
 
-const PhiloxSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
+const PhotonSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
     if (start_base_ == UINT64_MAX || k < start_base_ || k - start_base_ >= PhiloxSampler::kBatch) {
         std::uint64_t ks[PhiloxSampler::kBatch];
         const std::uint32_t zero[PhiloxSampler::kBatch] = {};
@@ -41,7 +41,7 @@ const PhiloxSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
     return start_blocks_[k - start_base_];
 }
 
-void PhotonTracer::start(Photon& p, std::uint64_t k, const PhiloxSampler::Block& b0) {
+void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0) {
     p.k = k;
     p.bounce = 0;
     p.regs.clear();
@@ -69,7 +69,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhiloxSampler::Block&
     }
 }
 
-bool PhotonTracer::step(Photon& p, const PhiloxSampler::Block& u, TallyBuffer& out) {
+bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out) {
     const Hit& hit = p.hit;
     const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
     if (!illuminance_dets_.empty()) {
@@ -159,7 +159,7 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
     }
     std::uint64_t ks[kInFlight];
     std::uint32_t bs[kInFlight];
-    PhiloxSampler::Block arrival[kInFlight];
+    PhotonSampler::Block arrival[kInFlight];
     while (active > 0) {
         for (int i = 0; i < active; ++i) {
             Photon& p = flight_[i];

@@ -85,7 +85,14 @@ private:
     std::vector<Last> last_;                          // [dim]
 };
 
-// "random" or "sobol"; throws InputError naming the value otherwise.
+// Samplers by the name used in the scene file and on the command line: "random" or
+// "sobol"; throws InputError with sampler_unavailable's message otherwise.
 SamplerKind sampler_kind(const std::string& name);
+// Empty if `name` is a sampler, otherwise what to tell the user ("unknown sampler
+// 'halton' (this build has: random, sobol)"). The loader and the CLI check with it.
+std::string sampler_unavailable(const std::string& name);
+// Empty if `replicates` is a valid R for sobol (even, 2 .. 1024), otherwise why not. The
+// loader, the CLI and PhotonSampler check with it.
+std::string replicates_invalid(std::int64_t replicates);
 
 }  // namespace luxtrace

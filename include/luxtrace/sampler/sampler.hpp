@@ -65,9 +65,4 @@ private:
     std::array<std::uint32_t, 4> words_{};
 };
 
-// Samplers this build has, by the name used in the scene file and on the command line.
-// Empty if `kind` is available, otherwise what to tell the user ("unknown sampler
-// 'halton' (this build has: random, sobol)"). The loader and the CLI check with it.
-std::string sampler_unavailable(const std::string& kind);
-
 }  // namespace luxtrace

@@ -62,12 +62,12 @@ private:
         std::vector<Registration> regs;  // detector registrations, counted at the end
     };
     // Start photon k with its block 0.
-    void start(Photon& p, std::uint64_t k, const PhiloxSampler::Block& b0);
+    void start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0);
     // Block 0 of photon k, drawn with those of the next kBatch - 1 photons.
-    const PhiloxSampler::Block& start_block(std::uint64_t k);
+    const PhotonSampler::Block& start_block(std::uint64_t k);
     // One step after the photon's ray was intersected, with the block of its arrival;
     // false once the photon has ended.
-    bool step(Photon& p, const PhiloxSampler::Block& u, TallyBuffer& out);
+    bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
     void finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out);
     void check_luminance(Photon& p, const Vec3& point);
 
@@ -79,7 +79,7 @@ private:
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));
-    std::array<PhiloxSampler::Block, PhiloxSampler::kBatch> start_blocks_{};
+    std::array<PhotonSampler::Block, PhiloxSampler::kBatch> start_blocks_{};
     std::uint64_t start_base_ = UINT64_MAX;  // photon of start_blocks_[0]
     std::vector<RecordedRay>* record_ = nullptr;
 };

@@ -37,9 +37,7 @@ void PhotonSampler::sobol_blocks(const std::uint64_t* k, const std::uint32_t* b,
             out[i] = philox_.block(k[i], bi);
             continue;
         }
-        // (R a power of two, as the default 8: a mask and a shift instead of a division.)
-        const std::uint64_t stream = replicate_shift_ >= 0 ? k[i] & (replicates_ - 1) : k[i] % replicates_;
-        const std::uint64_t index = replicate_shift_ >= 0 ? k[i] >> replicate_shift_ : k[i] / replicates_;
+        const std::uint64_t stream = stream_of(k[i]), index = index_in_stream(k[i]);
         const auto point = static_cast<std::uint32_t>(index);
         if ((index >> 32) != 0) {
             out[i] = far_block(stream, index, bi);

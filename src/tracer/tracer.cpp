@@ -115,7 +115,7 @@ void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out
     out.add(layout_.counter(fate), 1);
     // sobol: the photon's replicate (its stream, photon_sampler.hpp) keeps its own counts.
     const std::size_t R = layout_.replicates();
-    const std::size_t replicate = R > 0 ? p.k % R : 0;
+    const std::size_t replicate = R > 0 ? sampler_.stream_of(p.k) : 0;
     if (R > 0) out.add(layout_.replicate_photons(replicate), 1);
     if (p.regs.empty()) return;
     // E_i of eq. (6): how many times this photon registered in each cell.

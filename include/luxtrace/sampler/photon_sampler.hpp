@@ -38,6 +38,14 @@ public:
 
     SamplerKind kind() const { return kind_; }
     std::uint32_t replicates() const { return replicates_; }
+    // sobol: the stream (replicate) of photon k, k mod R, and its point in the stream,
+    // k / R (R a power of two, as the default 8: a mask and a shift, not a division).
+    std::uint64_t stream_of(std::uint64_t k) const {
+        return replicate_shift_ >= 0 ? k & (replicates_ - 1) : k % replicates_;
+    }
+    std::uint64_t index_in_stream(std::uint64_t k) const {
+        return replicate_shift_ >= 0 ? k >> replicate_shift_ : k / replicates_;
+    }
     // out[i] = the words of block b[i] of photon k[i], for i < n <= PhiloxSampler::kBatch.
     // Not const: sobol keeps the last point of each dimension to step from (one sampler
     // per tracing thread).

@@ -56,7 +56,7 @@ void SobolSequence::scramble_reversed(std::uint32_t* words, const std::uint32_t*
     for (; i < n; ++i) words[i] = scramble_reversed(words[i], seeds[i]);
 }
 
-SobolSequence::SobolSequence(std::uint32_t dimensions) : dimensions_(dimensions) {
+SobolSequence::SobolSequence(std::uint32_t dimensions) {
     if (dimensions < 1 || dimensions > kMaxDimensions)
         throw std::invalid_argument("Sobol sequence: " + std::to_string(dimensions) + " dimensions (1 to " +
                                     std::to_string(kMaxDimensions) + ")");

@@ -24,7 +24,6 @@ public:
     explicit SobolSequence(std::uint32_t dimensions);
     static constexpr std::uint32_t kMaxDimensions = 3667;  // Boost.Random's table
 
-    std::uint32_t dimensions() const { return dimensions_; }
     // Point `index` of dimension `dim`, unscrambled, as 32 bits (value = bits / 2^32).
     std::uint32_t point(std::uint32_t index, std::uint32_t dim) const {
         const std::uint32_t* v = &directions_[static_cast<std::size_t>(dim) * 32u];
@@ -69,7 +68,6 @@ public:
     }
 
 private:
-    std::uint32_t dimensions_;
     std::vector<std::uint32_t> directions_;  // 32 per dimension: v_j = x(2^j)
 };
 

@@ -159,7 +159,8 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
     }
     std::uint64_t ks[kInFlight];
     std::uint32_t bs[kInFlight];
-    PhotonSampler::Block arrival[kInFlight];
+    int slot[kInFlight];
+    PhotonSampler::Block arrival[kInFlight], packed[kInFlight];
     while (active > 0) {
         for (int i = 0; i < active; ++i) {
             Photon& p = flight_[i];
@@ -167,12 +168,19 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
             if (record_ != nullptr) record_->push_back({p.origin, d, 0.0f});
             p.hit = embree_.intersect_local(p.origin, d);
             if (p.hit.found) __builtin_prefetch(&surfaces_.triangle(p.hit.triangle));
-            ks[i] = p.k;
-            bs[i] = 2 + static_cast<std::uint32_t>(p.bounce);
         }
-        // The arrival blocks of all photons in flight together (those that escaped too:
-        // cheaper than sorting them out).
-        sampler_.blocks(ks, bs, static_cast<std::size_t>(active), arrival);
+        // The arrival blocks of the photons that arrived somewhere, together (an escaped
+        // photon reads none: a block is a pure function of (k, b), so which are computed
+        // changes no number).
+        int arrived = 0;
+        for (int i = 0; i < active; ++i)
+            if (flight_[i].hit.found) {
+                ks[arrived] = flight_[i].k;
+                bs[arrived] = 2 + static_cast<std::uint32_t>(flight_[i].bounce);
+                slot[arrived++] = i;
+            }
+        sampler_.blocks(ks, bs, static_cast<std::size_t>(arrived), packed);
+        for (int a = 0; a < arrived; ++a) arrival[slot[a]] = packed[a];
         for (int i = 0; i < active;) {
             if (step(flight_[i], arrival[i], out)) {
                 ++i;

@@ -18,6 +18,7 @@
 #include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/sampler/sobol.hpp"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,15 @@ public:
     static constexpr std::uint32_t kSobolBounces = 64;
     static constexpr std::uint32_t kSobolDimensions = 6 + 3 * kSobolBounces;
     static constexpr std::uint32_t kDefaultReplicates = 8;
+    static constexpr std::uint32_t kSobolBlocks = 2 + kSobolBounces;
+    // The dimensions of block b's four words (kNoDimension: the word is unused, 0).
+    static constexpr std::uint32_t kNoDimension = UINT32_MAX;
+    static std::array<std::uint32_t, 4> block_dimensions(std::uint32_t b) {
+        if (b == 0) return {0, 1, 4, 5};
+        if (b == 1) return {2, 3, kNoDimension, kNoDimension};
+        const std::uint32_t d = 6 + 3 * (b - 2);
+        return {d, d + 1, d + 2, kNoDimension};
+    }
 
     // `replicates` (R) matters for sobol only: even, 2 .. 1024.
     PhotonSampler(SamplerKind kind, std::uint64_t seed, std::uint32_t replicates = kDefaultReplicates);
@@ -66,31 +76,37 @@ public:
 private:
     void sobol_blocks(const std::uint64_t* k, const std::uint32_t* b, std::size_t n, Block* out);
     Block far_block(std::uint64_t stream, std::uint64_t index, std::uint32_t b);
-    // Scrambled point `index` of dimension d with scramble s. The Sobol points are linear
-    // in the bits of the index over GF(2), x(i) = x(j) ^ x(i ^ j), so the point is stepped
-    // from the last one asked for in that dimension: photons in flight are close in index,
-    // and i ^ j has a bit or two where i has a dozen.
-    // Returns the point bit-reversed, unscrambled.
-    std::uint32_t reversed_point(std::uint32_t index, std::uint32_t d) {
-        Last& last = last_[d];
-        const std::uint32_t* v = &reversed_directions_[static_cast<std::size_t>(d) * 32u];
-        std::uint32_t r = last.reversed;
-        for (std::uint32_t diff = index ^ last.index; diff != 0; diff &= diff - 1) r ^= v[__builtin_ctz(diff)];
-        last = {index, r};
-        return r;
-    }
-    struct Last {
-        std::uint32_t index = 0, reversed = 0;  // x(0) = 0
+    // The words of a block are the dimensions of kBlockDims, 0 where unused. Each block
+    // keeps the bit-reversed, unscrambled words of the last point asked for. The Sobol
+    // points are linear in the bits of the index over GF(2), x(i) = x(j) ^ x(i ^ j), so a
+    // new point is stepped from it, four words at a time: photons in flight are close in
+    // index (the R photons of a round share theirs), and i ^ j has a bit or two where i has
+    // a dozen.
+    struct Cached {
+        std::uint32_t index = 0;
+        Block reversed{};  // x(0) = 0
     };
+    const Block& reversed_block(std::uint32_t index, std::uint32_t b) {
+        Cached& c = cached_[b];
+        if (c.index != index) {
+            const Block* v = &reversed_directions_[static_cast<std::size_t>(b) * 32u];
+            for (std::uint32_t diff = index ^ c.index; diff != 0; diff &= diff - 1) {
+                const Block& vj = v[__builtin_ctz(diff)];
+                for (int w = 0; w < 4; ++w) c.reversed[w] ^= vj[w];
+            }
+            c.index = index;
+        }
+        return c.reversed;
+    }
 
     SamplerKind kind_;
     std::uint64_t seed_;
     std::uint32_t replicates_;
     int replicate_shift_ = -1;  // log2(R) when R is a power of two
     PhiloxSampler philox_;
-    std::vector<std::uint32_t> reversed_directions_;  // [dim * 32 + j]: v_j bit-reversed
-    std::vector<std::uint32_t> scrambles_;            // [stream * kSobolDimensions + dim]
-    std::vector<Last> last_;                          // [dim]
+    std::vector<Block> reversed_directions_;  // [block * 32 + j]: v_j of the block's dimensions, bit-reversed
+    std::vector<Block> scrambles_;            // [stream * kSobolBlocks + block]: their scramble seeds, 0 where unused
+    std::vector<Cached> cached_;              // [block]
 };
 
 // Samplers by the name used in the scene file and on the command line: "random" or

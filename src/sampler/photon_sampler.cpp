@@ -36,14 +36,15 @@ void PhotonSampler::sobol_blocks(const std::uint64_t* k, const std::uint32_t* b,
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t bi = b[i];
         done[i] = true;
-        words[i] = seeds[i] = Block{};
         if (bi >= kSobolBlocks) {  // past the Sobol dimensions: Philox padding
             out[i] = philox_.block(k[i], bi);
+            words[i] = seeds[i] = Block{};
             continue;
         }
         const std::uint64_t stream = stream_of(k[i]), index = index_in_stream(k[i]);
         if ((index >> 32) != 0) {
             out[i] = far_block(stream, index, bi);
+            words[i] = seeds[i] = Block{};
             continue;
         }
         done[i] = false;

@@ -160,7 +160,9 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
     std::uint64_t ks[kInFlight];
     std::uint32_t bs[kInFlight];
     int slot[kInFlight];
-    PhotonSampler::Block arrival[kInFlight], packed[kInFlight];
+    // An escaped photon's arrival block is never computed; zero, not indeterminate, when
+    // the end of the range moves it with its photon.
+    PhotonSampler::Block arrival[kInFlight] = {}, packed[kInFlight];
     while (active > 0) {
         for (int i = 0; i < active; ++i) {
             Photon& p = flight_[i];

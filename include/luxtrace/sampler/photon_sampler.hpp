@@ -57,8 +57,8 @@ public:
         return replicate_shift_ >= 0 ? k >> replicate_shift_ : k / replicates_;
     }
     // out[i] = the words of block b[i] of photon k[i], for i < n <= PhiloxSampler::kBatch.
-    // Not const: sobol keeps the last point of each dimension to step from (one sampler
-    // per tracing thread).
+    // Not const: sobol keeps the last point of each block to step from (one sampler per
+    // tracing thread).
     void blocks(const std::uint64_t* k, const std::uint32_t* b, std::size_t n, Block* out) {
         if (kind_ == SamplerKind::random) {
             philox_.blocks(k, b, n, out);
@@ -76,7 +76,7 @@ public:
 private:
     void sobol_blocks(const std::uint64_t* k, const std::uint32_t* b, std::size_t n, Block* out);
     Block far_block(std::uint64_t stream, std::uint64_t index, std::uint32_t b);
-    // The words of a block are the dimensions of kBlockDims, 0 where unused. Each block
+    // The words of a block are the dimensions of block_dimensions, 0 where unused. Each block
     // keeps the bit-reversed, unscrambled words of the last point asked for. The Sobol
     // points are linear in the bits of the index over GF(2), x(i) = x(j) ^ x(i ^ j), so a
     // new point is stepped from it, four words at a time: photons in flight are close in

@@ -44,6 +44,8 @@ SCENES = {
     "room": ("tests/data/run/room.toml", "table", 27, 17),
 }
 LEVELS = (0.03, 0.02, 0.01)
+SEEDS = {"converge": 5, "calibrate": 20, "offgrid": 8}  # --seeds overrides them for a step
+OFFGRID_K = {"office": 22, "montage": 22, "room": 20}  # off-grid runs at 2^k, 3 x 2^(k-1), 2^(k+1)
 SAMPLERS = ("random", "sobol")
 REF_SEED = 1000
 K_MAX = 28
@@ -62,9 +64,8 @@ def run(args, scene, sampler, seed, photons, path):
     t0 = time.monotonic()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     wall = time.monotonic() - t0
-    for extra in (path[:-3] + ".xdmf",):
-        if os.path.exists(extra):
-            os.remove(extra)
+    if os.path.exists(path[:-3] + ".xdmf"):
+        os.remove(path[:-3] + ".xdmf")
     with open(meta, "w") as f:
         json.dump({"wall_s": wall, "cmd": cmd}, f)
     return wall
@@ -86,7 +87,6 @@ class Maps:
             g = f["global"].attrs
             self.glob_sigma_lx = g["sigma_lx"]
             self.glob_sigma_rel = g["sigma_rel_arithmetic"]
-            self.photons = int(f.attrs["photons"])
             self.elapsed_s = float(f.attrs["elapsed_s"])  # tracing and reductions, no start-up
 
     def det_error(self, ref):
@@ -98,6 +98,12 @@ class Maps:
         mean = np.sum(self.area * ref.tri) / s
         e2 = np.sum(self.area * (self.tri - ref.tri) ** 2) / s - ref.glob_sigma_lx ** 2
         return np.sqrt(max(e2, 0.0)) / mean
+
+
+def seeds(args, step):
+    """How many seeds `step` makes: --seeds for the step being run, else its default
+    (report reads the defaults, and only the runs it finds)."""
+    return args.seeds if args.seeds and args.step == step else SEEDS[step]
 
 
 def work_path(args, scene, name):
@@ -114,7 +120,7 @@ def reference(args, scene):
 def converge(args):
     for scene in args.scenes:
         ref = reference(args, scene)
-        for seed in range(1, args.seeds + 1):
+        for seed in range(1, seeds(args, "converge") + 1):
             for sampler in SAMPLERS:
                 for k in range(SCENES[scene][3], K_MAX + 1):
                     path = work_path(args, scene, f"{sampler}-seed{seed}-2^{k}.h5")
@@ -130,15 +136,15 @@ def converge(args):
 def calibrate(args):
     for scene in args.scenes:
         for sampler in SAMPLERS:
-            for seed in range(101, 101 + args.seeds):
+            for seed in range(101, 101 + seeds(args, "calibrate")):
                 run(args, scene, sampler, seed, 2 ** 20, work_path(args, scene, f"cal-{sampler}-seed{seed}.h5"))
         print(f"{scene}: calibration runs done", flush=True)
 
 
 def offgrid(args):
     for scene in args.scenes:
-        k = args.offgrid_k[scene] if scene in args.offgrid_k else 20
-        for seed in range(201, 201 + args.seeds):
+        k = OFFGRID_K[scene]
+        for seed in range(201, 201 + seeds(args, "offgrid")):
             for n in (2 ** k, 3 * 2 ** (k - 1), 2 ** (k + 1)):
                 for sampler in SAMPLERS:  # random: the same analysis where nothing depends on N's bits
                     run(args, scene, sampler, seed, n, work_path(args, scene, f"off-{sampler}-seed{seed}-{n}.h5"))
@@ -166,7 +172,7 @@ def report_convergence(args, scene, out):
     det = SCENES[scene][1]
     rows = {}
     for sampler in SAMPLERS:
-        for seed in range(1, args.seeds + 1):
+        for seed in range(1, seeds(args, "converge") + 1):
             ns, walls, de, ge, dest, gest, runs = [], [], [], [], [], [], []
             for k in range(SCENES[scene][3], K_MAX + 1):
                 path = work_path(args, scene, f"{sampler}-seed{seed}-2^{k}.h5")
@@ -186,7 +192,6 @@ def report_convergence(args, scene, out):
     print("| quantity | level | random: photons (M); wall s; run s (medians; photons min-max over seeds) "
           "| sobol: the same | photons random/sobol | wall time random/sobol | run time random/sobol |", file=out)
     print("|---|---|---|---|---|---|---|", file=out)
-    summary = {}
     for qi, quantity in ((2, "detector"), (3, "global")):
         for level in LEVELS:
             cells = []
@@ -209,9 +214,7 @@ def report_convergence(args, scene, out):
                 ratios = [med["random"][i] / med["sobol"][i] for i in range(3)]
                 text = [f"{ratios[0]:.2f}", f"{ratios[1]:.2f}", f"**{ratios[2]:.2f}**"]
             else:
-                ratios = [float("nan")] * 3
                 text = ["-"] * 3
-            summary[f"{quantity} {100 * level:.0f}%"] = ratios
             print(f"| {quantity} | {100 * level:.0f} % | {cells[0]} | {cells[1]} | {' | '.join(text)} |", file=out)
     # The error estimates at the largest common run against the true errors.
     print("\nTrue error and the run's own estimate at each power of two (medians over seeds):\n", file=out)
@@ -231,7 +234,6 @@ def report_convergence(args, scene, out):
                         e.append(r[ei][i])
                 cols.append(f"{100 * np.median(t):.3f} / {100 * np.median(e):.3f} % ({len(t)})" if t else "-")
         print(f"| 2^{int(np.log2(n))} | {cols[0]} | {cols[1]} | {cols[2]} | {cols[3]} |", file=out)
-    return summary
 
 
 def variance_ratio(est2, values, weights):
@@ -246,9 +248,9 @@ def with_interval(est2, values, weights):
     """The ratio and a 95 % interval from the delete-one jackknife over seeds (a bootstrap
     would resample seeds with repeats, which biases an observed variance low)."""
     r = variance_ratio(est2, values, weights)
-    seeds = len(est2)
-    jk = np.array([variance_ratio(np.delete(est2, i), np.delete(values, i, axis=0), weights) for i in range(seeds)])
-    se = np.sqrt((seeds - 1) / seeds * np.sum((jk - jk.mean()) ** 2))
+    n_seeds = len(est2)
+    jk = np.array([variance_ratio(np.delete(est2, i), np.delete(values, i, axis=0), weights) for i in range(n_seeds)])
+    se = np.sqrt((n_seeds - 1) / n_seeds * np.sum((jk - jk.mean()) ** 2))
     return f"{r:.3f} +- {1.96 * se:.3f}"
 
 
@@ -260,7 +262,7 @@ def report_calibration(args, scene, out):
     det = SCENES[scene][1]
     for sampler in SAMPLERS:
         ms = []
-        for seed in range(101, 101 + args.cal_seeds):
+        for seed in range(101, 101 + seeds(args, "calibrate")):
             path = work_path(args, scene, f"cal-{sampler}-seed{seed}.h5")
             if os.path.exists(path + ".json"):
                 ms.append(Maps(path, det))
@@ -283,11 +285,11 @@ def report_calibration(args, scene, out):
 def report_offgrid(args, scene, out):
     ref = reference(args, scene)
     det = SCENES[scene][1]
-    k = args.offgrid_k.get(scene, 20)
+    k = OFFGRID_K[scene]
     ns = (2 ** k, 3 * 2 ** (k - 1), 2 ** (k + 1))
     for sampler in SAMPLERS:
         errs = {n: ([], []) for n in ns}
-        for seed in range(201, 201 + args.offgrid_seeds):
+        for seed in range(201, 201 + seeds(args, "offgrid")):
             for n in ns:
                 path = work_path(args, scene, f"off-{sampler}-seed{seed}-{n}.h5")
                 if not os.path.exists(path + ".json"):
@@ -295,26 +297,25 @@ def report_offgrid(args, scene, out):
                 m = Maps(path, det)
                 errs[n][0].append(m.det_error(ref) ** 2)
                 errs[n][1].append(m.glob_error(ref) ** 2)
-        seeds = min(len(errs[n][0]) for n in ns)
-        if seeds == 0:
+        n_seeds = min(len(errs[n][0]) for n in ns)
+        if n_seeds == 0:
             continue
         cols = []
         for q in (0, 1):
-            rms = {n: np.sqrt(np.mean(errs[n][q][:seeds])) for n in ns}
+            rms = {n: np.sqrt(np.mean(errs[n][q][:n_seeds])) for n in ns}
             # the power law through the two powers of two, at the point between them
             slope = np.log(rms[ns[2]] / rms[ns[0]]) / np.log(ns[2] / ns[0])
             interp = rms[ns[0]] * (ns[1] / ns[0]) ** slope
             cols.append(f"{100 * rms[ns[0]]:.3f} / {100 * rms[ns[1]]:.3f} / {100 * rms[ns[2]]:.3f} % "
                         f"(power law {100 * interp:.3f} %: {rms[ns[1]] / interp - 1:+.1%})")
-        print(f"| {scene} | {sampler} | 2^{k}, 3x2^{k - 1}, 2^{k + 1} | {seeds} | {cols[0]} | {cols[1]} |", file=out)
+        print(f"| {scene} | {sampler} | 2^{k}, 3x2^{k - 1}, 2^{k + 1} | {n_seeds} | {cols[0]} | {cols[1]} |", file=out)
 
 
 def report(args):
     out = sys.stdout
     print("## Time to a true error\n", file=out)
-    summaries = {}
     for scene in args.scenes:
-        summaries[scene] = report_convergence(args, scene, out)
+        report_convergence(args, scene, out)
     print("\n## Calibration: estimate / observed scatter (sigma ratio, +- 95 % jackknife interval over seeds)\n", file=out)
     print("| scene | sampler | seeds | per cell (relative, pooled) | eq. (9) | global D/2 |", file=out)
     print("|---|---|---|---|---|---|", file=out)
@@ -337,11 +338,6 @@ def main():
     p.add_argument("--threads", type=int, default=2)
     args = p.parse_args()
     args.work = os.path.abspath(args.work)
-    default_seeds = {"converge": 5, "calibrate": 20, "offgrid": 8, "report": 5}
-    args.seeds = args.seeds or default_seeds[args.step]
-    args.cal_seeds = 20 if args.step == "report" else args.seeds
-    args.offgrid_seeds = 8 if args.step == "report" else args.seeds
-    args.offgrid_k = {"office": 22, "montage": 22, "room": 20}
     {"converge": converge, "calibrate": calibrate, "offgrid": offgrid, "report": report}[args.step](args)
 
 

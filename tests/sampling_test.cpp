@@ -4,6 +4,7 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/ies.hpp"
+#include "luxtrace/light/photometry_distribution.hpp"
 #include "luxtrace/light/light.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/sampler.hpp"
@@ -191,7 +192,7 @@ TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
 }
 
 TEST(Sampling, IesPointLightFollowsIntensity) {
-    const IesPhotometry p =
+    const Photometry p =
         load_ies(std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies");
     Light l;
     l.type = LightType::point;
@@ -199,9 +200,9 @@ TEST(Sampling, IesPointLightFollowsIntensity) {
     // Tilted so far that Frame::around(aim) would put C0 27 deg away from the loader's
     // C0: a light that ignored its frame would rotate the quadrant pattern visibly.
     l.aim = glm::normalize(Vec3(0.6, 0.6, -0.3));
-    auto dist = std::make_shared<IesDistribution>(p);
+    auto dist = std::make_shared<PhotometryDistribution>(p);
     l.flux_lm = dist->flux_lm();
-    l.ies = dist;
+    l.distribution = dist;
     // The loader's frame: +z = nadir (aim), +x = C0 = scene +x projected off the aim
     // (the loader uses +y instead when |aim.x| >= 0.9, not the case here).
     ASSERT_LT(std::abs(l.aim.x), 0.9);

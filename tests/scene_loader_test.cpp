@@ -170,7 +170,7 @@ TEST_F(EveryKey, Lights) {
     EXPECT_NEAR(L[0].band_share[2], 0.25, 1e-15);
 
     // IES: the flux is the file's times the multiplier; +z of the frame is the aim.
-    ASSERT_NE(L[1].ies, nullptr);
+    ASSERT_NE(L[1].distribution, nullptr);
     const double file_flux = load_ies(data("ies/cosine.ies")).flux_lm();
     EXPECT_NEAR(L[1].flux_lm, 2.5 * file_flux, 1e-12 * file_flux);
     expect_vec(L[1].aim, Vec3(0, 0.6, -0.8));
@@ -731,7 +731,7 @@ TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
     for (std::uint64_t k = 0; k < 1000; ++k) {
         u.start_photon(k);
         const double a = u.next(), b = u.next();
-        EXPECT_GE(l.ies->sample(a, b).z, std::cos(0.1 * kPi / 180.0) - 1e-12);
+        EXPECT_GE(l.distribution->sample(a, b).z, std::cos(0.1 * kPi / 180.0) - 1e-12);
     }
 }
 

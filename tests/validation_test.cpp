@@ -82,10 +82,10 @@ struct Grid {
     double y0() const { return cy - 0.5 * h; }
 };
 
-// Cell averages of f(x, y) by an 8 x 8 midpoint rule: cells are finite, and the value a
-// detector reports is the flux through the cell over its area.
-std::vector<double> cell_averages(const Grid& g, const std::function<double(double, double)>& f) {
-    constexpr int kSub = 8;
+// Cell averages of f(x, y) by a kSub x kSub midpoint rule (8 unless the function is
+// peaked within a cell): cells are finite, and the value a detector reports is the flux
+// through the cell over its area.
+std::vector<double> cell_averages(const Grid& g, const std::function<double(double, double)>& f, int kSub = 8) {
     const double dx = g.w / g.nx, dy = g.h / g.ny;
     std::vector<double> out(static_cast<std::size_t>(g.nx * g.ny));
     for (int j = 0; j < g.ny; ++j)
@@ -320,6 +320,54 @@ TEST(Validation, LambertianRectangleEmitter) {
         return exitance * f;
     };
     expect_agreement(compare_detector(r, "floor", cell_averages({0.3, 0.2, 3, 3, 10, 10}, e)));
+}
+
+// ---------------------------------------------------------------------------------------
+// Case 6: the near field of a luminous opening (near_field.toml, near_field_point.toml).
+// A luminaire file for a uniform Lambertian 1 m x 1 m rectangle (I = I0 cos gamma, width
+// and length 1 m) facing down; detectors 0.1 to 10 sizes below it. The reference is the
+// configuration factor of the parallel rectangle, as in case 4, with exitance pi I0 / A.
+// The area model must hold at every distance; the point model (the same file emitted
+// from its centre) must agree with the inverse-square law and fail the reference close
+// to the luminaire.
+
+TEST(Validation, LuminousOpeningNearField) {
+    constexpr double kI0 = 1000.0, kSize = 1.0;
+    constexpr std::uint64_t kPhotons = 4'000'000;
+    const double heights[] = {0.1, 0.3, 1.0, 3.0, 10.0};
+    TempDir dir("near_field");
+    const fs::path area_out = dir.path() / "area.h5", point_out = dir.path() / "point.h5";
+    ASSERT_EQ(0, run_luxtrace("near_field", area_out, kPhotons, 61));
+    ASSERT_EQ(0, run_luxtrace("near_field_point", point_out, kPhotons, 62));
+    const ResultReader area(area_out), point(point_out);
+    for (const double h : heights) {
+        const std::string name = "below_" + (h < 1.0 ? "0p" + std::to_string(static_cast<int>(std::lround(h * 10))) : std::to_string(static_cast<int>(h))) + "m";
+        const double w = 0.3 * std::max(1.0, h);
+        const Grid g{0.0, 0.0, w, w, 3, 3};
+        auto near = [&](double x, double y) {
+            const double x1 = (-0.5 * kSize - x) / h, x2 = (0.5 * kSize - x) / h;
+            const double y1 = (-0.5 * kSize - y) / h, y2 = (0.5 * kSize - y) / h;
+            const double f = corner_factor(x2, y2) - corner_factor(x1, y2) - corner_factor(x2, y1) + corner_factor(x1, y1);
+            return kPi * kI0 / (kSize * kSize) * f;
+        };
+        auto far = [&](double x, double y) {  // a point of intensity I0 cos(gamma): I0 h^2 / r^4
+            const double r2 = x * x + y * y + h * h;
+            return kI0 * h * h / (r2 * r2);
+        };
+        const std::vector<double> ref = cell_averages(g, near, 64);
+        expect_agreement(compare_detector(area, name, ref));
+        expect_agreement(compare_detector(point, name, cell_averages(g, far, 64)));
+        // The point model against the near-field truth, centre cell (docs/PHOTOMETRY.md).
+        const std::vector<double> pv = point.f64("/detectors/" + name + "/value");
+        const std::vector<double> ps = point.f64("/detectors/" + name + "/sigma_rel");
+        const std::vector<double> av = area.f64("/detectors/" + name + "/value");
+        const std::vector<double> as = area.f64("/detectors/" + name + "/sigma_rel");
+        const double z_point = (pv[4] - ref[4]) / (ps[4] * pv[4]);
+        if (h <= kSize) EXPECT_GT(z_point, 20.0) << name << ": the point model should fail this close";
+        std::cout << "[near field] d/size " << h / kSize << ": E " << ref[4] << " lx; area model "
+                  << 100.0 * (av[4] / ref[4] - 1.0) << " % +- " << 100.0 * as[4] << " %, point model "
+                  << 100.0 * (pv[4] / ref[4] - 1.0) << " % +- " << 100.0 * ps[4] << " %\n";
+    }
 }
 
 // ---------------------------------------------------------------------------------------

@@ -26,6 +26,8 @@ struct RenderArgs {
 
 // `luxtrace render`: exit code 0, or throws InputError for bad input.
 int cmd_render(const RenderArgs& args);
+// `luxtrace photometry FILE...`: how each luminaire file reads (format, flux, opening).
+int cmd_photometry(const std::vector<std::string>& files, int lamp_set);
 // `luxtrace export-xdmf RESULT.h5 [-o FILE.xdmf]`.
 int cmd_export_xdmf(const std::string& result, const std::string& output);
 

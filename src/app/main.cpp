@@ -222,6 +222,11 @@ int main(int argc, char** argv) {
     render->add_option("--cell", rd.cell, "i,j: the cell the detector sections go through");
     render->add_option("--out-dir", rd.out_dir, "folder for detector pictures");
     render->add_option("--threads", rd.threads, "threads (default: all cores)");
+    std::vector<std::string> photometry_files;
+    int lamp_set = 1;
+    auto* photometry = app.add_subcommand("photometry", "read IES or EULUMDAT files and print what luxtrace makes of them");
+    photometry->add_option("files", photometry_files, "IES LM-63 or EULUMDAT files")->required();
+    photometry->add_option("--lamp-set", lamp_set, "EULUMDAT: the lamp set to scale by (default 1)");
     std::string xdmf_result, xdmf_output;
     auto* xdmf = app.add_subcommand("export-xdmf", "write the ParaView/VisIt companion (.xdmf) of a result");
     xdmf->add_option("result", xdmf_result, "result file (.h5)")->required();
@@ -241,6 +246,7 @@ int main(int argc, char** argv) {
         if (*check) return comm.is_root() ? cmd_check(check_path) : 0;
         if (*info) return comm.is_root() ? cmd_info(info_path) : 0;
         if (*render) return comm.is_root() ? cmd_render(rd) : 0;
+        if (*photometry) return comm.is_root() ? cmd_photometry(photometry_files, lamp_set) : 0;
         if (*xdmf) return comm.is_root() ? cmd_export_xdmf(xdmf_result, xdmf_output) : 0;
     } catch (const InputError& e) {
         // Every rank reads the same input and fails the same way; one message is enough.

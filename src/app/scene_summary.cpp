@@ -43,7 +43,10 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         << s.lights.total_flux_lm() << " lm\n";
     for (const Light& l : s.lights.lights()) {
         out << "  " << std::left << std::setw(24) << l.label << std::right << "  " << l.flux_lm << " lm";
-        if (l.ies) out << " (IES photometry)";
+        if (l.photometry) {
+            const Photometry& p = *l.photometry;
+            out << " (" << p.format << ", " << shape_name(l.opening.shape) << ')';
+        }
         if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
         out << '\n';
     }

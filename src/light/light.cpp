@@ -1,5 +1,6 @@
 #include "luxtrace/light/light.hpp"
 
+#include "luxtrace/light/luminous_opening.hpp"
 #include "luxtrace/material/material.hpp"
 
 #include <algorithm>
@@ -26,7 +27,11 @@ std::size_t sample_cdf(const std::vector<double>& cdf, double u) {
 EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
     switch (type) {
     case LightType::point:
-        if (ies) return {position, frame.to_world(ies->sample(ud1, ud2))};
+        if (distribution) {
+            const Vec3 d = distribution->sample(ud1, ud2);
+            if (opening.shape == LuminousOpening::Shape::point) return {position, frame.to_world(d)};
+            return {position + frame.to_world(sample_opening_point(opening, d, up1, up2)), frame.to_world(d)};
+        }
         return {position, sample_uniform_sphere(ud1, ud2)};
     case LightType::spot:
         return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};

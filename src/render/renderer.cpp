@@ -63,14 +63,11 @@ double intensity_cd(const Light& l, const Vec3& out) {
         if (glm::dot(out, l.aim) < l.cos_half_angle) return 0.0;
         return l.flux_lm / (2.0 * kPi * (1.0 - l.cos_half_angle));
     }
-    if (!l.ies) return l.flux_lm / (4.0 * kPi);
-    if (!l.photometry) throw std::logic_error(l.label + ": IES light without its photometry");
-    // Luminaire frame: +z the photometric nadir, +x the plane C = 0.
-    const Vec3 local = l.frame.to_local(out);
-    const double gamma = std::acos(std::clamp(local.z, -1.0, 1.0));
-    double c = std::atan2(local.y, local.x);
-    if (c < 0.0) c += 2.0 * kPi;
-    return l.photometry->intensity_cd(gamma, c) * (l.flux_lm / l.photometry->flux_lm());
+    if (!l.distribution) return l.flux_lm / (4.0 * kPi);
+    if (!l.photometry) throw std::logic_error(l.label + ": light without its photometry");
+    // Luminaire frame: +z the photometric axis, +x C0 (photometry.hpp). A luminous
+    // opening is seen as its centre here, in the pictures only.
+    return l.photometry->intensity_cd(l.frame.to_local(out)) * (l.flux_lm / l.photometry->flux_lm());
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
 // thrown as an InputError naming the file, the line and the key.
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/light/luminaire_file.hpp"
+#include "luxtrace/light/orientation.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -65,8 +67,8 @@ struct Loader {
     Scene scene;
     std::map<std::string, std::uint32_t> material_index;
     std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;  // triangle range
-    std::map<std::string, std::pair<std::shared_ptr<const IesPhotometry>, std::shared_ptr<const IesDistribution>>>
-        ies_cache;  // by canonical file path
+    std::map<std::string, std::pair<std::shared_ptr<const Photometry>, std::shared_ptr<const PhotometryDistribution>>>
+        photometry_cache;  // by canonical file path and lamp set
 
     fs::path resolve(const std::string& p) const {
         const fs::path path(p);
@@ -104,6 +106,9 @@ struct Loader {
             if (b->empty()) r.fail("bands", "needs at least one band");
             scene.bands = *b;
         }
+        scene.maintenance_factor = r.number("maintenance_factor").value_or(1.0);
+        if (!(scene.maintenance_factor > 0.0 && scene.maintenance_factor <= 1.0))
+            r.fail("maintenance_factor", "must lie in (0, 1]");
         r.finish();
     }
 
@@ -276,7 +281,76 @@ struct Loader {
         }
     }
 
-    Light parse_light(const toml::table& t, std::size_t i) {
+    // The light's positions: `position`, a list `positions`, or a `grid` (first point,
+    // spacing along scene x and y, counts) - one photometry shared by all of them.
+    std::vector<Vec3> light_positions(TableReader& r, const std::string& type) {
+        const int given = int(r.has("position")) + int(r.has("positions")) + int(r.has("grid"));
+        if (given == 0) r.fail_entry("type '" + type + "' needs 'position' (or 'positions' or 'grid')");
+        if (given > 1) r.fail_entry("give one of 'position', 'positions' and 'grid'");
+        if (const auto p = r.vec3("position")) return {*p};
+        std::vector<Vec3> out;
+        constexpr std::size_t kMaxCopies = 100000;
+        if (const toml::array* a = r.array("positions")) {
+            for (const toml::node& n : *a) {
+                const toml::array* v = n.as_array();
+                if (v == nullptr || v->size() != 3 || !std::all_of(v->begin(), v->end(), [](const toml::node& x) {
+                        return x.is_number();
+                    }))
+                    r.fail("positions", "expected a list of [x, y, z] positions");
+                out.emplace_back(v->get(0)->value<double>().value(), v->get(1)->value<double>().value(),
+                                 v->get(2)->value<double>().value());
+            }
+            if (out.empty()) r.fail("positions", "needs at least one position");
+            if (out.size() > kMaxCopies) r.fail("positions", "at most " + std::to_string(kMaxCopies) + " positions");
+            return out;
+        }
+        const toml::table* g = r.table("grid");
+        if (g == nullptr) r.fail("grid", "expected a table { first = [x, y, z], spacing = [dx, dy], count = [nx, ny] }");
+        TableReader gr(*g, fname, r.context() + " grid");
+        const auto first = gr.vec3("first");
+        const auto spacing = gr.numbers("spacing", 2);
+        const auto count = gr.numbers("count", 2);
+        if (!first || !spacing || !count) gr.fail_entry("needs 'first' = [x, y, z], 'spacing' = [dx, dy] and 'count' = [nx, ny]");
+        for (double c : *count)
+            if (!(c >= 1.0 && c == std::floor(c) && c <= double(kMaxCopies))) gr.fail("count", "must be whole numbers >= 1");
+        if ((*count)[0] * (*count)[1] > double(kMaxCopies))
+            gr.fail("count", "at most " + std::to_string(kMaxCopies) + " lights in a grid");
+        gr.finish();
+        for (int j = 0; j < int((*count)[1]); ++j)
+            for (int k = 0; k < int((*count)[0]); ++k)
+                out.push_back(*first + Vec3(k * (*spacing)[0], j * (*spacing)[1], 0.0));
+        return out;
+    }
+
+    // aim / rotation_deg / c0 / tilt_deg -> the photometric frame (orientation.hpp).
+    Frame placement_frame(TableReader& r, const char* aim_key) {
+        LuminairePlacement pl;
+        pl.aim = unit(r, aim_key, r.vec3(aim_key).value_or(Vec3(0, 0, -1)));
+        if (r.has("c0") && r.has("rotation_deg")) r.fail("c0", "give 'c0' or 'rotation_deg', not both");
+        if (const auto c0 = r.vec3("c0")) pl.c0 = *c0;
+        pl.rotation_deg = r.number("rotation_deg").value_or(0.0);
+        for (const auto& [key, value] : {std::pair<const char*, double*>{"rotation_deg", &pl.rotation_deg},
+                                         {"tilt_deg", &pl.tilt_deg},
+                                         {"roll_deg", &pl.roll_deg},
+                                         {"spin_deg", &pl.spin_deg}}) {
+            *value = r.number(key).value_or(0.0);
+            if (!(std::abs(*value) <= 360.0)) r.fail(key, "must lie in [-360, 360] degrees");
+        }
+        try {
+            return luminaire_frame(pl);
+        } catch (const std::invalid_argument&) {
+            r.fail("c0", "must not be parallel to the '" + std::string(aim_key) + "'");
+        }
+    }
+
+    // A factor key in (0, hi].
+    double factor(TableReader& r, const std::string& key, double fallback, double hi) {
+        const double v = r.number(key).value_or(fallback);
+        if (!(v > 0.0 && v <= hi)) r.fail(key, "must lie in (0, " + fmt_count(hi) + "], got " + fmt_count(v));
+        return v;
+    }
+
+    std::vector<Light> parse_light(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("light", i, t));
         Light l;
         const std::string type = r.string("type").value_or("");
@@ -287,65 +361,83 @@ struct Loader {
             if (!(*f > 0.0)) r.fail(key, "must be positive, got " + std::to_string(*f));
             return *f;
         };
-        if (type == "point" || type == "spot") {
-            const auto pos = r.vec3("position");
-            if (!pos) r.fail_entry("type '" + type + "' needs 'position'");
-            l.position = *pos;
-        }
+        std::vector<Vec3> positions{Vec3(0.0)};
+        if (type == "point" || type == "spot") positions = light_positions(r, type);
+        l.maintenance_factor = factor(r, "maintenance_factor", scene.maintenance_factor, 1.0);
+        l.dimming = factor(r, "dimming", 1.0, 1.0);
         if (type == "point") {
             l.type = LightType::point;
-            l.aim = unit(r, "aim", r.vec3("aim").value_or(Vec3(0, 0, -1)));
-            if (const auto ies = r.string("ies")) {
-                const double mult = r.number("multiplier").value_or(1.0);
-                if (!(mult > 0.0)) r.fail("multiplier", "must be positive");
-                if (r.has("flux_lm")) r.fail("flux_lm", "with 'ies' the flux comes from the file (use 'multiplier')");
+            l.frame = placement_frame(r, "aim");
+            l.aim = l.frame.n;
+            if (r.has("ies") && r.has("photometry")) r.fail("photometry", "give 'photometry' or 'ies', not both");
+            const std::string file_key = r.has("ies") ? "ies" : "photometry";
+            if (const auto file = r.string(file_key)) {
+                l.multiplier = r.number("multiplier").value_or(1.0);
+                if (!(l.multiplier > 0.0)) r.fail("multiplier", "must be positive");
+                l.lamp_factor = factor(r, "lamp_factor", 1.0, 100.0);
+                if (r.has("flux_lm"))
+                    r.fail("flux_lm", "with '" + file_key + "' the flux comes from the file (use 'multiplier')");
+                const auto set = r.integer("lamp_set").value_or(1);
+                if (set < 1 || set > 20) r.fail("lamp_set", "must lie in [1, 20]");
                 // Lights sharing a file share its photometry and sampling table (about
                 // 1 MB each: one copy keeps it in cache).
-                const std::string key = fs::weakly_canonical(resolve(*ies)).string();
-                auto cached = ies_cache.find(key);
-                if (cached == ies_cache.end()) {
-                    IesPhotometry photometry;
+                const std::string key = fs::weakly_canonical(resolve(*file)).string() + "#" + std::to_string(set);
+                auto cached = photometry_cache.find(key);
+                if (cached == photometry_cache.end()) {
+                    Photometry photometry;
                     try {
-                        photometry = load_ies(resolve(*ies));
+                        photometry = load_photometry(resolve(*file), static_cast<int>(set));
                     } catch (const InputError& e) {  // say which scene entry named the file
-                        r.fail("ies", e.what());
+                        r.fail(r.has("lamp_set") && std::string(e.what()).find("lamp set") != std::string::npos
+                                   ? "lamp_set" : file_key,
+                               e.what());
                     }
-                    std::shared_ptr<const IesDistribution> dist;
+                    std::shared_ptr<const PhotometryDistribution> dist;
                     try {
-                        dist = std::make_shared<const IesDistribution>(photometry);
+                        dist = std::make_shared<const PhotometryDistribution>(photometry);
                     } catch (const std::invalid_argument&) {  // no light on the sampling grid
-                        r.fail("ies", resolve(*ies).string() +
-                                          ": its light lies in too narrow a beam for the 0.5 degree sampling grid");
+                        r.fail(file_key, resolve(*file).string() +
+                                             ": its light lies in too narrow a beam for the 0.5 degree sampling grid");
                     }
-                    cached = ies_cache.emplace(key, std::make_pair(std::make_shared<const IesPhotometry>(std::move(photometry)),
-                                                                   std::move(dist))).first;
+                    for (const std::string& note : photometry.notes) scene.warnings.push_back(note);
+                    cached = photometry_cache
+                                 .emplace(key, std::make_pair(std::make_shared<const Photometry>(std::move(photometry)),
+                                                              std::move(dist)))
+                                 .first;
                 }
                 l.photometry = cached->second.first;
-                l.ies = cached->second.second;
-                // The file's own flux (exact for its interpolant), not the sampling table's.
-                l.flux_lm = l.photometry->flux_lm() * mult;
-                if (!(l.flux_lm > 0.0)) r.fail("ies", "the photometry carries no flux");
+                l.distribution = cached->second.second;
+                const std::string emission = r.string("emission").value_or("opening");
+                if (emission == "opening") l.opening = l.photometry->opening;
+                else if (emission != "point") r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
+                // The file's own flux (exact for its interpolant), not the sampling table's,
+                // with the lamp's output at this tilt (LM-63 TILT data).
+                l.file_flux_lm = l.photometry->flux_lm();
+                if (!l.photometry->tilt.empty()) l.tilt_factor = l.photometry->tilt.at(tilt_from_nadir_deg(l.frame));
+                l.flux_lm = l.file_flux_lm * l.multiplier * l.lamp_factor * l.dimming * l.tilt_factor;
+                if (!(l.flux_lm > 0.0))
+                    r.fail(file_key, l.tilt_factor > 0.0 ? "the photometry carries no flux"
+                                                         : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
+                                                               fmt_count(tilt_from_nadir_deg(l.frame)) + " degrees");
                 if (!std::isfinite(l.flux_lm)) r.fail("multiplier", "the flux of the file times the multiplier is too large");
             } else {
-                l.flux_lm = flux("flux_lm");
+                for (const char* k : {"emission", "lamp_set", "lamp_factor", "multiplier"})
+                    if (r.has(k)) r.fail(k, "applies to a light with 'photometry' (or 'ies') only");
+                l.flux_lm = flux("flux_lm") * l.dimming;
             }
-            // Local +z = photometric nadir; C0 plane toward +x of the scene projected
-            // perpendicular to the aim (+y when aiming along x).
-            const Vec3 ref = std::abs(l.aim.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-            const Vec3 c0 = glm::normalize(ref - glm::dot(ref, l.aim) * l.aim);
-            l.frame = Frame{c0, glm::cross(l.aim, c0), l.aim};
         } else if (type == "spot") {
             l.type = LightType::spot;
-            l.flux_lm = flux("flux_lm");
-            l.aim = unit(r, "direction", r.vec3("direction").value_or(Vec3(0, 0, -1)));
+            l.flux_lm = flux("flux_lm") * l.dimming;
+            if (r.has("aim") && r.has("direction")) r.fail("aim", "give 'direction' or 'aim', not both");
+            l.frame = placement_frame(r, r.has("aim") ? "aim" : "direction");
+            l.aim = l.frame.n;
             const auto half = r.number("half_angle_deg");
             if (!half) r.fail_entry("type 'spot' needs 'half_angle_deg'");
             if (!(*half > 0.0 && *half <= 180.0)) r.fail("half_angle_deg", "must lie in (0, 180]");
             l.cos_half_angle = std::cos(*half * kPi / 180.0);
-            l.frame = Frame::around(l.aim);
         } else if (type == "area") {
             l.type = LightType::area;
-            l.flux_lm = flux("flux_lm");
+            l.flux_lm = flux("flux_lm") * l.dimming;
             const auto shape = r.string("shape");
             if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
             const auto it = named_shapes.find(*shape);
@@ -371,7 +463,7 @@ struct Loader {
             if (!d) r.fail_entry("type 'directional' needs 'direction'");
             l.aim = unit(r, "direction", *d);
             l.frame = Frame::around(l.aim);
-            l.illuminance_lx = flux("illuminance_lx");
+            l.illuminance_lx = flux("illuminance_lx") * l.dimming;
         } else {
             r.fail("type", "unknown light type '" + type + "' (expected point, spot, area or directional)");
         }
@@ -392,7 +484,14 @@ struct Loader {
         for (double c : l.band_share) share_sum += c;
         for (double& c : l.band_share) c /= share_sum;
         r.finish();
-        return l;
+        std::vector<Light> out;
+        for (std::size_t k = 0; k < positions.size(); ++k) {
+            Light copy = l;
+            copy.position = positions[k];
+            if (positions.size() > 1) copy.label += " #" + std::to_string(k + 1);
+            out.push_back(std::move(copy));
+        }
+        return out;
     }
 
     void parse_detector(const toml::table& t, std::size_t i) {
@@ -610,7 +709,8 @@ Scene load_scene(const fs::path& file) {
     L.finish_geometry();
     std::vector<Light> lights;
     const auto light_tables = L.tables_of(root, "light");
-    for (std::size_t i = 0; i < light_tables.size(); ++i) lights.push_back(L.parse_light(*light_tables[i], i));
+    for (std::size_t i = 0; i < light_tables.size(); ++i)
+        for (Light& l : L.parse_light(*light_tables[i], i)) lights.push_back(std::move(l));
     if (lights.empty()) throw InputError(L.fname + ": the scene has no [[light]]");
     // Directional beams cover the scene's bounding sphere, started just outside it.
     const Vec3 mid = 0.5 * (L.scene.bounds_min + L.scene.bounds_max);

@@ -50,7 +50,8 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
     const Light& light = lights.lights()[li];
     double u_pos1 = 0.5, u_pos2 = 0.5;
-    if (light.type == LightType::area || light.type == LightType::directional) {
+    if (light.type == LightType::area || light.type == LightType::directional ||
+        light.opening.shape != LuminousOpening::Shape::point) {
         const auto b1 = sampler_.block(k, 1);
         u_pos1 = PhiloxSampler::uniform(b1[0]);
         u_pos2 = PhiloxSampler::uniform(b1[1]);

@@ -277,7 +277,7 @@ void check_scene(const Scene& s) {
             if (!(c >= 0.0 && c <= 1.0)) broken(l.label + ": band share " + std::to_string(c));
         if (l.type == LightType::area && !(l.surface.area_m2 > 0.0 && std::isfinite(l.surface.area_m2)))
             broken(l.label + ": emitter area " + std::to_string(l.surface.area_m2));
-        if (l.type == LightType::point && l.ies && !(l.ies->flux_lm() > 0.0 && std::isfinite(l.ies->flux_lm())))
+        if (l.type == LightType::point && l.distribution && !(l.distribution->flux_lm() > 0.0 && std::isfinite(l.distribution->flux_lm())))
             broken(l.label + ": sampling table flux");
         // A few emitted rays must be finite.
         for (int k = 0; k < 4; ++k) {
@@ -340,26 +340,29 @@ int fuzz_scene(const std::uint8_t* data, std::size_t size) {
 
 int fuzz_ies(const std::uint8_t* data, std::size_t size) {
     const fs::path file = write_input("input.ies", data, size);
-    IesPhotometry p;
+    Photometry p;
     try {
         p = load_ies(file);
     } catch (const InputError&) {
         return 0;
     }
-    const IesSymmetry sym = p.symmetry();  // std::logic_error if load_ies let a bad layout through
-    (void)sym;
+    if (p.type == PhotometricType::C) {
+        const CPlaneSymmetry sym = p.symmetry();  // std::logic_error if load_ies let a bad layout through
+        (void)sym;
+    }
     const double flux = p.flux_lm();
     if (!(flux > 0.0 && std::isfinite(flux))) broken("accepted photometry has flux " + std::to_string(flux));
     for (int g = 0; g <= 12; ++g)
         for (int c = 0; c < 8; ++c) {
-            const double v = p.intensity_cd(g * kPi / 12.0, c * kPi / 4.0 - 1.0);
+            const double gr = g * kPi / 12.0, cr = c * kPi / 4.0 - 1.0;
+            const double v = p.intensity_cd(Vec3(std::sin(gr) * std::cos(cr), std::sin(gr) * std::sin(cr), std::cos(gr)));
             if (!(v >= 0.0 && std::isfinite(v))) broken("intensity " + std::to_string(v));
         }
     // The scene loader builds the sampling table of a light's photometry; a coarse one
     // here keeps the target fast. No light on the grid's directions is a documented
     // std::invalid_argument, which load_scene turns into an InputError.
     try {
-        const IesDistribution dist(p, 24, 48);
+        const PhotometryDistribution dist(p, 24, 48);
         for (int k = 0; k < 16; ++k) {
             const Vec3 d = dist.sample((k + 0.5) / 16.0, std::fmod(0.618 * k, 1.0));
             if (!finite(d) || std::abs(glm::length(d) - 1.0) > 1e-9) broken("sampled direction");

@@ -3,7 +3,8 @@
 // and direction; which light and which band emits photon k is chosen by LightSet in
 // proportion to flux (SPEC §3).
 #include "luxtrace/core/math.hpp"
-#include "luxtrace/light/ies.hpp"
+#include "luxtrace/light/photometry.hpp"
+#include "luxtrace/light/photometry_distribution.hpp"
 
 #include <memory>
 #include <string>
@@ -34,14 +35,22 @@ struct Light {
     double flux_lm = 0.0;
     std::vector<double> band_share;  // normalised colour share per band
     // point / spot
-    Vec3 position{0.0};
-    Vec3 aim{0.0, 0.0, -1.0};        // point+IES: photometric nadir; spot: axis
+    Vec3 position{0.0};               // point with photometry: the photometric centre
+    Vec3 aim{0.0, 0.0, -1.0};        // point with photometry: photometric axis; spot: axis
     double cos_half_angle = 1.0;     // spot
-    std::shared_ptr<const IesDistribution> ies;  // point with photometry
-    // The same photometry as read (intensities for the renderer's exact direct light);
-    // intensity toward a direction = photometry->intensity_cd(...) * flux_lm / photometry->flux_lm().
-    std::shared_ptr<const IesPhotometry> photometry;
-    Frame frame = Frame::around(Vec3(0, 0, -1));  // local +z = aim, +x = C0 (IES)
+    // A point light with a luminaire's photometry: its direction sampler, and the
+    // photometry as read (intensities for the renderer's direct light). Intensity toward
+    // a direction = photometry->intensity_cd(local) * flux_lm / photometry->flux_lm().
+    std::shared_ptr<const PhotometryDistribution> distribution;
+    std::shared_ptr<const Photometry> photometry;
+    // Where its photons start: the file's luminous opening, or a point (`emission = "point"`).
+    LuminousOpening opening;
+    Frame frame = Frame::around(Vec3(0, 0, -1));  // local +z = aim, +x = C0 (photometry.hpp)
+    // The factors that made flux_lm from the file's flux (for reports): flux_lm =
+    // file flux x multiplier x lamp_factor x dimming x tilt_factor; maintained values are
+    // maintenance_factor times the initial ones.
+    double file_flux_lm = 0.0, multiplier = 1.0, lamp_factor = 1.0, dimming = 1.0, tilt_factor = 1.0;
+    double maintenance_factor = 1.0;
     // area
     EmitterSurface surface;
     // directional: a disk of radius `beam_radius` centred on the scene's bounding sphere,

@@ -40,6 +40,8 @@ struct Scene {
     std::vector<Camera> cameras;
     RunConfig run;
     std::vector<std::string> warnings;
+    // [scene] maintenance_factor: the default of every light's (EN 12464-1 MF).
+    double maintenance_factor = 1.0;
     Vec3 bounds_min{0.0}, bounds_max{0.0};
 
     int band_count() const { return static_cast<int>(bands.size()); }

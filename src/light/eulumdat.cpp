@@ -10,7 +10,8 @@
 //   type, total lamp flux (lm), colour, colour rendering, wattage (W); then 10 direct
 //   ratios, Mc C angles, Ng gamma angles and the intensities in cd/klm.
 // Isym says which C planes the intensities cover: 0 all Mc, 1 one (rotational), 2
-// C0-C180 (mirrored about that plane), 3 C90-C270, 4 C0-C90 (mirrored about both).
+// C0-C180 (mirrored about that plane), 3 the half from C270 through C0 to C90 (mirrored
+// about the C90-C270 plane), 4 C0-C90 (mirrored about both).
 // A negative number of lamps marks absolute photometry: the set's flux is then the
 // luminaire's (LORL 100 %).
 #include "luxtrace/light/eulumdat.hpp"
@@ -170,21 +171,23 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
             rd.fail(line, "gamma angles must increase, found " + fmt(v) + " after " + fmt(g_angles.back()));
         g_angles.push_back(v);
     }
-    // The planes stored under Isym, as a range of indices into the C angles.
+    // The planes stored under Isym, as indices into the C angles: Isym 3 stores the
+    // C90-C270 half starting at C270 and running on through C0 to C90 (the planes of
+    // C270..C360..C90 equal, by the symmetry, those of C270..C180..C90).
     int first = 0, count = mc;
     if (isym == 1) count = 1;
     else if (isym == 2) count = mc / 2 + 1;
-    else if (isym == 3) { first = mc / 4; count = mc / 2 + 1; }
+    else if (isym == 3) { first = 3 * mc / 4; count = mc / 2 + 1; }
     else if (isym == 4) count = mc / 4 + 1;
     if (isym == 3 && mc % 4 != 0) rd.fail(angles_line, "Isym 3 needs a number of C planes divisible by 4, found " + fmt(mc));
-    const auto plane_angle = [&](int k) { return k < mc ? c_angles[k] : 360.0; };
     p.vertical_deg = g_angles;
     const double scale = set_flux / 1000.0 * conversion;
     bool any_light = false;
-    for (int k = first; k < first + count; ++k) {
+    std::vector<std::pair<double, std::vector<double>>> planes;  // (C angle, intensities)
+    for (int k = 0; k < count; ++k) {
         std::vector<double> plane;
         for (int g = 0; g < ng; ++g) {
-            const auto [v, line] = take("intensity " + std::to_string((k - first) * ng + g + 1) + " of " +
+            const auto [v, line] = take("intensity " + std::to_string(k * ng + g + 1) + " of " +
                                         std::to_string(count * ng) + " (Isym " + fmt(isym) + ": " + fmt(count) +
                                         " C planes x " + fmt(ng) + " gamma angles)");
             if (v < 0.0) rd.fail(line, "negative intensity " + fmt(v));
@@ -192,8 +195,21 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
             any_light = any_light || v > 0.0;
             plane.push_back(v * scale);
         }
+        double c = 0.0;
+        if (isym == 3) {
+            // C270 + k Dc, as the mirror image 180 - c in the C90..C270 half luxtrace keeps.
+            c = c_angles[static_cast<std::size_t>((first + k) % mc)];
+            c = std::fmod(540.0 - c, 360.0);
+            if (k == 0) c = 270.0;
+        } else if (isym != 1) {
+            c = c_angles[static_cast<std::size_t>(k)];
+        }
+        planes.emplace_back(c, std::move(plane));
+    }
+    std::sort(planes.begin(), planes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& [c, plane] : planes) {
+        p.horizontal_deg.push_back(c);
         p.candela_cd.push_back(std::move(plane));
-        p.horizontal_deg.push_back(isym == 1 ? 0.0 : plane_angle(k));
     }
     if (at < nums.size())
         rd.fail(nums[at].second, "unexpected data after the " + std::to_string(count * ng) + " intensities (Isym " +
@@ -209,8 +225,11 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     const double want_lo = isym == 3 ? 90.0 : 0.0;
     const double want_hi = isym == 0 ? 360.0 : isym == 1 ? 0.0 : isym == 2 ? 180.0 : isym == 3 ? 270.0 : 90.0;
     if (std::abs(lo - want_lo) > 1e-6 || std::abs(hi - want_hi) > 1e-6)
-        rd.fail(angles_line, "Isym " + fmt(isym) + " stores C" + fmt(want_lo) + "-C" + fmt(want_hi) +
-                                 ", but the C angles give C" + fmt(lo) + "-C" + fmt(hi));
+        rd.fail(angles_line, "Isym " + fmt(isym) + " stores C" + fmt(isym == 3 ? 270.0 : want_lo) + "-C" +
+                                 fmt(isym == 3 ? 90.0 : want_hi) + ", but the C angles do not give those planes");
+    for (std::size_t k = 1; k < p.horizontal_deg.size(); ++k)
+        if (!(p.horizontal_deg[k] > p.horizontal_deg[k - 1]))
+            rd.fail(angles_line, "the C angles of the stored planes must increase");
 
     // Luminous area (mm): length along C0-C180 ... see docs/PHOTOMETRY.md.
     using S = LuminousOpening::Shape;

@@ -49,6 +49,17 @@ int cmd_photometry(const std::vector<std::string>& files, int lamp_set) {
         else if (p.lamp_flux_lm > 0.0)
             out << ", light output ratio " << p.flux_lm() / p.lamp_flux_lm;
         out << "; sampled " << dist.flux_lm() << " lm\n";
+        // The brightest tabulated direction, in the file's own angles.
+        double peak = -1.0, peak_h = 0.0, peak_v = 0.0;
+        for (std::size_t j = 0; j < p.horizontal_deg.size(); ++j)
+            for (std::size_t i = 0; i < p.vertical_deg.size(); ++i)
+                if (p.candela_cd[j][i] > peak) {
+                    peak = p.candela_cd[j][i];
+                    peak_h = p.horizontal_deg[j];
+                    peak_v = p.vertical_deg[i];
+                }
+        out << "peak        " << peak << " cd at " << (p.type == PhotometricType::C ? "C " : "H ") << peak_h
+            << (p.type == PhotometricType::C ? ", gamma " : ", V ") << peak_v << " (of the file's planes)\n";
         out << "opening     " << shape_name(p.opening.shape);
         if (p.opening.shape != LuminousOpening::Shape::point)
             out << ", length " << p.opening.length_m << " m, width " << p.opening.width_m << " m, height "

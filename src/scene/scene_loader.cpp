@@ -721,6 +721,14 @@ Scene load_scene(const fs::path& file) {
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
         }
+    const auto [mf_lo, mf_hi] = std::minmax_element(lights.begin(), lights.end(), [](const Light& a, const Light& b) {
+        return a.maintenance_factor < b.maintenance_factor;
+    });
+    if (mf_hi->maintenance_factor - mf_lo->maintenance_factor > 1e-12)
+        L.scene.warnings.push_back("maintenance factors differ between lights (" + fmt_count(mf_lo->maintenance_factor) +
+                                   " to " + fmt_count(mf_hi->maintenance_factor) +
+                                   "): results are initial values, and the maintained ones luxtrace reports use "
+                                   "the flux-weighted mean factor");
     double total_flux = 0.0;
     for (const Light& l : lights) {
         total_flux += l.flux_lm;

@@ -4,6 +4,8 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/ies.hpp"
+#include "luxtrace/light/luminaire_file.hpp"
+#include "luxtrace/light/luminous_opening.hpp"
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/detector_plot.hpp"
 #include "luxtrace/render/renderer.hpp"
@@ -339,10 +341,11 @@ int fuzz_scene(const std::uint8_t* data, std::size_t size) {
 }
 
 int fuzz_ies(const std::uint8_t* data, std::size_t size) {
+    // Either format, told apart by content as the scene loader does.
     const fs::path file = write_input("input.ies", data, size);
     Photometry p;
     try {
-        p = load_ies(file);
+        p = load_photometry(file);
     } catch (const InputError&) {
         return 0;
     }
@@ -358,6 +361,16 @@ int fuzz_ies(const std::uint8_t* data, std::size_t size) {
             const double v = p.intensity_cd(Vec3(std::sin(gr) * std::cos(cr), std::sin(gr) * std::sin(cr), std::cos(gr)));
             if (!(v >= 0.0 && std::isfinite(v))) broken("intensity " + std::to_string(v));
         }
+    // Start points on the luminous opening stay finite and inside its bounding box.
+    for (int k = 0; k < 8; ++k) {
+        const double a = 0.7 * k, b = 0.3 + 0.4 * k;
+        const Vec3 d = glm::normalize(Vec3(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b)));
+        const Vec3 q = sample_opening_point(p.opening, d, (k + 0.5) / 8.0, std::fmod(0.37 * k, 1.0));
+        const Vec3 half(0.5 * p.opening.length_m, 0.5 * p.opening.width_m, 0.5 * p.opening.height_m);
+        if (!finite(q) || std::abs(q.x) > half.x * (1 + 1e-9) + 1e-12 || std::abs(q.y) > half.y * (1 + 1e-9) + 1e-12 ||
+            std::abs(q.z) > half.z * (1 + 1e-9) + 1e-12)
+            broken("opening point outside the opening");
+    }
     // The scene loader builds the sampling table of a light's photometry; a coarse one
     // here keeps the target fast. No light on the grid's directions is a documented
     // std::invalid_argument, which load_scene turns into an InputError.

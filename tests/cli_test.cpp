@@ -162,6 +162,32 @@ flux_lm = 250
     EXPECT_EQ(o.out.find("light 2 (spot): every probe ray"), std::string::npos) << o.out;
 }
 
+// `luxtrace photometry` reads either format (by content) and prints the table's flux beside
+// the file's own; a broken file exits 2 naming its line. A maintenance factor shows in
+// `check` and as maintained means in `info`.
+TEST_F(Cli, PhotometryCommandAndMaintainedValues) {
+    const fs::path ldt = fs::path(LUXTRACE_TEST_DATA_DIR) / "photometry" / "ldt" / "eulumdatplot_sample_05_isym1.ldt";
+    Outcome o = run("photometry " + ldt.string());
+    EXPECT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("format      EULUMDAT, type C, symmetry rotational"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("4828 lm stated (lamps x LORL)"), std::string::npos) << o.out;
+    const fs::path bad = write("bad.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 1 7 2 0 0 0\n1 1 0\n0 90\n0\n1 0\n");
+    o = run("photometry " + bad.string());
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.out.find("bad.ies:3: photometric type must be 1 (type C), 2 (type B) or 3 (type A), found 7"),
+              std::string::npos) << o.out;
+    const std::string scene = std::string(kSmallScene) + "[scene]\nmaintenance_factor = 0.8\n";
+    const fs::path f = write("mf.toml", scene);
+    o = run("check " + f.string());
+    EXPECT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("MF 0.8"), std::string::npos) << o.out;
+    const fs::path out = dir / "mf.h5";
+    ASSERT_EQ(run("run " + f.string() + " --photons 20000 --quiet --output " + out.string()).code, 0);
+    o = run("info " + out.string());
+    EXPECT_NE(o.out.find("maintained   mean"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("(initial x MF 0.8)"), std::string::npos) << o.out;
+}
+
 TEST_F(Cli, InfoRejectsWhatIsNotAResult) {
     const fs::path f = write("x.h5", "not hdf5");
     const Outcome o = run("info " + f.string());

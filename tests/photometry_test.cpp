@@ -551,6 +551,24 @@ TEST(Placement, RestAndLm72Rotations) {
     EXPECT_THROW(luminaire_frame(p), std::invalid_argument);
 }
 
+// Radiance's source.cal (since 2008) reads a type C file with the luminaire aimed at -z,
+// C0 along +x: src_theta = acos(Dz), src_phi = atan2(-Dy, -Dx) for the ray direction D
+// toward the source, D = -e. A luxtrace luminaire at rest must emit (C, gamma) along the
+// e for which those formulas give back (C, gamma).
+TEST(Placement, TypeCAnglesAsRadianceSourceCal) {
+    const Frame rest = luminaire_frame({});
+    for (int c = 0; c < 360; c += 15)
+        for (int g = 5; g < 180; g += 10) {
+            const Vec3 e = rest.to_world(photometric_direction(PhotometricType::C, c, g));
+            const Vec3 D = -e;
+            const double theta = std::acos(std::clamp(D.z, -1.0, 1.0)) / kDeg;
+            double phi = std::atan2(-D.y, -D.x) / kDeg;
+            if (phi < 0.0) phi += 360.0;
+            EXPECT_NEAR(theta, g, 1e-9);
+            EXPECT_NEAR(std::remainder(phi - c, 360.0), 0.0, 1e-9) << "C " << c << " gamma " << g;
+        }
+}
+
 // An asymmetric real file, placed turned and tilted: the flux-weighted mean direction
 // of emitted photons must equal the table's mean direction (by quadrature here) carried
 // into the scene by rotations written out in this test, not by luminaire_frame.

@@ -413,9 +413,9 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0) {
             const double mf = r.attr_f64("/", "maintenance_factor");
             out << "  maintained   mean " << mf * r.attr_f64(g, "mean_value") << " " << units << " (initial x MF "
-                << std::setprecision(3) << mf
+                << std::defaultfloat << std::setprecision(3) << mf
                 << (r.attr_u64("/", "maintenance_factor_uniform") ? "" : ", flux-weighted over lights that differ")
-                << ")\n" << std::setprecision(2);
+                << ")\n" << std::fixed << std::setprecision(2);
         }
     }
     if (r.has("/history/target_value")) {

@@ -7,7 +7,6 @@
 
 #include <hdf5.h>
 
-#include <algorithm>
 #include <stdexcept>
 #include <cstdlib>
 #include <cstring>
@@ -365,14 +364,8 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "total_flux_lm", scene.lights.total_flux_lm());
         // Values are initial; maintained ones are these times the maintenance factor
         // (flux-weighted over the lights; exact when all lights share one).
-        double mf = 0.0, mf_lo = 1.0, mf_hi = 0.0;
-        for (const Light& l : scene.lights.lights()) {
-            mf += l.maintenance_factor * l.flux_lm;
-            mf_lo = std::min(mf_lo, l.maintenance_factor);
-            mf_hi = std::max(mf_hi, l.maintenance_factor);
-        }
-        attr(file, "maintenance_factor", mf / scene.lights.total_flux_lm());
-        attr(file, "maintenance_factor_uniform", std::uint64_t{mf_hi - mf_lo < 1e-12 ? 1u : 0u});
+        attr(file, "maintenance_factor", scene.lights.maintenance_factor());
+        attr(file, "maintenance_factor_uniform", std::uint64_t{scene.lights.maintenance_factor_uniform() ? 1u : 0u});
         attr(file, "elapsed_s", info.elapsed_s);
         attr(file, "stop_reason", info.stop_reason);
         attr_strings(file, "bands", scene.bands, false);

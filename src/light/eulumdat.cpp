@@ -54,20 +54,12 @@ public:
     // The remaining numbers, whitespace separated, with their lines.
     std::vector<std::pair<double, int>> rest() {
         std::vector<std::pair<double, int>> out;
-        for (; pos_ < lines_.size(); ++pos_) {
-            const std::string_view l = lines_[pos_];
-            std::size_t p = 0;
-            while (p < l.size()) {
-                const auto b = l.find_first_not_of(" \t\r\f\v", p);
-                if (b == std::string_view::npos) break;
-                auto e = l.find_first_of(" \t\r\f\v", b);
-                if (e == std::string_view::npos) e = l.size();
-                const auto v = detail::parse_number(l.substr(b, e - b), true);
-                if (!v) fail(line(), "expected a number, found '" + std::string(l.substr(b, e - b)) + "'");
-                out.emplace_back(*v, line());
-                p = e;
-            }
+        for (const detail::Token& t : detail::tokens_of(lines_, pos_)) {
+            const auto v = detail::parse_number(t.text, true);
+            if (!v) fail(t.line, "expected a number, found '" + t.text + "'");
+            out.emplace_back(*v, t.line);
         }
+        pos_ = lines_.size();
         return out;
     }
 
@@ -82,6 +74,7 @@ private:
 Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     const std::string name = file.string();
     const std::vector<std::string> lines = detail::read_lines(file, "EULUMDAT file");
+    const int last_line = std::max(1, static_cast<int>(lines.size()));
     LineReader rd(name, lines);
     Photometry p;
     p.format = "EULUMDAT";
@@ -153,7 +146,7 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     const auto nums = rd.rest();
     std::size_t at = 0;
     const auto take = [&](const std::string& what) {
-        if (at >= nums.size()) rd.fail(std::max(1, static_cast<int>(lines.size())), "unexpected end of file, expected " + what);
+        if (at >= nums.size()) rd.fail(last_line, "unexpected end of file, expected " + what);
         return nums[at++];
     };
     std::vector<double> c_angles, g_angles;
@@ -200,7 +193,6 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
             // C270 + k Dc, as the mirror image 180 - c in the C90..C270 half luxtrace keeps.
             c = c_angles[static_cast<std::size_t>((first + k) % mc)];
             c = std::fmod(540.0 - c, 360.0);
-            if (k == 0) c = 270.0;
         } else if (isym != 1) {
             c = c_angles[static_cast<std::size_t>(k)];
         }
@@ -214,7 +206,7 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     if (at < nums.size())
         rd.fail(nums[at].second, "unexpected data after the " + std::to_string(count * ng) + " intensities (Isym " +
                                      fmt(isym) + ": " + fmt(count) + " C planes x " + fmt(ng) + " gamma angles)");
-    if (!any_light) rd.fail(std::max(1, static_cast<int>(lines.size())), "all intensities are zero");
+    if (!any_light) rd.fail(last_line, "all intensities are zero");
     // Isym 0: the last plane is followed by C360 = C0.
     if (isym == 0) {
         p.horizontal_deg.push_back(360.0);
@@ -247,7 +239,7 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     }
     const double flux = p.flux_lm();
     if (!(flux > 0.0 && std::isfinite(flux)))
-        rd.fail(std::max(1, static_cast<int>(lines.size())), "the photometry's flux (" + fmt(flux) + " lm) is not a positive number");
+        rd.fail(last_line, "the photometry's flux (" + fmt(flux) + " lm) is not a positive number");
     return p;
 }
 

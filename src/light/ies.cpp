@@ -11,8 +11,8 @@
 //  - Then numbers separated by spaces, commas or newlines, in any line layout: #lamps,
 //    lumens/lamp (-1 = absolute), candela multiplier, #vertical, #horizontal, photometric
 //    type (1 C, 2 B, 3 A), units type (1 feet, 2 metres), width, length, height; then
-//    ballast factor, the 1986-1995 "ballast-lamp photometric factor" (2002: "future use",
-//    2019: "file generation type"; neither multiplies), input watts; then the vertical
+//    ballast factor, the 1986/1991 "ballast-lamp photometric factor" (1995 and 2002:
+//    "future use", 2019: "file generation type"; neither multiplies), input watts; then the vertical
 //    angles, the horizontal angles, and #vertical candela values per horizontal angle.
 //    Nothing may follow.
 //  - Type C: vertical angles in [0,180]; horizontal angles 0 (rotational), 0-90, 0-180,
@@ -21,7 +21,8 @@
 //  - Types B and A: both angle sets in [-90,90]; horizontal angles from 0 mean lateral
 //    symmetry (mirrored to negative angles here).
 //  - Candela values are >= 0; multiplier and ballast factors must be > 0.
-//  - The luminous opening follows the signs of width, length and height (LM-63-2002).
+//  - The luminous opening follows the signs of width, length and height, by the table of
+//    the file's version (opening_of).
 #include "luxtrace/light/ies.hpp"
 
 #include "photometry_text.hpp"
@@ -53,26 +54,11 @@ std::optional<std::string_view> tilt_value(std::string_view l) {
     return trim(rest.substr(1));
 }
 
-struct Token {
-    std::string text;
-    int line;
-};
+using detail::Token;
 
+// IES numbers may also be separated by commas.
 std::vector<Token> tokens_of(const std::vector<std::string>& lines, std::size_t first) {
-    std::vector<Token> tokens;
-    for (std::size_t k = first; k < lines.size(); ++k) {
-        const std::string_view l = lines[k];
-        std::size_t pos = 0;
-        while (pos < l.size()) {
-            const auto b = l.find_first_not_of(" \t\r\f\v,", pos);
-            if (b == std::string_view::npos) break;
-            auto e = l.find_first_of(" \t\r\f\v,", b);
-            if (e == std::string_view::npos) e = l.size();
-            tokens.push_back({std::string(l.substr(b, e - b)), static_cast<int>(k) + 1});
-            pos = e;
-        }
-    }
-    return tokens;
+    return detail::tokens_of(lines, first, ",");
 }
 
 // Hands out numeric fields; every error names file and line.
@@ -305,9 +291,7 @@ Photometry load_ies(const std::filesystem::path& file) {
     auto& hz = p.horizontal_deg;
     const bool wraps = p.type == PhotometricType::C && hz.size() >= 2 && near(hz.front(), 0.0) &&
                        hz.back() > 180.0 + kAngleTol && hz.back() < 360.0 - kAngleTol;
-    if (p.type == PhotometricType::C && !wraps && hz.size() > 1 &&
-        !((near(hz.front(), 90.0) && near(hz.back(), 270.0)) ||
-          (near(hz.front(), 0.0) && (near(hz.back(), 90.0) || near(hz.back(), 180.0) || near(hz.back(), 360.0)))))
+    if (p.type == PhotometricType::C && !wraps && !c_plane_symmetry(hz))
         rd.fail(angles_line, "horizontal angles must run 0, 0-90, 0-180, 90-270 or 0-360 (or from 0 to above 180) "
                              "for type C photometry, found " + fmt(hz.front()) + "-" + fmt(hz.back()));
     if (p.type != PhotometricType::C && !(near(hz.front(), 0.0) || near(hz.front(), -90.0)))

@@ -29,8 +29,10 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
     case LightType::point:
         if (distribution) {
             const Vec3 d = distribution->sample(ud1, ud2);
-            if (opening.shape == LuminousOpening::Shape::point) return {position, frame.to_world(d)};
-            return {position + frame.to_world(sample_opening_point(opening, d, up1, up2)), frame.to_world(d)};
+            Vec3 origin = position;  // where on the opening depends on d (luminous_opening.hpp)
+            if (opening.shape != LuminousOpening::Shape::point)
+                origin += frame.to_world(sample_opening_point(opening, d, up1, up2));
+            return {origin, frame.to_world(d)};
         }
         return {position, sample_uniform_sphere(ud1, ud2)};
     case LightType::spot:
@@ -69,6 +71,13 @@ LightSet::LightSet(std::vector<Light> lights) : lights_(std::move(lights)) {
         band_cdf_.push_back(std::move(bands));
     }
     total_flux_lm_ = sum;
+    double mf = 0.0;
+    for (const Light& l : lights_) {
+        mf += l.maintenance_factor * l.flux_lm;
+        maintenance_factor_uniform_ = maintenance_factor_uniform_ &&
+                                      std::abs(l.maintenance_factor - lights_.front().maintenance_factor) <= 1e-12;
+    }
+    if (sum > 0.0) maintenance_factor_ = mf / sum;
     for (double& v : light_cdf_) v /= sum;
 }
 

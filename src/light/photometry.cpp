@@ -14,17 +14,6 @@ constexpr double kAngleTol = 1e-6;  // degrees; file angles are written with few
 
 bool near(double a, double b) { return std::abs(a - b) <= kAngleTol; }
 
-std::optional<CPlaneSymmetry> symmetry_of(const std::vector<double>& h) {
-    if (h.size() == 1) return CPlaneSymmetry::Rotational;
-    if (h.empty()) return std::nullopt;
-    if (near(h.front(), 90.0) && near(h.back(), 270.0)) return CPlaneSymmetry::Bilateral90;
-    if (!near(h.front(), 0.0)) return std::nullopt;
-    if (near(h.back(), 90.0)) return CPlaneSymmetry::Quadrant;
-    if (near(h.back(), 180.0)) return CPlaneSymmetry::Bilateral;
-    if (near(h.back(), 360.0)) return CPlaneSymmetry::Full;
-    return std::nullopt;
-}
-
 // Index i of the interval [a[i], a[i+1]] holding x (a has >= 2 entries, x clamped).
 std::size_t interval(const std::vector<double>& a, double x) {
     const auto it = std::upper_bound(a.begin(), a.end(), x);
@@ -50,6 +39,17 @@ std::pair<double, double> hat_weights(double a, double b, bool colatitude) {
 }
 
 }  // namespace
+
+std::optional<CPlaneSymmetry> c_plane_symmetry(const std::vector<double>& h) {
+    if (h.size() == 1) return CPlaneSymmetry::Rotational;
+    if (h.empty()) return std::nullopt;
+    if (near(h.front(), 90.0) && near(h.back(), 270.0)) return CPlaneSymmetry::Bilateral90;
+    if (!near(h.front(), 0.0)) return std::nullopt;
+    if (near(h.back(), 90.0)) return CPlaneSymmetry::Quadrant;
+    if (near(h.back(), 180.0)) return CPlaneSymmetry::Bilateral;
+    if (near(h.back(), 360.0)) return CPlaneSymmetry::Full;
+    return std::nullopt;
+}
 
 double LuminousOpening::size_m() const { return std::max({std::abs(length_m), std::abs(width_m), std::abs(height_m)}); }
 
@@ -79,7 +79,7 @@ double TiltTable::at(double tilt_deg) const {
 
 CPlaneSymmetry Photometry::symmetry() const {
     if (type == PhotometricType::C)
-        if (const auto s = symmetry_of(horizontal_deg)) return *s;
+        if (const auto s = c_plane_symmetry(horizontal_deg)) return *s;
     throw std::logic_error("Photometry: not a type C table with LM-63 horizontal angles");
 }
 

@@ -48,6 +48,25 @@ std::optional<double> parse_number(std::string_view s, bool decimal_comma) {
     return v;
 }
 
+std::vector<Token> tokens_of(const std::vector<std::string>& lines, std::size_t first,
+                             std::string_view extra_separators) {
+    const std::string separators = " \t\r\f\v" + std::string(extra_separators);
+    std::vector<Token> tokens;
+    for (std::size_t k = first; k < lines.size(); ++k) {
+        const std::string_view l = lines[k];
+        std::size_t pos = 0;
+        while (pos < l.size()) {
+            const auto b = l.find_first_not_of(separators, pos);
+            if (b == std::string_view::npos) break;
+            auto e = l.find_first_of(separators, b);
+            if (e == std::string_view::npos) e = l.size();
+            tokens.push_back({std::string(l.substr(b, e - b)), static_cast<int>(k) + 1});
+            pos = e;
+        }
+    }
+    return tokens;
+}
+
 std::vector<std::string> read_lines(const std::filesystem::path& file, const char* what) {
     const std::string name = file.string();
     std::error_code ec;

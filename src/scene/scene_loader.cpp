@@ -328,7 +328,6 @@ struct Loader {
         pl.aim = unit(r, aim_key, r.vec3(aim_key).value_or(Vec3(0, 0, -1)));
         if (r.has("c0") && r.has("rotation_deg")) r.fail("c0", "give 'c0' or 'rotation_deg', not both");
         if (const auto c0 = r.vec3("c0")) pl.c0 = *c0;
-        pl.rotation_deg = r.number("rotation_deg").value_or(0.0);
         for (const auto& [key, value] : {std::pair<const char*, double*>{"rotation_deg", &pl.rotation_deg},
                                          {"tilt_deg", &pl.tilt_deg},
                                          {"roll_deg", &pl.roll_deg},
@@ -412,9 +411,8 @@ struct Loader {
                 else if (emission != "point") r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
                 // The file's own flux (exact for its interpolant), not the sampling table's,
                 // with the lamp's output at this tilt (LM-63 TILT data).
-                l.file_flux_lm = l.photometry->flux_lm();
                 if (!l.photometry->tilt.empty()) l.tilt_factor = l.photometry->tilt.at(tilt_from_nadir_deg(l.frame));
-                l.flux_lm = l.file_flux_lm * l.multiplier * l.lamp_factor * l.dimming * l.tilt_factor;
+                l.flux_lm = l.photometry->flux_lm() * l.multiplier * l.lamp_factor * l.dimming * l.tilt_factor;
                 if (!(l.flux_lm > 0.0))
                     r.fail(file_key, l.tilt_factor > 0.0 ? "the photometry carries no flux"
                                                          : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
@@ -721,14 +719,6 @@ Scene load_scene(const fs::path& file) {
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
         }
-    const auto [mf_lo, mf_hi] = std::minmax_element(lights.begin(), lights.end(), [](const Light& a, const Light& b) {
-        return a.maintenance_factor < b.maintenance_factor;
-    });
-    if (mf_hi->maintenance_factor - mf_lo->maintenance_factor > 1e-12)
-        L.scene.warnings.push_back("maintenance factors differ between lights (" + fmt_count(mf_lo->maintenance_factor) +
-                                   " to " + fmt_count(mf_hi->maintenance_factor) +
-                                   "): results are initial values, and the maintained ones luxtrace reports use "
-                                   "the flux-weighted mean factor");
     double total_flux = 0.0;
     for (const Light& l : lights) {
         total_flux += l.flux_lm;
@@ -737,6 +727,10 @@ Scene load_scene(const fs::path& file) {
                              " lm) makes the total flux of the scene too large or not positive");
     }
     L.scene.lights = LightSet(std::move(lights));
+    if (!L.scene.lights.maintenance_factor_uniform())
+        L.scene.warnings.push_back("maintenance factors differ between lights: results are initial values, and the "
+                                   "maintained ones luxtrace reports use the flux-weighted mean factor (" +
+                                   fmt_count(L.scene.lights.maintenance_factor()) + ")");
     const auto detector_tables = L.tables_of(root, "detector");
     for (std::size_t i = 0; i < detector_tables.size(); ++i) L.parse_detector(*detector_tables[i], i);
     const auto camera_tables = L.tables_of(root, "camera");

@@ -47,9 +47,9 @@ struct Light {
     LuminousOpening opening;
     Frame frame = Frame::around(Vec3(0, 0, -1));  // local +z = aim, +x = C0 (photometry.hpp)
     // The factors that made flux_lm from the file's flux (for reports): flux_lm =
-    // file flux x multiplier x lamp_factor x dimming x tilt_factor; maintained values are
-    // maintenance_factor times the initial ones.
-    double file_flux_lm = 0.0, multiplier = 1.0, lamp_factor = 1.0, dimming = 1.0, tilt_factor = 1.0;
+    // photometry->flux_lm() x multiplier x lamp_factor x dimming x tilt_factor; maintained
+    // values are maintenance_factor times the initial ones.
+    double multiplier = 1.0, lamp_factor = 1.0, dimming = 1.0, tilt_factor = 1.0;
     double maintenance_factor = 1.0;
     // area
     EmitterSurface surface;
@@ -69,6 +69,10 @@ public:
     explicit LightSet(std::vector<Light> lights);
     const std::vector<Light>& lights() const { return lights_; }
     double total_flux_lm() const { return total_flux_lm_; }
+    // The lights' maintenance factors weighted by flux, and whether they are all the same
+    // (then maintained values are exactly this times the initial ones).
+    double maintenance_factor() const { return maintenance_factor_; }
+    bool maintenance_factor_uniform() const { return maintenance_factor_uniform_; }
     std::size_t pick_light(double u) const;
     int pick_band(std::size_t light, double u) const;
 
@@ -77,6 +81,8 @@ private:
     std::vector<double> light_cdf_;
     std::vector<std::vector<double>> band_cdf_;
     double total_flux_lm_ = 0.0;
+    double maintenance_factor_ = 1.0;
+    bool maintenance_factor_uniform_ = true;
 };
 
 // Uniform direction on the unit sphere and inside a cone around +z (local frame).

@@ -16,6 +16,7 @@
 //    V toward +y: direction = (cos V sin H, sin V, cos V cos H).
 #include "luxtrace/core/math.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,10 @@ enum class CPlaneSymmetry {
     Bilateral90,  // 90..270 (LM-63-1995): mirrored about the 90-270 plane
     Full,         // 0..360: no symmetry, plane 360 is plane 0
 };
+
+// The symmetry a type C file's horizontal angles declare (the LM-63 rules above), or
+// nullopt if they fit none.
+std::optional<CPlaneSymmetry> c_plane_symmetry(const std::vector<double>& horizontal_deg);
 
 // Shape of the luminous opening in the luminaire frame (the LM-63-2002/2019 table of
 // luminous shapes by the signs of width, length and height; EULUMDAT's luminous area). Sizes in metres: `length_m` along the

@@ -161,7 +161,7 @@ double point_illuminance(double intensity, double h, double dx, double dy) {
 // Case 1: point source over a floor, illuminance and luminance (point_floor.toml).
 
 TEST(Validation, PointSourceOverFloor) {
-    constexpr double kFlux = 1000.0, kHeight = 2.0, kRho = 0.8, kHalfAngleDeg = 20.0;
+    constexpr double kFlux = 1000.0, kHeight = 2.0, kRho = 0.8;
     constexpr std::uint64_t kPhotons = 16'000'000;
     TempDir dir("point_floor");
     const fs::path out = dir.path() / "point_floor.h5";
@@ -174,14 +174,11 @@ TEST(Validation, PointSourceOverFloor) {
     // The floor's reflected light goes up and escapes: the floor sees the direct light only.
     expect_agreement(compare_detector(r, "floor_E", cell_averages({0, 0, 4, 4, 10, 10}, direct)));
 
-    // Luminance of the Lambertian floor is rho E / pi in every direction. The SPEC §3
-    // estimator divides the flux leaving into the cone by A cos(theta) Omega, whereas a
-    // Lambertian surface sends flux L A (pi sin^2 a) into a cone of half-angle a around its
-    // normal; so for a normal view it reads rho E / pi * (1 + cos a) / 2.
-    const double cos_a = std::cos(kHalfAngleDeg * kPi / 180.0);
-    const double cone_factor = 0.5 * (1.0 + cos_a);
+    // Luminance of the Lambertian floor is rho E / pi in every direction; the detector
+    // divides the flux leaving into its 30-degree cone by the cone's projected solid
+    // angle (SPEC §3), which is exact, so no cone factor enters the reference.
     std::vector<double> lum = cell_averages({0, 0, 4, 4, 5, 5}, direct);
-    for (double& l : lum) l *= kRho / kPi * cone_factor;
+    for (double& l : lum) l *= kRho / kPi;
     expect_agreement(compare_detector(r, "floor_L", lum));
 }
 

@@ -16,7 +16,14 @@ void Detector::finalize() {
 
 double Detector::value_per_lm() const {
     if (type == DetectorType::illuminance) return 1.0 / cell_area_m2();
-    return 1.0 / (cell_area_m2() * cos_view() * solid_angle_sr());
+    return 1.0 / (cell_area_m2() * projected_solid_angle_sr());
+}
+
+bool Detector::cone_below_plane() const {
+    // theta + a > 90 degrees <=> cos(theta + a) < 0.
+    const double cos_t = cos_view(), sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double sin_a = std::sqrt(std::max(0.0, 1.0 - cos_half_angle * cos_half_angle));
+    return cos_t * cos_half_angle - sin_t * sin_a < -1e-12;
 }
 
 int Detector::cell_at(const Vec3& p) const {

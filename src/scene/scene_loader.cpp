@@ -543,6 +543,10 @@ struct Loader {
         d.finalize();
         if (!(d.value_per_lm() > 0.0 && std::isfinite(d.value_per_lm())))
             r.fail_entry("its cells are too small (or its cone too narrow) to measure anything");
+        if (d.type == DetectorType::luminance && d.cone_below_plane())
+            scene.warnings.push_back(fname + ": " + entry_name("detector", i, t) +
+                                     ": the view cone dips below the detector plane (view angle + half_angle_deg > "
+                                     "90): its luminance is then underestimated");
         scene.detectors.push_back(d);
     }
 

@@ -28,10 +28,18 @@ struct Detector {
     void finalize();
     int cells() const { return nx * ny; }
     double cell_area_m2() const { return size_u * size_v / (nx * ny); }
-    double solid_angle_sr() const { return 2.0 * kPi * (1.0 - cos_half_angle); }
+    // The cone's projected solid angle, integral of cos(gamma) d omega over the cone:
+    // cos(theta) pi sin^2(a), exact while the cone stays above the plane (theta + a <= 90
+    // degrees), since cos(gamma) is linear in the direction and the cone is symmetric.
+    double projected_solid_angle_sr() const {
+        return cos_view() * kPi * (1.0 - cos_half_angle * cos_half_angle);
+    }
     double cos_view() const { return glm::dot(cone_axis, normal); }
+    // The cone dips below the detector plane: the divisor is then no longer exact.
+    bool cone_below_plane() const;
     // Value of one registration (times flux per photon) per unit count: 1/A (lux) or
-    // 1/(A cos(theta) Omega) (cd/m^2).
+    // 1/(A cos(theta) pi sin^2 a) (cd/m^2): the flux a Lambertian patch of luminance L
+    // sends into the cone is L A cos(theta) pi sin^2 a.
     double value_per_lm() const;
     const char* units() const { return type == DetectorType::illuminance ? "lx" : "cd/m^2"; }
 

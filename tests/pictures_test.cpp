@@ -142,14 +142,27 @@ Array eval(const XmlNode& item, const ResultReader& r, const std::string& h5name
         const Array sel = eval(item.kids[0], r, h5name), src = eval(item.kids[1], r, h5name);
         const std::size_t rank = src.dims.size();
         EXPECT_EQ(sel.v.size(), 3 * rank) << "start, stride, count per dimension";
-        if (sel.v.size() != 3 * rank || rank != 2) return out;
-        const std::size_t s0 = sel.v[0], s1 = sel.v[1], d0 = sel.v[2], d1 = sel.v[3], c0 = sel.v[4], c1 = sel.v[5];
-        EXPECT_LE(s0 + d0 * (c0 - 1), src.dims[0] - 1);
-        EXPECT_LE(s1 + d1 * (c1 - 1), src.dims[1] - 1);
-        if (s0 + d0 * (c0 - 1) >= src.dims[0] || s1 + d1 * (c1 - 1) >= src.dims[1]) return out;
-        out.dims = {c0, c1};
-        for (std::size_t a = 0; a < c0; ++a)
-            for (std::size_t b = 0; b < c1; ++b) out.v.push_back(src.v[(s0 + a * d0) * src.dims[1] + s1 + b * d1]);
+        if (sel.v.size() != 3 * rank || rank < 1) return out;
+        // Rows: start, stride, count, each with one number per dimension of the source.
+        std::vector<std::size_t> start(rank), stride(rank), count(rank);
+        for (std::size_t k = 0; k < rank; ++k) {
+            start[k] = static_cast<std::size_t>(sel.v[k]);
+            stride[k] = static_cast<std::size_t>(sel.v[rank + k]);
+            count[k] = static_cast<std::size_t>(sel.v[2 * rank + k]);
+            EXPECT_GE(count[k], 1u);
+            EXPECT_LE(start[k] + stride[k] * (count[k] - 1), src.dims[k] - 1) << "dimension " << k;
+            if (count[k] == 0 || start[k] + stride[k] * (count[k] - 1) >= src.dims[k]) return out;
+        }
+        out.dims = count;
+        std::vector<std::size_t> at(rank, 0);  // the selected element, odometer order
+        while (true) {
+            std::size_t flat = 0;
+            for (std::size_t k = 0; k < rank; ++k) flat = flat * src.dims[k] + start[k] + at[k] * stride[k];
+            out.v.push_back(src.v[flat]);
+            std::size_t k = rank;
+            while (k > 0 && ++at[k - 1] == count[k - 1]) at[--k] = 0;
+            if (k == 0) break;
+        }
     } else if (type == "Function") {
         const std::string f = item.attr.count("Function") ? item.attr.at("Function") : "";
         EXPECT_EQ(f, "$0 - $1") << "the only function the companion needs";
@@ -335,16 +348,18 @@ TEST_F(Pictures, XdmfOfAnRgbRunEvaluatesToTheSpecMaps) {
     const auto no = r.u64("/global/count_odd"), ne = r.u64("/global/count_even");
     const auto dO = r.u64("/global/direct_odd"), dE = r.u64("/global/direct_even");
     const std::vector<std::string> bands{"R", "G", "B"};
+    const std::vector<std::string> sides{"_front", "_back"};  // format 2: [T, 2, B]
     double secondary_sum = 0.0;
+    for (std::size_t side = 0; side < 2; ++side)
     for (std::size_t b = 0; b < bands.size(); ++b) {
-        const std::string s = "_" + bands[b] + "_lx";
+        const std::string s = sides[side] + "_" + bands[b] + "_lx";
         for (const std::string name : {"illuminance", "direct", "secondary"})
             ASSERT_TRUE(c.attributes.count(name + s)) << name + s;
         const auto& all = c.attributes.at("illuminance" + s).v;
         const auto& direct = c.attributes.at("direct" + s).v;
         const auto& secondary = c.attributes.at("secondary" + s).v;
         for (std::size_t t = 0; t < c.triangles; ++t) {
-            const std::size_t k = t * bands.size() + b;
+            const std::size_t k = (t * 2 + side) * bands.size() + b;
             const double want = static_cast<double>(no[k] + ne[k]) * e0 / area[t];
             const double want_direct = static_cast<double>(dO[k] + dE[k]) * e0 / area[t];
             EXPECT_NEAR(all[t], want, 1e-12 * want) << bands[b] << " triangle " << t;
@@ -355,16 +370,24 @@ TEST_F(Pictures, XdmfOfAnRgbRunEvaluatesToTheSpecMaps) {
         }
     }
     EXPECT_GT(secondary_sum, 0.0) << "grey walls reflect: some light arrives after a bounce";
-    ASSERT_TRUE(c.attributes.count("odd_even_difference_lx"));
-    const auto& oe = c.attributes.at("odd_even_difference_lx").v;
     double s = 0.0, d2 = 0.0;
-    for (std::size_t t = 0; t < c.triangles; ++t) {
-        double d = 0.0;
-        for (std::size_t b = 0; b < bands.size(); ++b)
-            d += static_cast<double>(no[t * 3 + b]) - static_cast<double>(ne[t * 3 + b]);
-        EXPECT_NEAR(oe[t], 2.0 * d * e0 / area[t], 1e-9 * (std::abs(oe[t]) + 1.0)) << "triangle " << t;
-        s += area[t];
-        d2 += area[t] * oe[t] * oe[t];
+    for (std::size_t side = 0; side < 2; ++side) {
+        ASSERT_TRUE(c.attributes.count("odd_even_difference" + sides[side] + "_lx"));
+        ASSERT_TRUE(c.attributes.count("sigma" + sides[side] + "_lx"));
+        const auto& oe = c.attributes.at("odd_even_difference" + sides[side] + "_lx").v;
+        for (std::size_t t = 0; t < c.triangles; ++t) {
+            double d = 0.0, n = 0.0;
+            for (std::size_t b = 0; b < bands.size(); ++b) {
+                const std::size_t k = (t * 2 + side) * 3 + b;
+                d += static_cast<double>(no[k]) - static_cast<double>(ne[k]);
+                n += static_cast<double>(no[k] + ne[k]);
+            }
+            EXPECT_NEAR(oe[t], 2.0 * d * e0 / area[t], 1e-9 * (std::abs(oe[t]) + 1.0)) << "triangle " << t;
+            if (n > 0) {  // eq. (5) runs over the lit sides
+                s += area[t];
+                d2 += area[t] * oe[t] * oe[t];
+            }
+        }
     }
     // Its area-weighted RMS is the stored D of eq. (5).
     EXPECT_NEAR(std::sqrt(d2 / s), r.attr_f64("/global", "odd_even_rms_lx"), 1e-9 * std::sqrt(d2 / s));
@@ -383,11 +406,12 @@ TEST_F(Pictures, XdmfSecondaryIsZeroInABlackRoom) {
     const fs::path result = simulate("black", scene);
     const Companion c = read_companion(dir / "black.xdmf", result);
     double direct = 0.0;
-    for (const std::string b : {"R", "G", "B"}) {
-        ASSERT_TRUE(c.attributes.count("secondary_" + b + "_lx"));
-        for (double v : c.attributes.at("secondary_" + b + "_lx").v) EXPECT_EQ(v, 0.0);
-        for (double v : c.attributes.at("direct_" + b + "_lx").v) direct += v;
-    }
+    for (const std::string side : {"_front_", "_back_"})
+        for (const std::string b : {"R", "G", "B"}) {
+            ASSERT_TRUE(c.attributes.count("secondary" + side + b + "_lx"));
+            for (double v : c.attributes.at("secondary" + side + b + "_lx").v) EXPECT_EQ(v, 0.0);
+            for (double v : c.attributes.at("direct" + side + b + "_lx").v) direct += v;
+        }
     EXPECT_GT(direct, 0.0);
 }
 
@@ -400,8 +424,8 @@ TEST_F(Pictures, ExportXdmfNamesTheResultSoTheViewerFindsIt) {
     const Outcome o = run("export-xdmf " + result.string() + " -o " + other.string());
     ASSERT_EQ(o.code, 0) << o.out;
     const Companion c = read_companion(other, result, fs::absolute(result).lexically_normal().string());
-    EXPECT_TRUE(c.attributes.count("illuminance_lx")) << "one band: no band suffix";
-    EXPECT_TRUE(c.attributes.count("secondary_lx"));
+    EXPECT_TRUE(c.attributes.count("illuminance_front_lx")) << "one band: no band suffix";
+    EXPECT_TRUE(c.attributes.count("secondary_back_lx"));
     std::ofstream(dir / "not_a_result.h5") << "plain text";
     const Outcome bad = run("export-xdmf " + (dir / "not_a_result.h5").string());
     EXPECT_EQ(bad.code, 2) << bad.out;

@@ -246,7 +246,7 @@ TEST(RenderDirect, IesLuminaireAgreesWithSimulatedDirectMap) {
     const double e0 = r.attr_f64("/", "flux_per_photon_lm");
     const std::vector<std::uint64_t> odd = r.u64("/global/direct_odd"), even = r.u64("/global/direct_even");
     const Fixture f(load_scene(kData / "ies_plane.toml"));
-    ASSERT_EQ(odd.size(), f.scene.triangle_count());
+    ASSERT_EQ(odd.size(), 2 * f.scene.triangle_count());  // [T, 2 sides, 1 band]
     double chi2 = 0.0;
     int dof = 0;
     for (std::size_t t = 0; t < f.scene.triangle_count(); ++t) {
@@ -266,7 +266,9 @@ TEST(RenderDirect, IesLuminaireAgreesWithSimulatedDirectMap) {
         ASSERT_EQ(n, 16);
         const double mu = e / n * f.scene.triangle_area_m2[t] / e0;
         if (mu < 20) continue;
-        const double k = static_cast<double>(odd[t] + even[t]);
+        // The luminaire lights the plane's front; its back stays dark.
+        EXPECT_EQ(odd[2 * t + 1] + even[2 * t + 1], 0u) << t;
+        const double k = static_cast<double>(odd[2 * t] + even[2 * t]);
         chi2 += (k - mu) * (k - mu) / mu;
         ++dof;
     }
@@ -287,7 +289,8 @@ TEST(RenderSecondary, BlackWallsGiveZeroMapAndTheDirectImage) {
     int floor_triangles = 0;
     for (std::size_t t = 0; t < in.scene.triangle_count(); ++t)
         if (in.scene.materials[in.scene.triangle_material[t]].type != MaterialType::black) {
-            ASSERT_EQ(in.secondary_lx[t], 0.0) << t;
+            ASSERT_EQ(in.secondary_lx[2 * t], 0.0) << t;
+            ASSERT_EQ(in.secondary_lx[2 * t + 1], 0.0) << t;
             ++floor_triangles;
         }
     EXPECT_EQ(floor_triangles, 128);
@@ -313,36 +316,37 @@ TEST(RenderSecondary, GreyWallsAddTheSmoothedMap) {
         const Vec3 p(u(rng), u(rng), 0.001), o = p + Vec3(0, 0, 0.4);
         const Hit h = f.embree->intersect(o, Vec3(0, 0, -1));
         ASSERT_TRUE(h.found);
-        const double sec = f.renderer->secondary_at(h.triangle, p)[0];
+        const double sec = f.renderer->secondary_at(h.triangle, 0, p)[0];  // the floor's front
         EXPECT_GT(sec, 0.0);
         const double expected = 0.7 / kPi * (point_E(Vec3(0.3, 0.2, 2.5), 2000.0, p) + sec);
         EXPECT_NEAR(f.renderer->trace(o, Vec3(0, 0, -1), 1)[0], expected, 1e-5 * expected);
     }
-    // The smoothed value lies within the values of the triangles around the hit triangle.
+    // The smoothed value of a side lies within the same side's values of the triangles
+    // around the hit triangle ([T][2][1]).
     for (int k = 0; k < 200; ++k) {
-        const std::size_t t = rng() % s.triangle_count();
+        const std::size_t t = rng() % s.triangle_count(), side = rng() % 2;
         const glm::uvec3 tri = s.triangles[t];
         double lo = 1e300, hi = -1e300;
         for (std::size_t o = 0; o < s.triangle_count(); ++o)
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
                     if (s.triangles[o][i] == tri[j]) {
-                        lo = std::min(lo, in.secondary_lx[o]);
-                        hi = std::max(hi, in.secondary_lx[o]);
+                        lo = std::min(lo, in.secondary_lx[2 * o + side]);
+                        hi = std::max(hi, in.secondary_lx[2 * o + side]);
                     }
         const double a = std::uniform_real_distribution<double>(0, 1)(rng);
         const double b = std::uniform_real_distribution<double>(0, 1 - a)(rng);
         const Vec3 p = Vec3(s.vertices[tri.x]) + a * (Vec3(s.vertices[tri.y]) - Vec3(s.vertices[tri.x])) +
                        b * (Vec3(s.vertices[tri.z]) - Vec3(s.vertices[tri.x]));
-        const double v = f.renderer->secondary_at(t, p)[0];
+        const double v = f.renderer->secondary_at(t, side, p)[0];
         EXPECT_GE(v, lo * (1 - 1e-12));
         EXPECT_LE(v, hi * (1 + 1e-12));
     }
     // A constant map stays constant everywhere.
-    const Fixture flat(in.scene, std::vector<double>(s.triangle_count(), 42.0));
+    const Fixture flat(in.scene, std::vector<double>(2 * s.triangle_count(), 42.0));
     for (int k = 0; k < 50; ++k) {
         const std::size_t t = rng() % s.triangle_count();
-        EXPECT_NEAR(flat.renderer->secondary_at(t, Vec3(s.vertices[s.triangles[t].x]))[0], 42.0, 1e-9);
+        EXPECT_NEAR(flat.renderer->secondary_at(t, rng() % 2, Vec3(s.vertices[s.triangles[t].x]))[0], 42.0, 1e-9);
     }
     fs::remove_all(dir);
 }

@@ -309,7 +309,7 @@ def identical(f, g):
 def result(path, photons, ranks=None, threads=None):
     f = h5py.File(path, "r")
     at = f.attrs
-    check(at["format"] == "luxtrace-result" and at["format_version"] == 1,
+    check(at["format"] == "luxtrace-result" and at["format_version"] == 2,
           f"{path.split('/')[-1]}: format {at['format']} v{at['format_version']}")
     check(at["photons"] == photons and at["stop_reason"] == "photons",
           f"{path.split('/')[-1]}: {at['photons']} photons (budget {photons}), stopped by {at['stop_reason']}")

@@ -213,14 +213,17 @@ TEST(Validation, ClosedDiffuseRoom) {
     const std::vector<double> area = r.f64("/mesh/area");
     const std::vector<double> e = r.f64("/global/illuminance");
     const std::vector<std::uint64_t> odd = r.u64("/global/count_odd"), even = r.u64("/global/count_even");
-    ASSERT_EQ(e.size(), area.size());  // one band
+    ASSERT_EQ(e.size(), 2 * area.size());  // [T, 2 sides, 1 band]
     double s = 0.0, sum_ae = 0.0, c_odd = 0.0, c_even = 0.0;
     for (std::size_t t = 0; t < area.size(); ++t) {
+        // The walls face inward: nothing ever reaches their backs.
+        ASSERT_EQ(odd[2 * t + 1] + even[2 * t + 1], 0u) << "back of triangle " << t;
         s += area[t];
-        sum_ae += area[t] * e[t];
-        c_odd += static_cast<double>(odd[t]);
-        c_even += static_cast<double>(even[t]);
+        sum_ae += area[t] * e[2 * t];
+        c_odd += static_cast<double>(odd[2 * t]);
+        c_even += static_cast<double>(even[2 * t]);
     }
+    EXPECT_NEAR(r.attr_f64("/global", "lit_area_m2"), s, 1e-9 * s);  // the means run over the lit sides
     EXPECT_NEAR(s, 2.0 * (4.0 * 3.0 + 4.0 * 2.5 + 3.0 * 2.5), 1e-9);
     const double mean = sum_ae / s;
     const double ref = kFlux / ((1.0 - kRho) * s);
@@ -248,7 +251,7 @@ TEST(Validation, ClosedDiffuseRoom) {
     for (std::size_t t = 0; t < k; ++t) {
         const double omega = triangle_solid_angle(vertex(tri[3 * t]), vertex(tri[3 * t + 1]), vertex(tri[3 * t + 2]));
         omega_sum += omega;
-        const auto nd = static_cast<double>(d_odd[t] + d_even[t]);
+        const auto nd = static_cast<double>(d_odd[2 * t] + d_even[2 * t]);
         const double zt = (nd - n * omega / (4.0 * kPi)) / std::sqrt(nd * (1.0 - nd / n));
         EXPECT_LT(std::abs(zt), kZMax) << "triangle " << t << ": direct count " << nd;
         sum_z2 += zt * zt;
@@ -257,6 +260,26 @@ TEST(Validation, ClosedDiffuseRoom) {
     EXPECT_NEAR(omega_sum, 4.0 * kPi, 1e-9);  // the reference itself: the box is closed
     const double band = kZMax * std::sqrt(2.0 / static_cast<double>(k));
     EXPECT_NEAR(sum_z2 / static_cast<double>(k), 1.0, band);
+
+    // The second moment's sigma_t (issue 13) against the independent odd/even halves: the
+    // half-maps are independent estimates of E_t with twice its variance each, so
+    // (E_odd,t - E_even,t) / (2 sigma_t) is a standard normal score on every side.
+    // Photons revisit triangles here (rho = 0.5), so the repeats term is exercised.
+    const std::vector<double> sigma_t = r.f64("/global/sigma_lx");
+    const std::vector<std::uint64_t> sumsq = r.u64("/global/sumsq");
+    double moment_z2 = 0.0, repeats = 0.0;
+    for (std::size_t t = 0; t < k; ++t) {
+        const double d = 2.0 * e0 / area[t] * (static_cast<double>(odd[2 * t]) - static_cast<double>(even[2 * t]));
+        ASSERT_GT(sigma_t[2 * t], 0.0);
+        moment_z2 += d * d / (4.0 * sigma_t[2 * t] * sigma_t[2 * t]);
+        repeats += static_cast<double>(sumsq[2 * t]) - static_cast<double>(odd[2 * t] + even[2 * t]);
+    }
+    EXPECT_GT(repeats, 0.0);  // some photons came back to a triangle
+    EXPECT_NEAR(moment_z2 / static_cast<double>(k), 1.0, band) << "odd/even differences against 2 sigma_t";
+    std::cout << "[validation] closed room: second-moment sigma_t against odd/even: mean z^2 "
+              << moment_z2 / static_cast<double>(k) << " over " << k << " sides (allowed 1 +- " << band
+              << "); sigma_lx " << r.attr_f64("/global", "moment_sigma_lx") << " (second moment) vs "
+              << r.attr_f64("/global", "sigma_lx") << " (odd/even)\n";
     std::cout << "[validation] closed room: mean " << mean << " lx (ref " << ref << ", sigma " << sigma << ", z " << z
               << "), odd/even z " << z_oe << ", rho_hat " << rho_hat << "; direct map K=" << k << " worst |z| "
               << max_z << ", mean z^2 " << sum_z2 / static_cast<double>(k) << " (allowed 1 +- " << band

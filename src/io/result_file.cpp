@@ -195,42 +195,68 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
         for (const std::string& s : names) ptrs.push_back(s.c_str());
         check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "material_names");
     }
+    // Format 2 (issue 13): every surface dataset has a side axis, [T, 2, B] (side 0 the front).
     H5Id glob(group(file, "global"), H5Gclose, "group /global");
+    constexpr std::size_t kS = TallyLayout::kSides;
+    const std::vector<hsize_t> dims{T, kS, B};
+    auto slot_of = [&](std::size_t t, std::size_t side, std::size_t b, TallyLayout::SurfaceSlot s) {
+        return data[L.surface(t, side, b, s)];
+    };
     const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {
         {"count_odd", TallyLayout::kCountOdd}, {"count_even", TallyLayout::kCountEven},
         {"direct_odd", TallyLayout::kDirectOdd}, {"direct_even", TallyLayout::kDirectEven}};
-    std::vector<std::uint64_t> buf(T * B);
+    std::vector<std::uint64_t> buf(T * kS * B);
     for (const auto& [name, slot] : slots) {
         for (std::size_t t = 0; t < T; ++t)
-            for (std::size_t b = 0; b < B; ++b) buf[t * B + b] = data[L.surface(t, b, slot)];
-        dataset(glob, name, {T, B}, buf.data());
+            for (std::size_t side = 0; side < kS; ++side)
+                for (std::size_t b = 0; b < B; ++b) buf[(t * kS + side) * B + b] = slot_of(t, side, b, slot);
+        dataset(glob, name, dims, buf.data());
     }
-    std::vector<double> e(T * B), direct(T * B);
+    // Sum over photons of (arrivals on the side)^2 = arrivals + repeats (tally.hpp).
     for (std::size_t t = 0; t < T; ++t)
-        for (std::size_t b = 0; b < B; ++b) {
-            const double k = info.flux_per_photon_lm / scene.triangle_area_m2[t];
-            e[t * B + b] = k * static_cast<double>(data[L.surface(t, b, TallyLayout::kCountOdd)] +
-                                                   data[L.surface(t, b, TallyLayout::kCountEven)]);
-            direct[t * B + b] = k * static_cast<double>(data[L.surface(t, b, TallyLayout::kDirectOdd)] +
-                                                        data[L.surface(t, b, TallyLayout::kDirectEven)]);
+        for (std::size_t side = 0; side < kS; ++side)
+            for (std::size_t b = 0; b < B; ++b)
+                buf[(t * kS + side) * B + b] = slot_of(t, side, b, TallyLayout::kCountOdd) +
+                                               slot_of(t, side, b, TallyLayout::kCountEven) +
+                                               slot_of(t, side, b, TallyLayout::kRepeats);
+    dataset(glob, "sumsq", dims, buf.data());
+    std::vector<double> e(T * kS * B), direct(T * kS * B);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t side = 0; side < kS; ++side)
+            for (std::size_t b = 0; b < B; ++b) {
+                const double k = info.flux_per_photon_lm / scene.triangle_area_m2[t];
+                const std::size_t i = (t * kS + side) * B + b;
+                e[i] = k * static_cast<double>(slot_of(t, side, b, TallyLayout::kCountOdd) +
+                                               slot_of(t, side, b, TallyLayout::kCountEven));
+                direct[i] = k * static_cast<double>(slot_of(t, side, b, TallyLayout::kDirectOdd) +
+                                                    slot_of(t, side, b, TallyLayout::kDirectEven));
+            }
+    dataset(glob, "illuminance", dims, e.data());
+    dataset(glob, "illuminance_direct", dims, direct.data());
+    // Per side, band-summed: E_odd - E_even (the terms of eq. 5) and the second-moment
+    // standard error; float maps the XDMF companion can show as they are.
+    std::vector<double> odd_even(T * kS);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t side = 0; side < kS; ++side) {
+            double d = 0.0;
+            for (std::size_t b = 0; b < B; ++b)
+                d += static_cast<double>(slot_of(t, side, b, TallyLayout::kCountOdd)) -
+                     static_cast<double>(slot_of(t, side, b, TallyLayout::kCountEven));
+            odd_even[t * kS + side] = 2.0 * d * info.flux_per_photon_lm / scene.triangle_area_m2[t];
         }
-    dataset(glob, "illuminance", {T, B}, e.data());
-    dataset(glob, "illuminance_direct", {T, B}, direct.data());
-    // E_odd - E_even per triangle, band-summed (the terms of eq. 5): a float map the
-    // XDMF companion can show as it is.
-    std::vector<double> odd_even(T);
-    for (std::size_t t = 0; t < T; ++t) {
-        double d = 0.0;
-        for (std::size_t b = 0; b < B; ++b)
-            d += static_cast<double>(data[L.surface(t, b, TallyLayout::kCountOdd)]) -
-                 static_cast<double>(data[L.surface(t, b, TallyLayout::kCountEven)]);
-        odd_even[t] = 2.0 * d * info.flux_per_photon_lm / scene.triangle_area_m2[t];
-    }
-    dataset(glob, "odd_even_difference_lx", {T}, odd_even.data());
+    dataset(glob, "odd_even_difference_lx", {T, kS}, odd_even.data());
+    const std::vector<double> sigma = side_sigma_lx(L, data, scene.triangle_area_m2, info.flux_per_photon_lm, info.photons);
+    dataset(glob, "sigma_lx", {T, kS}, sigma.data());
     attr(glob, "sigma_lx", g.sigma_lx);
     attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
     attr(glob, "sigma_rel_quadratic", g.sigma_rel_quadratic);
     attr(glob, "odd_even_rms_lx", g.odd_even_rms_lx);
+    attr(glob, "moment_sigma_lx", g.moment_sigma_lx);
+    attr(glob, "moment_sigma_rel_arithmetic", g.moment_sigma_rel_arithmetic);
+    attr(glob, "moment_sigma_rel_quadratic", g.moment_sigma_rel_quadratic);
+    attr(glob, "error_estimator", g.estimator_name());
+    attr(glob, "lit_area_m2", g.lit_area_m2);
+    attr(glob, "lit_sides", g.lit_sides);
     attr(glob, "mean_arithmetic_lx", g.mean_arithmetic_lx);
     attr(glob, "mean_quadratic_lx", g.mean_quadratic_lx);
     attr(glob, "photons_escaped", data[L.counter(TallyLayout::kEscaped)]);
@@ -352,7 +378,7 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         check(H5Pset_userblock(fcpl, kSealBytes), "user block");
         H5Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
         attr(file, "format", checkpoint != nullptr ? "luxtrace-checkpoint" : "luxtrace-result");
-        attr(file, "format_version", std::uint64_t{1});  // layout unchanged by the seal
+        attr(file, "format_version", kResultFormatVersion);
         attr(file, "luxtrace_version", info.luxtrace_version);
         attr(file, "scene_file", info.scene_file);
         attr(file, "scene_name", scene.name);
@@ -380,6 +406,8 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "reductions", info.reductions);
         attr(file, "reduction_stall_s", info.reduction_stall_s);
         attr(file, "reduction_wait_s", info.reduction_wait_s);
+        attr(file, "reduction_message_words", info.reduction_message_words);
+        attr(file, "tally_words", static_cast<std::uint64_t>(layout.size()));
         write_surface(file, scene, layout, tallies, info, global);
         write_detectors(file, scene, layout, tallies, detectors);
         write_history(file, history, info);

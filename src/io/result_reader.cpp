@@ -235,6 +235,7 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         s.sampler = r.attr_str("/", "sampler");
         if (r.has_attr("/", "photon_layout")) s.photon_layout = r.attr_u64("/", "photon_layout");
         if (r.has_attr("/", "replicates")) s.replicates = r.attr_u64("/", "replicates");
+        s.format_version = r.attr_u64("/", "format_version");
         s.elapsed_s = r.attr_f64("/", "elapsed_s");
         const auto t = r.f64("/history/time_s");
         const auto p = r.u64("/history/photons");

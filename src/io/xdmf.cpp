@@ -1,6 +1,7 @@
 // XDMF companion of a result file. Every attribute is a reference into the HDF5 file
-// (Format="HDF"), so ParaView/VisIt read the maps in place; per-band columns of the [T,B]
-// maps are picked with HyperSlab items, the secondary part is a Function "$0 - $1".
+// (Format="HDF"), so ParaView/VisIt read the maps in place; per-side and per-band columns of
+// the [T,2,B] maps (format 2; [T,B] in format 1) are picked with HyperSlab items, the
+// secondary part is a Function "$0 - $1".
 // Checked with ParaView 5.11's "XDMF Reader" (all attributes, values equal to the
 // datasets); its Xdmf3 readers load the mesh and the plain datasets but skip the
 // HyperSlab and Function attributes.
@@ -39,8 +40,9 @@ std::string xml_escape(const std::string& s) {
 // before the ':' of each HDF DataItem.
 class XdmfWriter {
 public:
-    XdmfWriter(std::ostream& out, std::string h5, std::size_t triangles, std::size_t bands)
-        : out_(out), h5_(xml_escape(h5)), T_(triangles), B_(bands) {}
+    // two_sided: the maps have format 2's side axis.
+    XdmfWriter(std::ostream& out, std::string h5, std::size_t triangles, std::size_t bands, bool two_sided)
+        : out_(out), h5_(xml_escape(h5)), T_(triangles), B_(bands), two_sided_(two_sided) {}
 
     // A whole dataset: `dims` as XDMF writes them ("T 3"), type "Float"/"UInt", bytes.
     void hdf(const std::string& indent, const std::string& path, const std::string& dims, const char* type,
@@ -48,8 +50,17 @@ public:
         out_ << indent << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"" << type << "\" Precision=\""
              << precision << "\" Format=\"HDF\">" << h5_ << ':' << path << "</DataItem>\n";
     }
-    // Column `band` of a float64 [T,B] map as a [T,1] item (the dataset itself when B = 1).
-    void band_column(const std::string& indent, const std::string& path, std::size_t band) {
+    // Side `side`, band `band` of a float64 [T,2,B] map as a [T,1,1] item; of a format-1
+    // [T,B] map, column `band` (the dataset itself when B = 1).
+    void band_column(const std::string& indent, const std::string& path, std::size_t side, std::size_t band) {
+        if (two_sided_) {
+            out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << T_ << " 1 1\" Type=\"HyperSlab\">\n"
+                 << indent << "  <DataItem Dimensions=\"3 3\" NumberType=\"UInt\" Format=\"XML\">0 " << side << ' '
+                 << band << " 1 1 1 " << T_ << " 1 1</DataItem>\n";
+            hdf(indent + "  ", path, std::to_string(T_) + " 2 " + std::to_string(B_), "Float", 8);
+            out_ << indent << "</DataItem>\n";
+            return;
+        }
         if (B_ == 1) {
             hdf(indent, path, dims(T_, 1), "Float", 8);
             return;
@@ -59,6 +70,14 @@ public:
              << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << band
              << " 1 1 " << T_ << " 1</DataItem>\n";
         hdf(indent + "  ", path, dims(T_, B_), "Float", 8);
+        out_ << indent << "</DataItem>\n";
+    }
+    // Side `side` of a float64 [T,2] map as a [T,1] item.
+    void side_column(const std::string& indent, const std::string& path, std::size_t side) {
+        out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims(T_, 1) << "\" Type=\"HyperSlab\">\n"
+             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << side << " 1 1 " << T_
+             << " 1</DataItem>\n";
+        hdf(indent + "  ", path, dims(T_, 2), "Float", 8);
         out_ << indent << "</DataItem>\n";
     }
     void open_attribute(const std::string& name) {
@@ -73,6 +92,7 @@ private:
     std::ostream& out_;
     std::string h5_;
     std::size_t T_, B_;
+    bool two_sided_;
 };
 
 }  // namespace
@@ -103,8 +123,9 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
                                ? rabs.filename().string()
                                : rabs.lexically_normal().string();
 
+    const bool two_sided = r.has_attr("/", "format_version") && r.attr_u64("/", "format_version") >= 2;
     std::ostringstream out;
-    XdmfWriter w(out, h5, T, B);
+    XdmfWriter w(out, h5, T, B, two_sided);
     out << "<?xml version=\"1.0\" ?>\n"
         << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
         << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
@@ -126,25 +147,35 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
     out << "      </Geometry>\n";
 
     const std::string in = "        ";
-    for (std::size_t b = 0; b < B; ++b) {
-        const std::string suffix = B == 1 ? "" : "_" + bands[b];
-        w.open_attribute("illuminance" + suffix + "_lx");
-        w.band_column(in, "/global/illuminance", b);
-        w.close_attribute();
-        w.open_attribute("direct" + suffix + "_lx");
-        w.band_column(in, "/global/illuminance_direct", b);
-        w.close_attribute();
-        // Secondary (interreflected) light: all arrivals minus first hits.
-        w.open_attribute("secondary" + suffix + "_lx");
-        out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\""
-            << XdmfWriter::dims(T, 1) << "\">\n";
-        w.band_column(in + "  ", "/global/illuminance", b);
-        w.band_column(in + "  ", "/global/illuminance_direct", b);
-        out << in << "</DataItem>\n";
-        w.close_attribute();
-    }
-    // Older result files lack it; the rest of the companion is still useful.
-    if (r.has("/global/odd_even_difference_lx")) {
+    // Format 2: one attribute per side (_front, _back); format 1: both sides together.
+    const std::vector<std::string> side_names = two_sided ? std::vector<std::string>{"_front", "_back"}
+                                                          : std::vector<std::string>{""};
+    for (std::size_t side = 0; side < side_names.size(); ++side)
+        for (std::size_t b = 0; b < B; ++b) {
+            const std::string suffix = side_names[side] + (B == 1 ? "" : "_" + bands[b]);
+            w.open_attribute("illuminance" + suffix + "_lx");
+            w.band_column(in, "/global/illuminance", side, b);
+            w.close_attribute();
+            w.open_attribute("direct" + suffix + "_lx");
+            w.band_column(in, "/global/illuminance_direct", side, b);
+            w.close_attribute();
+            // Secondary (interreflected) light: all arrivals minus first hits.
+            w.open_attribute("secondary" + suffix + "_lx");
+            out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\""
+                << XdmfWriter::dims(T, 1) << (two_sided ? " 1" : "") << "\">\n";
+            w.band_column(in + "  ", "/global/illuminance", side, b);
+            w.band_column(in + "  ", "/global/illuminance_direct", side, b);
+            out << in << "</DataItem>\n";
+            w.close_attribute();
+        }
+    if (two_sided) {
+        for (std::size_t side = 0; side < side_names.size(); ++side)
+            for (const char* map : {"odd_even_difference", "sigma"}) {
+                w.open_attribute(map + side_names[side] + "_lx");
+                w.side_column(in, "/global/" + std::string(map) + "_lx", side);
+                w.close_attribute();
+            }
+    } else if (r.has("/global/odd_even_difference_lx")) {  // older result files lack it
         w.open_attribute("odd_even_difference_lx");
         w.hdf(in, "/global/odd_even_difference_lx", std::to_string(T), "Float", 8);
         w.close_attribute();

@@ -96,6 +96,11 @@ std::uint64_t Communicator::allreduce_max(std::uint64_t v) const {
     return out;
 }
 
+void Communicator::allreduce_or(std::vector<std::uint64_t>& bits) const {
+    if (size_ == 1 || bits.empty()) return;
+    MPI_Allreduce(MPI_IN_PLACE, bits.data(), static_cast<int>(bits.size()), MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD);
+}
+
 double Communicator::allreduce_max(double v) const {
     double out = v;
     MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);

@@ -77,22 +77,25 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
     if (bands_ > kMaxBands)
         throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
     const std::size_t T = scene.triangle_count(), B = static_cast<std::size_t>(bands_);
-    if (!secondary_lx.empty() && secondary_lx.size() != T * B)
+    constexpr std::size_t kS = TallyLayout::kSides;
+    if (!secondary_lx.empty() && secondary_lx.size() != T * kS * B)
         throw std::invalid_argument("Renderer: secondary map has the wrong size");
-    // Per-vertex values: area-weighted mean over the triangles sharing the vertex index.
+    // Per-vertex values of each side: area-weighted mean over the triangles sharing the
+    // vertex index (the same side of each: a mesh's triangles share their winding).
     if (!secondary_lx.empty()) {
         std::vector<double> area(scene.vertices.size(), 0.0);
-        vertex_secondary_.assign(scene.vertices.size() * B, 0.0);
+        vertex_secondary_.assign(scene.vertices.size() * kS * B, 0.0);
         for (std::size_t t = 0; t < T; ++t)
             for (int k = 0; k < 3; ++k) {
                 const std::size_t v = scene.triangles[t][k];
                 area[v] += scene.triangle_area_m2[t];
-                for (std::size_t b = 0; b < B; ++b)
-                    vertex_secondary_[v * B + b] += scene.triangle_area_m2[t] * std::max(0.0, secondary_lx[t * B + b]);
+                for (std::size_t i = 0; i < kS * B; ++i)
+                    vertex_secondary_[v * kS * B + i] +=
+                        scene.triangle_area_m2[t] * std::max(0.0, secondary_lx[t * kS * B + i]);
             }
         for (std::size_t v = 0; v < area.size(); ++v)
             if (area[v] > 0.0)
-                for (std::size_t b = 0; b < B; ++b) vertex_secondary_[v * B + b] /= area[v];
+                for (std::size_t i = 0; i < kS * B; ++i) vertex_secondary_[v * kS * B + i] /= area[v];
     }
     emitter_of_.assign(T, -1);
     const auto& lights = scene.lights.lights();
@@ -167,13 +170,13 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
     }
 }
 
-std::vector<double> Renderer::secondary_at(std::size_t tri, const Vec3& p) const {
+std::vector<double> Renderer::secondary_at(std::size_t tri, std::size_t side, const Vec3& p) const {
     std::vector<double> e(static_cast<std::size_t>(bands_), 0.0);
-    add_secondary(tri, p, e.data());
+    add_secondary(tri, side, p, e.data());
     return e;
 }
 
-void Renderer::add_secondary(std::size_t tri, const Vec3& p, double* e) const {
+void Renderer::add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const {
     if (vertex_secondary_.empty()) return;
     const glm::uvec3 t = scene_.triangles[tri];
     const Vec3 a(scene_.vertices[t.x]), b(scene_.vertices[t.y]), c(scene_.vertices[t.z]);
@@ -187,10 +190,10 @@ void Renderer::add_secondary(std::size_t tri, const Vec3& p, double* e) const {
     beta = std::clamp(beta, 0.0, 1.0);
     gamma = std::clamp(gamma, 0.0, 1.0 - beta);
     const double alpha = 1.0 - beta - gamma;
-    const std::size_t B = static_cast<std::size_t>(bands_);
+    const std::size_t B = static_cast<std::size_t>(bands_), stride = TallyLayout::kSides * B, at = side * B;
     for (std::size_t k = 0; k < B; ++k)
-        e[k] += alpha * vertex_secondary_[t.x * B + k] + beta * vertex_secondary_[t.y * B + k] +
-                gamma * vertex_secondary_[t.z * B + k];
+        e[k] += alpha * vertex_secondary_[t.x * stride + at + k] + beta * vertex_secondary_[t.y * stride + at + k] +
+                gamma * vertex_secondary_[t.z * stride + at + k];
 }
 
 void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng,
@@ -208,12 +211,14 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         const double* le = &emitted_radiance_[static_cast<std::size_t>(emitter_of_[tri]) * bands_];
         for (int b = 0; b < bands_; ++b) out[b] += weight[b] * le[b];
     }
-    // Lambertian part: rho / pi times the illuminance on side `side` of the surface.
-    auto lambertian = [&](const std::vector<double>& rho, const Vec3& side, bool with_secondary) {
+    // Lambertian part: rho / pi times the illuminance on the side of the surface whose
+    // normal is `side` (the stored map keeps each side's own secondary illuminance).
+    const std::size_t viewer_side = front ? 0 : 1;
+    auto lambertian = [&](const std::vector<double>& rho, const Vec3& side, std::size_t map_side) {
         if (!any_positive(rho)) return;
         Weights e{};
         direct(p, side, rng, opt, e);
-        if (with_secondary) add_secondary(tri, p, e);
+        add_secondary(tri, map_side, p, e);
         for (int b = 0; b < bands_; ++b) out[b] += weight[b] * band_value(rho, b) / kPi * e[b];
     };
     // A specular branch with per-band factor k (or the scalar k0 when k is empty).
@@ -233,13 +238,12 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
     case MaterialType::black:
         break;
     case MaterialType::diffuse:
-        lambertian(m.diffuse_reflectance, n, true);
+        lambertian(m.diffuse_reflectance, n, viewer_side);
         break;
     case MaterialType::general:
-        lambertian(m.diffuse_reflectance, n, true);
-        // Light through a thin diffuser: only its exact direct part from behind (the
-        // stored map does not tell the sides apart and is used once, above).
-        lambertian(m.diffuse_transmittance, -n, false);
+        lambertian(m.diffuse_reflectance, n, viewer_side);
+        // Light through a thin diffuser: what arrives on the far side.
+        lambertian(m.diffuse_transmittance, -n, 1 - viewer_side);
         if (any_positive(m.specular_reflectance)) follow(&m.specular_reflectance, 1.0, reflect(d, n));
         if (any_positive(m.specular_transmittance)) follow(&m.specular_transmittance, 1.0, d);
         break;
@@ -320,9 +324,11 @@ RenderInput load_render_input(const fs::path& result) {
     const std::vector<double> all = r.f64("/global/illuminance", &shape);
     const std::vector<double> direct = r.f64("/global/illuminance_direct");
     const std::vector<double> vertices = r.f64("/mesh/vertices", &vshape);
-    bool same = shape.size() == 2 && shape[0] == s.triangle_count() && shape[1] == s.bands.size() &&
-                direct.size() == all.size() && vshape.size() == 2 && vshape[0] == s.vertices.size() &&
-                vshape[1] == 3;
+    // Format 1 has [T, B] for both sides together; format 2 [T, 2, B].
+    const bool one_sided = shape.size() == 2;
+    bool same = (one_sided || (shape.size() == 3 && shape[1] == TallyLayout::kSides)) &&
+                shape[0] == s.triangle_count() && shape.back() == s.bands.size() && direct.size() == all.size() &&
+                vshape.size() == 2 && vshape[0] == s.vertices.size() && vshape[1] == 3;
     for (std::size_t v = 0; same && v < s.vertices.size(); ++v)
         for (int k = 0; k < 3; ++k)
             same = same && std::abs(vertices[3 * v + k] - static_cast<double>(s.vertices[v][k])) <=
@@ -331,8 +337,15 @@ RenderInput load_render_input(const fs::path& result) {
     if (!same)
         throw InputError(name + ": the scene file " + scene_file.string() +
                          " has changed since the run (its mesh or bands differ from the result's)");
-    in.secondary_lx.resize(all.size());
-    for (std::size_t i = 0; i < all.size(); ++i) in.secondary_lx[i] = std::max(0.0, all[i] - direct[i]);
+    // A format-1 map serves both sides, as it did when it was written.
+    const std::size_t T = s.triangle_count(), B = s.bands.size();
+    in.secondary_lx.resize(T * TallyLayout::kSides * B);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
+            for (std::size_t b = 0; b < B; ++b) {
+                const std::size_t from = one_sided ? t * B + b : (t * TallyLayout::kSides + side) * B + b;
+                in.secondary_lx[(t * TallyLayout::kSides + side) * B + b] = std::max(0.0, all[from] - direct[from]);
+            }
     return in;
 }
 

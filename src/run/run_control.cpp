@@ -23,12 +23,12 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     photons_ = in.photons;
     elapsed_s_ = in.elapsed_s;
     const double e0 = in.photons > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(in.photons) : 0.0;
-    global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0);
+    global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0, in.photons);
     status_.clear();
     forecast_.clear();
     rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
     rate_ = photon_rate(rate_points_);
-    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.sigma_rel_quadratic, std::nan(""), {}, {}, {}};
+    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
         status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
         const TargetStatus& s = status_.back();
@@ -121,7 +121,7 @@ void RunController::fill_run_info(RunInfo& info) const {
 std::string RunController::progress_line() const {
     char buf[256];
     std::snprintf(buf, sizeof buf, "%8.1f s %12.4g photons %10.3g/s  global %.2f%%", time_offset_s_ + elapsed_s_,
-                  static_cast<double>(photons_), rate_, 100.0 * global_.sigma_rel_quadratic);
+                  static_cast<double>(photons_), rate_, 100.0 * global_.target_sigma_rel(false));
     std::string line = buf;
     for (std::size_t i = 0; i < status_.size(); ++i) {
         const TargetStatus& s = status_[i];

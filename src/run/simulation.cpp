@@ -77,6 +77,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     double elapsed_before = 0.0;
     if (!opt.restart.empty()) {
         const CheckpointState ck = read_checkpoint(opt.restart);
+        if (ck.format_version != kResultFormatVersion)
+            throw InputError(opt.restart + ": the checkpoint has result format " + std::to_string(ck.format_version) +
+                             ", this luxtrace writes format " + std::to_string(kResultFormatVersion) +
+                             " (both sides of every triangle counted apart); continue it with the luxtrace that wrote "
+                             "it, or start anew");
         if (ck.sampler == run.sampler && ck.replicates != layout.replicates())
             throw InputError(opt.restart + ": the checkpoint was made with " + std::to_string(ck.replicates) +
                              " replicates; restart with the same (drop --replicates)");
@@ -153,7 +158,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         const std::uint64_t n = count_photons(done);
         const std::vector<std::uint64_t> tallies(msg.begin(), msg.begin() + static_cast<std::ptrdiff_t>(S));
         const double e0 = n > 0 ? scene.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
-        const GlobalEstimate g = estimate_global(layout, tallies, scene.triangle_area_m2, e0);
+        const GlobalEstimate g = estimate_global(layout, tallies, scene.triangle_area_m2, e0, n);
         std::vector<DetectorEstimate> dets;
         for (std::size_t d = 0; d < scene.detectors.size(); ++d)
             dets.push_back(estimate_detector(scene.detectors[d], d, layout, tallies, e0, n));
@@ -239,6 +244,22 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         if (fence_step > 0) work.set_fence(fence += fence_step);
         pool.resume();
     };
+    // With several ranks the message leaves out the sides no rank has hit yet (tally.hpp):
+    // a closed room's walls send their lit side only. Rank 0 restores the full message.
+    std::vector<std::uint64_t> side_mask, packed, packed_reduced;
+    auto start_reduce = [&]() -> PendingReduce {
+        if (R == 1) return comm.ireduce_sum_to_root(snapshot, reduced);
+        side_mask = lit_side_mask(layout, snapshot);
+        comm.allreduce_or(side_mask);
+        pack_lit_sides(layout, side_mask, snapshot, packed);
+        info.reduction_message_words = packed.size();
+        return comm.ireduce_sum_to_root(packed, packed_reduced);
+    };
+    auto finish_reduce = [&] {
+        if (R == 1 || !comm.is_root()) return;
+        reduced.resize(snapshot.size());
+        unpack_lit_sides(layout, side_mask, packed_reduced, reduced);
+    };
     const bool tty = show && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr;
 
     double period = fence_step > 0 ? RunController::kPhotonPeriodBound_s
@@ -260,8 +281,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         stall_total_s += stall_s;
         ++reductions;
         const double r0 = comm.wtime();
-        PendingReduce pending = comm.ireduce_sum_to_root(snapshot, reduced);
+        PendingReduce pending = start_reduce();
         while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+        finish_reduce();
         reduce_total_s += comm.wtime() - r0;
         if (comm.is_root() && (reduced[kInputFault] > 0 || reduced[kInternalFault] > 0)) {
             // A rank could not trace: its tallies are incomplete, nothing is written.
@@ -309,7 +331,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         return summary;
     }
     fill_snapshot(false, false);
-    comm.ireduce_sum_to_root(snapshot, reduced).wait();
+    start_reduce().wait();
+    finish_reduce();
     const double elapsed = comm.allreduce_max(comm.wtime() - t0);
     info.reductions = reductions;
     info.reduction_stall_s = comm.allreduce_max(stall_total_s);
@@ -321,10 +344,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     if (comm.is_root()) {
         // Each intersection ends in an arrival on a triangle or in an escape.
         summary.rays = reduced[layout.counter(TallyLayout::kEscaped)];
-        for (std::size_t t = 0; t < layout.triangles(); ++t)
+        for (std::size_t i = 0; i < layout.sides(); ++i)
             for (std::size_t b = 0; b < layout.bands(); ++b)
-                summary.rays += reduced[layout.surface(t, b, TallyLayout::kCountOdd)] +
-                                reduced[layout.surface(t, b, TallyLayout::kCountEven)];
+                summary.rays += reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountOdd] +
+                                reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountEven];
         const std::string result_err = attempt_write(run.output, reduced, elapsed, summary.stop_reason, false);
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         std::string ck_err;
@@ -395,10 +418,22 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
     out << "flux           " << r.attr_f64("/", "total_flux_lm") << " lm, " << r.attr_f64("/", "flux_per_photon_lm")
         << " lm per photon\n";
     out << std::fixed << std::setprecision(2);
-    out << "global map     mean " << r.attr_f64("/global", "mean_arithmetic_lx") << " lx, RMS error "
-        << r.attr_f64("/global", "sigma_lx") << " lx, relative "
-        << 100.0 * r.attr_f64("/global", "sigma_rel_arithmetic") << " % (arithmetic), "
-        << 100.0 * r.attr_f64("/global", "sigma_rel_quadratic") << " % (quadratic)\n";
+    // Format 2 (issue 13) adds the second-moment estimate and says which one targets use.
+    const bool moment = r.has_attr("/global", "moment_sigma_lx");
+    const std::string used = r.has_attr("/global", "error_estimator") ? r.attr_str("/global", "error_estimator") : "odd_even";
+    auto global_line = [&](const char* label, const std::string& prefix, const std::string& estimator) {
+        out << label << r.attr_f64("/global", prefix + "sigma_lx") << " lx, relative "
+            << 100.0 * r.attr_f64("/global", prefix + "sigma_rel_arithmetic") << " % (arithmetic), "
+            << 100.0 * r.attr_f64("/global", prefix + "sigma_rel_quadratic") << " % (quadratic)"
+            << (moment && used == estimator ? ", used by targets" : "") << '\n';
+    };
+    out << "global map     mean " << r.attr_f64("/global", "mean_arithmetic_lx") << " lx";
+    if (r.has_attr("/global", "lit_area_m2"))
+        out << " over " << r.attr_u64("/global", "lit_sides") << " lit triangle sides, " << r.attr_f64("/global", "lit_area_m2")
+            << " m^2";
+    out << '\n';
+    global_line("  odd/even     RMS error ", "", "odd_even");
+    if (moment) global_line("  2nd moment   RMS error ", "moment_", "second_moment");
     for (const std::string& name : r.children("/detectors")) {
         const std::string g = "/detectors/" + name;
         const std::string units = r.attr_str(g, "units");

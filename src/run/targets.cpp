@@ -26,8 +26,7 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
     case TargetKind::photons_received: s.goal = t.photons_received; s.label += " received"; break;
     }
     if (t.detector.empty()) {
-        s.value = s.kind == TargetKind::absolute_error ? g.sigma_lx
-                                                       : (arith ? g.sigma_rel_arithmetic : g.sigma_rel_quadratic);
+        s.value = s.kind == TargetKind::absolute_error ? g.target_sigma_lx() : g.target_sigma_rel(arith);
     } else {
         const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                      [&](const Detector& d) { return d.name == t.detector; });

@@ -2,50 +2,93 @@
 
 #include "luxtrace/detector/detector.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace luxtrace {
 
-std::vector<double> triangle_illuminance_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
-                                            std::span<const double> area, double e0, std::size_t band) {
-    std::vector<double> e(L.triangles());
-    for (std::size_t t = 0; t < L.triangles(); ++t) {
-        const std::uint64_t n = data[L.surface(t, band, TallyLayout::kCountOdd)] +
-                                data[L.surface(t, band, TallyLayout::kCountEven)];
-        e[t] = static_cast<double>(n) * e0 / area[t];
+namespace {
+// Band sums of one side's slot.
+std::uint64_t side_sum(const TallyLayout& L, std::span<const std::uint64_t> data, std::size_t side_index,
+                       TallyLayout::SurfaceSlot slot) {
+    std::uint64_t n = 0;
+    const std::size_t base = L.side_begin(side_index);
+    for (std::size_t b = 0; b < L.bands(); ++b) n += data[base + b * TallyLayout::kSurfaceSlots + slot];
+    return n;
+}
+
+// sqrt(Q - S^2 / N) of one side in counts, from its arrivals S and repeats X (Q = S + X).
+double side_sigma_counts(double s, double x, double n) {
+    return std::sqrt(std::max(0.0, s + x - s * s / n));
+}
+}  // namespace
+
+std::vector<double> side_illuminance_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
+                                        std::span<const double> area, double e0) {
+    std::vector<double> e(L.sides());
+    for (std::size_t i = 0; i < L.sides(); ++i) {
+        const std::uint64_t n = side_sum(L, data, i, TallyLayout::kCountOdd) + side_sum(L, data, i, TallyLayout::kCountEven);
+        e[i] = static_cast<double>(n) * e0 / area[i / TallyLayout::kSides];
     }
     return e;
 }
 
+std::vector<double> side_sigma_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
+                                  std::span<const double> area, double e0, std::uint64_t photons) {
+    std::vector<double> sigma(L.sides(), std::numeric_limits<double>::quiet_NaN());
+    if (photons == 0) return sigma;
+    for (std::size_t i = 0; i < L.sides(); ++i) {
+        const double s = static_cast<double>(side_sum(L, data, i, TallyLayout::kCountOdd) +
+                                             side_sum(L, data, i, TallyLayout::kCountEven));
+        const double x = static_cast<double>(side_sum(L, data, i, TallyLayout::kRepeats));
+        sigma[i] = side_sigma_counts(s, x, static_cast<double>(photons)) * e0 / area[i / TallyLayout::kSides];
+    }
+    return sigma;
+}
+
 GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64_t> data,
-                               std::span<const double> area, double e0) {
-    // Eqs. (4)-(5) on the band-summed map: E_odd,t = 2 n_odd E0 / A_t, likewise even.
-    double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_e2 = 0.0;
-    for (std::size_t t = 0; t < L.triangles(); ++t) {
-        std::uint64_t odd = 0, even = 0;
-        for (std::size_t b = 0; b < L.bands(); ++b) {
-            odd += data[L.surface(t, b, TallyLayout::kCountOdd)];
-            even += data[L.surface(t, b, TallyLayout::kCountEven)];
-        }
-        const double a = area[t];
-        const double e_odd = 2.0 * static_cast<double>(odd) * e0 / a;
-        const double e_even = 2.0 * static_cast<double>(even) * e0 / a;
-        const double e = static_cast<double>(odd + even) * e0 / a;
+                               std::span<const double> area, double e0, std::uint64_t photons) {
+    // Eqs. (4)-(5) on the band-summed map of the lit sides: E_odd,t = 2 n_odd E0 / A_t,
+    // likewise even; and each side's second-moment variance.
+    double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_e2 = 0.0, sum_var = 0.0;
+    const double n_photons = static_cast<double>(photons);
+    GlobalEstimate g;
+    for (std::size_t i = 0; i < L.sides(); ++i) {
+        const std::uint64_t odd = side_sum(L, data, i, TallyLayout::kCountOdd);
+        const std::uint64_t even = side_sum(L, data, i, TallyLayout::kCountEven);
+        if (odd + even == 0) continue;
+        const double a = area[i / TallyLayout::kSides];
+        const double k = e0 / a;
+        const double e_odd = 2.0 * static_cast<double>(odd) * k;
+        const double e_even = 2.0 * static_cast<double>(even) * k;
+        const double e = static_cast<double>(odd + even) * k;
         s += a;
+        ++g.lit_sides;
         sum_d2 += a * (e_odd - e_even) * (e_odd - e_even);
         sum_e += a * e;
         sum_e2 += a * e * e;
+        if (photons > 0) {
+            const double sigma = side_sigma_counts(static_cast<double>(odd + even),
+                                                   static_cast<double>(side_sum(L, data, i, TallyLayout::kRepeats)),
+                                                   n_photons) * k;
+            sum_var += a * sigma * sigma;
+        }
     }
-    GlobalEstimate g;
+    g.moment_primary = L.replicates() == 0;
+    g.lit_area_m2 = s;
     if (s <= 0.0) return g;
     g.odd_even_rms_lx = std::sqrt(sum_d2 / s);
     g.sigma_lx = 0.5 * g.odd_even_rms_lx;
+    g.moment_sigma_lx = std::sqrt(sum_var / s);
     g.mean_arithmetic_lx = sum_e / s;
     g.mean_quadratic_lx = std::sqrt(sum_e2 / s);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    g.sigma_rel_arithmetic = g.mean_arithmetic_lx > 0.0 ? g.sigma_lx / g.mean_arithmetic_lx : nan;
-    g.sigma_rel_quadratic = g.mean_quadratic_lx > 0.0 ? g.sigma_lx / g.mean_quadratic_lx : nan;
+    auto rel = [&](double sigma, double mean) { return mean > 0.0 ? sigma / mean : nan; };
+    g.sigma_rel_arithmetic = rel(g.sigma_lx, g.mean_arithmetic_lx);
+    g.sigma_rel_quadratic = rel(g.sigma_lx, g.mean_quadratic_lx);
+    g.moment_sigma_rel_arithmetic = rel(g.moment_sigma_lx, g.mean_arithmetic_lx);
+    g.moment_sigma_rel_quadratic = rel(g.moment_sigma_lx, g.mean_quadratic_lx);
     return g;
 }
 

@@ -20,7 +20,10 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
                                std::to_string(streams));
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
         (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_).push_back(i);
-    for (Photon& p : flight_) p.regs.reserve(32);
+    for (Photon& p : flight_) {
+        p.regs.reserve(32);
+        p.arrivals.reserve(64);
+    }
 }
 
 void PhotonTracer::check_luminance(Photon& p, const Vec3& point) {
@@ -45,6 +48,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     p.k = k;
     p.bounce = 0;
     p.regs.clear();
+    p.arrivals.clear();
     const LightSet& lights = scene_.lights;
     const std::size_t li = lights.pick_light(PhiloxSampler::uniform(b0[0]));
     p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
@@ -84,14 +88,19 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
         finish(p, TallyLayout::kEscaped, out);
         return false;
     }
-    // SPEC §3: odd photons feed the odd map; the first arrival is the direct one.
-    const bool odd = (p.k & 1u) != 0;
-    out.add(layout_.surface(hit.triangle, p.band, odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
-    if (p.bounce == 0)
-        out.add(layout_.surface(hit.triangle, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
-
+    // SPEC §3: odd photons feed the odd map; the first arrival is the direct one. Each side
+    // of a triangle keeps its own counts: a photon travelling against the normal arrives on
+    // the front.
     const TriangleRecord& t = surfaces_.triangle(hit.triangle);
     const Vec3 ng(t.normal);
+    const bool front = glm::dot(p.direction, ng) < 0.0;
+    const std::size_t side = front ? 0 : 1;
+    const bool odd = (p.k & 1u) != 0;
+    out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
+    if (p.bounce == 0)
+        out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
+    p.arrivals.push_back(layout_.surface(hit.triangle, side, p.band, TallyLayout::kRepeats));
+
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
     if (s.event == ScatterEvent::absorbed) {
@@ -101,7 +110,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     // Leave the surface on the side the photon goes to, just past the hit point's
     // rounding error.
     const SurfacePoint sp = point_on_triangle(t.p0, t.p1, t.p2, hit.u, hit.v, t.margin, t.min_height);
-    const Vec3 n_in = glm::dot(p.direction, ng) < 0.0 ? ng : -ng;
+    const Vec3 n_in = front ? ng : -ng;
     p.origin = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), t.margin);
     p.direction = s.direction;
     if (!luminance_dets_.empty()) check_luminance(p, embree_.to_scene(sp.p));
@@ -112,12 +121,35 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     return true;
 }
 
+void PhotonTracer::add_repeats(std::vector<std::size_t>& arrivals, TallyBuffer& out) {
+    // Sum over sides of n (n - 1), n this photon's arrivals on the side (kRepeats). Most
+    // paths are short: compare pairs; a long one (a mirror trap) is sorted instead.
+    const std::size_t m = arrivals.size();
+    if (m < 2) return;
+    if (m > 32) {
+        std::sort(arrivals.begin(), arrivals.end());
+        for (std::size_t i = 0; i < m;) {
+            std::size_t j = i + 1;
+            while (j < m && arrivals[j] == arrivals[i]) ++j;
+            if (const std::uint64_t n = j - i; n > 1) out.add(arrivals[i], n * (n - 1));
+            i = j;
+        }
+        return;
+    }
+    // Each pair (i < j) on one side adds 2: sum over pairs of 2 = n (n - 1).
+    for (std::size_t i = 1; i < m; ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (arrivals[j] == arrivals[i]) out.add(arrivals[i], 2);
+}
+
 void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) {
     out.add(layout_.counter(fate), 1);
     // sobol: the photon's replicate (its stream, photon_sampler.hpp) keeps its own counts.
     const std::size_t R = layout_.replicates();
     const std::size_t replicate = R > 0 ? sampler_.stream_of(p.k) : 0;
     if (R > 0) out.add(layout_.replicate_photons(replicate), 1);
+    add_repeats(p.arrivals, out);
+    p.arrivals.clear();
     if (p.regs.empty()) return;
     // E_i of eq. (6): how many times this photon registered in each cell.
     std::vector<Registration>& regs = p.regs;

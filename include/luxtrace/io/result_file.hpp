@@ -13,6 +13,10 @@ namespace luxtrace {
 
 struct Scene;
 
+// Version 2 (luxtrace 0.3, issue 13): surface datasets per triangle side, [T, 2, B], with
+// /global/sumsq and /global/sigma_lx; version 1 had [T, B] for both sides together.
+inline constexpr std::uint64_t kResultFormatVersion = 2;
+
 // One row per reduction (SPEC §4 /history).
 struct HistoryRow {
     double time_s = 0.0;
@@ -39,6 +43,7 @@ struct RunInfo {
     std::uint64_t reductions = 0;
     double reduction_stall_s = 0.0;  // tracing time lost to snapshots (max over ranks)
     double reduction_wait_s = 0.0;   // main thread's wait for reductions (tracing goes on)
+    std::uint64_t reduction_message_words = 0;  // words a rank sent in the last reduction (0: one rank)
     std::vector<std::string> target_labels;
     std::vector<double> target_goals;
 };
@@ -58,6 +63,7 @@ struct CheckpointState {
     std::string sampler;
     std::uint64_t photon_layout = 1;  // files without the attribute were made with layout 1
     std::uint64_t replicates = 0;     // sobol's R; 0 for random (and files before it)
+    std::uint64_t format_version = 1;
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;
     std::vector<HistoryRow> history;

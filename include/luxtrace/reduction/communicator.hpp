@@ -42,6 +42,8 @@ public:
     // Rank 0's values to every rank (same length everywhere).
     void broadcast(std::vector<double>& values) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;
+    // Element-wise bitwise OR over the ranks, in place (same length everywhere).
+    void allreduce_or(std::vector<std::uint64_t>& bits) const;
     double allreduce_max(double v) const;
     double wtime() const;
     // Ends every rank at once (after an error that only this rank saw).

@@ -33,8 +33,8 @@ class Renderer {
 public:
     static constexpr int kMaxBands = 16;
 
-    // secondary_lx: per triangle and band ([T][B], lux) the stored illuminance minus its
-    // direct part; empty means none (direct light only). Throws InputError for scenes
+    // secondary_lx: per triangle, side and band ([T][2][B], lux; side 0 the front) the
+    // stored illuminance minus its direct part; empty means none (direct light only). Throws InputError for scenes
     // with more than kMaxBands bands.
     Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx);
 
@@ -45,22 +45,23 @@ public:
     std::vector<double> trace(const Vec3& origin, const Vec3& d, std::uint64_t seed,
                               const RenderOptions& opt = {}) const;
 
-    // The smoothed secondary illuminance (lux per band) at point p of triangle `tri`.
-    std::vector<double> secondary_at(std::size_t tri, const Vec3& p) const;
+    // The smoothed secondary illuminance (lux per band) at point p of side `side` (0 front)
+    // of triangle `tri`.
+    std::vector<double> secondary_at(std::size_t tri, std::size_t side, const Vec3& p) const;
 
 private:
     struct Rng;
     void shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng,
                const RenderOptions& opt, double* out) const;
     void direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const;
-    void add_secondary(std::size_t tri, const Vec3& p, double* e) const;
+    void add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const;
     bool occluded(const Vec3& o, const Vec3& d, double t_far) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     int bands_;
     double eps_;
-    std::vector<double> vertex_secondary_;   // [V][B]
+    std::vector<double> vertex_secondary_;   // [V][2][B]
     std::vector<int> emitter_of_;            // per triangle: area light index or -1
     std::vector<double> emitted_radiance_;   // per light and band: M / pi (area lights)
 };
@@ -70,7 +71,7 @@ private:
 // Throws InputError naming what is wrong (no scene file, file gone, mesh changed).
 struct RenderInput {
     Scene scene;
-    std::vector<double> secondary_lx;  // [T][B]
+    std::vector<double> secondary_lx;  // [T][2][B]
 };
 RenderInput load_render_input(const std::filesystem::path& result);
 

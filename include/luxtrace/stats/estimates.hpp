@@ -11,20 +11,49 @@ namespace luxtrace {
 
 struct Detector;
 
+// The error of the whole surface map. Every quantity runs over the lit sides: the
+// triangle sides that received at least one photon (the back of a closed room's walls is
+// never lit, so a closed solid reads as it did with one-sided maps).
 struct GlobalEstimate {
-    double odd_even_rms_lx = 0.0;      // D of eq. (5)
-    double sigma_lx = 0.0;             // D / 2: RMS error of the combined map
-    double mean_arithmetic_lx = 0.0;   // eq. (4), area-weighted
-    double mean_quadratic_lx = 0.0;
+    // Eq. (5): D from the odd and even half-maps; sigma_lx = D / 2. The paper's estimate,
+    // with about as many degrees of freedom as lit sides.
+    double odd_even_rms_lx = 0.0;
+    double sigma_lx = 0.0;
     double sigma_rel_arithmetic = 0.0;
     double sigma_rel_quadratic = 0.0;
+    double mean_arithmetic_lx = 0.0;   // eq. (4), area-weighted
+    double mean_quadratic_lx = 0.0;
+    // From each side's second moment (issue 13): sigma_t^2 = (E0 / A_t)^2 (Q_t - S_t^2 / N),
+    // S_t the side's arrivals, Q_t = sum over photons of their arrivals there squared, and
+    // sigma = sqrt(sum_t A_t sigma_t^2 / S): about N degrees of freedom. Meaningful for
+    // independent photons (random); sobol's photons are not, and D / 2 serves there.
+    double moment_sigma_lx = 0.0;
+    double moment_sigma_rel_arithmetic = 0.0;
+    double moment_sigma_rel_quadratic = 0.0;
+    bool moment_primary = false;  // targets and the history use the moment estimate
+    double lit_area_m2 = 0.0;     // S
+    std::uint64_t lit_sides = 0;
+
+    // The estimate targets, forecasts and the history use.
+    double target_sigma_lx() const { return moment_primary ? moment_sigma_lx : sigma_lx; }
+    double target_sigma_rel(bool arithmetic) const {
+        if (moment_primary) return arithmetic ? moment_sigma_rel_arithmetic : moment_sigma_rel_quadratic;
+        return arithmetic ? sigma_rel_arithmetic : sigma_rel_quadratic;
+    }
+    const char* estimator_name() const { return moment_primary ? "second_moment" : "odd_even"; }
 };
 
-// Band-summed illuminance of every triangle; E0 = flux per photon (lm).
-std::vector<double> triangle_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                                            std::span<const double> area_m2, double e0, std::size_t band);
+// Band-summed illuminance of every triangle side [2 t + side]; E0 = flux per photon (lm).
+std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
+                                        std::span<const double> area_m2, double e0);
+// Per side [2 t + side]: the standard error of the band-summed illuminance from the second
+// moment (NaN for photons = 0).
+std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
+                                  std::span<const double> area_m2, double e0, std::uint64_t photons);
+// photons = N, the photons emitted so far; the moment estimate is primary for random runs
+// (layout without replicates).
 GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                               std::span<const double> area_m2, double e0);
+                               std::span<const double> area_m2, double e0, std::uint64_t photons);
 
 struct CellRange { int i0 = 0, i1 = 0, j0 = 0, j1 = 0; };  // [i0,i1) x [j0,j1); i1 = 0: all
 

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace luxtrace {
@@ -21,9 +22,15 @@ public:
     // Photon fates, counted once per photon: left the scene, absorbed, stopped at the
     // bounce limit.
     enum Counter : std::size_t { kEscaped = 0, kAbsorbed = 1, kTruncated = 2, kCounters = 8 };
-    // Per triangle and band.
-    enum SurfaceSlot : std::size_t { kCountOdd = 0, kCountEven = 1, kDirectOdd = 2, kDirectEven = 3, kSurfaceSlots = 4 };
-
+    // Per triangle, side and band (issue 13: two-sided maps). Side 0 is the front, the side
+    // the triangle's normal points to (counter-clockwise winding); side 1 the back. kRepeats
+    // is the sum over photons of n (n - 1), n the photon's arrivals on that side: with the
+    // counts it gives the per-side second moment sum n^2 = count + repeats, which is zero
+    // work for the photons that arrive on a side once at most.
+    enum SurfaceSlot : std::size_t {
+        kCountOdd = 0, kCountEven = 1, kDirectOdd = 2, kDirectEven = 3, kRepeats = 4, kSurfaceSlots = 5
+    };
+    static constexpr std::size_t kSides = 2;
     TallyLayout() = default;
     // replicates: R of the sobol sampler (docs/QMC.md), 0 for random; with R > 0 every
     // detector also keeps per replicate its cells' registrations and its total.
@@ -37,9 +44,15 @@ public:
     std::size_t detector_count() const { return det_offset_.size(); }
 
     std::size_t counter(Counter c) const { return c; }
-    std::size_t surface(std::size_t tri, std::size_t band, SurfaceSlot s) const {
-        return kCounters + (tri * bands_ + band) * kSurfaceSlots + s;
+    std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s) const {
+        return side_begin(tri * kSides + side) + band * kSurfaceSlots + s;
     }
+    // The slots of side `side_index` = 2 tri + side lie in [side_begin, side_begin + side_slots()).
+    std::size_t side_begin(std::size_t side_index) const { return kCounters + side_index * side_slots(); }
+    std::size_t side_slots() const { return bands_ * kSurfaceSlots; }
+    std::size_t sides() const { return triangles_ * kSides; }
+    // Everything after the surface map (detectors, replicates) starts here.
+    std::size_t surface_end() const { return side_begin(sides()); }
     // n_c of cell `cell` in `band`; q_c is the next slot.
     std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band) const {
         return det_offset_[det] + (cell * bands_ + band) * 2;
@@ -76,6 +89,18 @@ private:
     std::vector<std::size_t> det_offset_, rep_offset_;
     std::vector<std::size_t> det_cells_;
 };
+
+// A reduction message without the sides nobody has hit (the back of a closed room's
+// walls is never lit): a message is the flat tally array, possibly followed by other
+// words, and everything but the unlit sides' slots is kept in order. Counts only grow, so
+// a side unlit on every rank is zero everywhere and unpacking restores the message exactly.
+// The mask has one bit per side (word i / 64, bit i % 64), OR-ed over the ranks.
+std::vector<std::uint64_t> lit_side_mask(const TallyLayout& layout, std::span<const std::uint64_t> message);
+void pack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> mask,
+                    std::span<const std::uint64_t> message, std::vector<std::uint64_t>& packed);
+// `message` must have the full length; it is overwritten.
+void unpack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> mask,
+                      std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
 
 // The rank's shared tallies.
 class TallyStore {

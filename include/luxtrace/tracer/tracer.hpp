@@ -60,7 +60,9 @@ private:
         Vec3 direction;
         Hit hit;
         std::vector<Registration> regs;  // detector registrations, counted at the end
+        std::vector<std::size_t> arrivals;  // kRepeats slot of every surface arrival
     };
+    static void add_repeats(std::vector<std::size_t>& arrivals, TallyBuffer& out);
     // Start photon k with its block 0.
     void start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0);
     // Block 0 of photon k, drawn with those of the next kBatch - 1 photons.

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
         const luxtrace::ResultReader a(argv[1]), b(argv[2]);
         std::vector<std::string> names{"/global/count_odd", "/global/count_even", "/global/direct_odd",
                                        "/global/direct_even"};
+        if (a.has("/global/sumsq") || b.has("/global/sumsq")) names.push_back("/global/sumsq");  // format 2
         for (const std::string& d : a.children("/detectors")) {
             names.push_back("/detectors/" + d + "/count");
             names.push_back("/detectors/" + d + "/sumsq");

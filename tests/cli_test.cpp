@@ -244,3 +244,33 @@ TEST_F(Cli, DamagedSealedResultsAreRefusedBeforeHdf5ReadsThem) {
     EXPECT_FALSE(fs::exists(dir / "r2.h5")) << "nothing written by a refused restart";
     EXPECT_FALSE(fs::exists(dir / "pic")) << "nothing written by a refused render";
 }
+
+// Result format 2 (two-sided maps, issue 13) is read beside format 1: `info` and
+// `export-xdmf` still work on a luxtrace 0.2 result, and a restart from a format-1
+// checkpoint (whose tally array has another layout) is refused by name, writing nothing.
+TEST_F(Cli, FormatOneFilesAreReadAndTheirCheckpointsRefused) {
+    const fs::path data = fs::path(LUXTRACE_TEST_DATA_DIR) / "results";
+    fs::copy_file(data / "format1_result_rgb.h5", dir / "old.h5");
+    {
+        const luxtrace::ResultReader r(dir / "old.h5");
+        ASSERT_EQ(r.attr_u64("/", "format_version"), 1u) << "the test needs a format-1 file";
+    }
+    const Outcome info = run("info " + (dir / "old.h5").string());
+    EXPECT_EQ(info.code, 0) << info.out;
+    EXPECT_NE(info.out.find("odd/even     RMS error"), std::string::npos) << info.out;
+    EXPECT_EQ(info.out.find("2nd moment"), std::string::npos) << "format 1 has no second moment\n" << info.out;
+    const Outcome xdmf = run("export-xdmf " + (dir / "old.h5").string() + " -o " + (dir / "old.xdmf").string());
+    ASSERT_EQ(xdmf.code, 0) << xdmf.out;
+    std::stringstream text;
+    text << std::ifstream(dir / "old.xdmf").rdbuf();
+    EXPECT_NE(text.str().find("\"illuminance_R_lx\""), std::string::npos) << "format 1: both sides in one map";
+    EXPECT_EQ(text.str().find("_front"), std::string::npos);
+
+    const fs::path scene = write("s.toml", kSmallScene);
+    const Outcome restart = run("run " + scene.string() + " --restart " + (data / "format1_checkpoint_y.h5").string() +
+                                " --photons 10k --output " + (dir / "r.h5").string());
+    EXPECT_EQ(restart.code, 2) << restart.out;
+    EXPECT_NE(restart.out.find("format1_checkpoint_y.h5: the checkpoint has result format 1"), std::string::npos)
+        << restart.out;
+    EXPECT_FALSE(fs::exists(dir / "r.h5"));
+}

@@ -555,12 +555,15 @@ struct Loader {
     }
 
     // Cylindrical and semicylindrical detectors: the small cylinder at each point, its
-    // axis the grid's normal. The defaults (r = 5 cm, h = 10 cm) keep the finite size's
-    // bias near (size / distance)^2 ~ 0.3 % for lights a metre away or more, yet give a
-    // point about as many photons as a 18 cm x 18 cm illuminance cell (2 pi r h = 0.031 m^2).
+    // axis the grid's normal. A finite cylinder's lateral mean differs from the point
+    // value by about -(pi r / 2 rho)(1 - 1.5 sin^2 gamma) for a light at horizontal
+    // distance rho (first order in r), the height only in second order; so the default is
+    // thin and tall, r = 1 cm, h = 20 cm: within 2 % of the point value for lights 0.5 m
+    // or more to the side and 1.5 m above, 0.1 % beyond 1.5 m (docs/VALIDATION.md), while
+    // its 2 pi r h = 0.0126 m^2 still catches photons like an 11 cm x 11 cm cell.
     void parse_cylinder(TableReader& r, Detector& d) {
-        d.radius_m = r.number("radius").value_or(0.05);
-        d.height_m = r.number("height").value_or(0.1);
+        d.radius_m = r.number("radius").value_or(0.01);
+        d.height_m = r.number("height").value_or(0.2);
         if (!(d.radius_m > 0.0)) r.fail("radius", "must be positive (metres)");
         if (!(d.height_m > 0.0)) r.fail("height", "must be positive (metres)");
         if (d.type == DetectorType::semicylindrical) {

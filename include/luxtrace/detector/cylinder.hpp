@@ -14,8 +14,8 @@ namespace luxtrace {
 
 // A cylinder in its own frame: centred on the origin, axis +z, |z| <= height_m / 2.
 struct CylinderShape {
-    double radius_m = 0.05;
-    double height_m = 0.1;
+    double radius_m = 0.01;
+    double height_m = 0.2;
     bool half = false;                   // only the half whose outward normal n has n . facing >= 0
     double facing_x = 1.0, facing_y = 0.0;  // unit, across the axis
 };

@@ -87,16 +87,17 @@ bool clip_to_slab(double o, double d, double lo, double hi, double& t0, double& 
 
 void Detector::cylinder_entries(const Vec3& o, const Vec3& d, double t_max, std::vector<int>& cells) const {
     // The ray in the grid's frame: x along u, y along v, z along the axis (the normal).
-    const Vec3 r = o - center;
-    const Vec3 ol(glm::dot(r, u_axis), glm::dot(r, v_axis), glm::dot(r, normal));
-    const Vec3 dl(glm::dot(d, u_axis), glm::dot(d, v_axis), glm::dot(d, normal));
     // Only the piece of the flight inside the box holding every cylinder can enter one:
-    // the slab |z| <= h/2 over the grid's rectangle widened by the radius.
+    // the slab |z| <= h/2 (most flights miss it: tested first) over the grid's rectangle
+    // widened by the radius.
+    const Vec3 r = o - center;
     double t0 = 0.0, t1 = t_max;
+    const double oz = glm::dot(r, normal), dz = glm::dot(d, normal);
+    if (!clip_to_slab(oz, dz, -0.5 * height_m, 0.5 * height_m, t0, t1)) return;
+    const Vec3 ol(glm::dot(r, u_axis), glm::dot(r, v_axis), oz);
+    const Vec3 dl(glm::dot(d, u_axis), glm::dot(d, v_axis), dz);
     const double hx = 0.5 * size_u + radius_m, hy = 0.5 * size_v + radius_m;
-    if (!clip_to_slab(ol.z, dl.z, -0.5 * height_m, 0.5 * height_m, t0, t1) ||
-        !clip_to_slab(ol.x, dl.x, -hx, hx, t0, t1) || !clip_to_slab(ol.y, dl.y, -hy, hy, t0, t1))
-        return;
+    if (!clip_to_slab(ol.x, dl.x, -hx, hx, t0, t1) || !clip_to_slab(ol.y, dl.y, -hy, hy, t0, t1)) return;
     // That piece seen along the axis, in cell units: point (i, j) sits at (i + 1/2, j + 1/2)
     // and its cylinder reaches rx = r / du, ry = r / dv around it.
     const double du = size_u / nx, dv = size_v / ny;

@@ -476,6 +476,24 @@ TEST(Validation, CylindricalIlluminanceOfAPointSource) {
     std::cout << "[validation] largest finite-size bias against the point formulas: cylindrical (r 0.01, h 0.2) "
               << bias_c << ", semicylindrical (r 0.08, h 0.12) " << bias_sc << "\n";
     expect_agreement(compare_detector(r, "task_c", cyl));
+    // Thick cylinders close under the source: far from the point formula, as the exact
+    // lateral mean says.
+    std::vector<double> near, near_point;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            const Vec3 p(source.x - 0.5 + (i + 0.5) * 0.25, source.y - 0.5 + (j + 0.5) * 0.25, 2.2);
+            near.push_back(cylinder_lateral_mean(intensity, source, p, 0.05, 0.1, nullptr));
+            const Vec3 l = source - p;
+            near_point.push_back(intensity * std::hypot(l.x, l.y) / (kPi * std::pow(glm::length(l), 3)));
+        }
+    double near_lo = 1e300, near_hi = -1e300;
+    for (std::size_t c = 0; c < near.size(); ++c) {
+        near_lo = std::min(near_lo, near[c] / near_point[c] - 1.0);
+        near_hi = std::max(near_hi, near[c] / near_point[c] - 1.0);
+    }
+    std::cout << "[validation] near_c (r 0.05, h 0.1, 0.5 m under the source): lateral mean / point formula - 1 from "
+              << near_lo << " to " << near_hi << "\n";
+    expect_agreement(compare_detector(r, "near_c", near));
     expect_agreement(compare_detector(r, "task_sc", semi));
     auto horizontal = [&](double x, double y) { return point_illuminance(intensity, 2.7 - kZ, x - 3.0, y - 0.2); };
     const std::vector<double> eh = cell_averages(grid, horizontal);

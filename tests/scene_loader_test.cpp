@@ -776,7 +776,8 @@ TEST_F(Loader, BadCylindricalDetectors) {
     expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal", {"unknown key 'horizontal'"});
     expect_bad(head + "radius = 0.1\n", "radius", {"unknown key 'radius'"});
     expect_bad(cyl + "horizontal = \"\"\n", "horizontal", {"key 'horizontal'", "needs the name"});
-    expect_bad(cyl + "horizontal = \"nosuch\"\n", "horizontal", {"key 'horizontal'", "no [[detector]] is named 'nosuch'"});
+    expect_bad(cyl + "horizontal = \"nosuch\"\n", "horizontal",
+               {"key 'horizontal'", "no [[detector]] is named 'nosuch'"});
     const std::string other = "[[detector]]\nname = \"h\"\ncenter = [0, 0, 1]\nsize = [1, 1]\n";
     expect_bad(cyl + "horizontal = \"h\"\n" + other + "type = \"luminance\"\n", "horizontal",
                {"key 'horizontal'", "detector 'h' is luminance", "needs an illuminance detector"});

@@ -108,7 +108,8 @@ void Detector::cylinder_entries(const Vec3& o, const Vec3& d, double t_max, std:
     // rounding from dropping a point the exact test below would accept.
     const bool along_x = std::abs(xb - xa) >= std::abs(yb - ya);
     double pa = along_x ? xa : ya, pb = along_x ? xb : yb, sa = along_x ? ya : xa, sb = along_x ? yb : xb;
-    const double pr = (along_x ? radius_m / du : radius_m / dv) + 1e-9, sr = (along_x ? radius_m / dv : radius_m / du) + 1e-9;
+    const double pr = (along_x ? radius_m / du : radius_m / dv) + 1e-9;
+    const double sr = (along_x ? radius_m / dv : radius_m / du) + 1e-9;
     const int np = along_x ? nx : ny, ns = along_x ? ny : nx;
     if (pa > pb) {
         std::swap(pa, pb);

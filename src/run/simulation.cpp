@@ -411,7 +411,8 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             out << "; errors from the replicate spread, " << r.attr_u64(g, "error_dof") << " dof";
         out << '\n';
         if (r.has_attr(g, "modelling_ratio_mean"))
-            out << "  modelling    E_c/E_h of the means " << std::setprecision(3) << r.attr_f64(g, "modelling_ratio_mean")
+            out << "  modelling    E_c/E_h of the means " << std::setprecision(3)
+                << r.attr_f64(g, "modelling_ratio_mean")
                 << " +- " << std::setprecision(2) << 100.0 * r.attr_f64(g, "modelling_ratio_mean_sigma_rel")
                 << " %, points " << std::setprecision(3) << r.attr_f64(g, "modelling_ratio_min") << " to "
                 << r.attr_f64(g, "modelling_ratio_max") << " (horizontal: " << r.attr_str(g, "horizontal") << ")\n"

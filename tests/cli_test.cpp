@@ -256,6 +256,15 @@ TEST_F(Cli, CylindricalDetectorsInCheckRunAndInfo) {
     EXPECT_NE(check.out.find("cylindrical  2 x 2 points, cylinders r 0.01 m h 0.2 m, modelling ratio over 'h'"),
               std::string::npos) << check.out;
     EXPECT_NE(check.out.find("semicylindrical  2 x 2 points"), std::string::npos) << check.out;
+    EXPECT_EQ(check.out.find("cuts"), std::string::npos) << check.out;
+    // Cylinders 20 cm tall standing 5 cm above the floor: the floor cuts every one.
+    const fs::path low = write("low.toml", kSmallScene + std::string("[[detector]]\nname = \"c\"\n") +
+                                               "type = \"cylindrical\"\ncenter = [0, 0, 0.05]\nsize = [1, 1]\n"
+                                               "cells = [2, 2]\n");
+    const Outcome low_check = run("check " + low.string());
+    EXPECT_EQ(low_check.code, 0) << low_check.out;
+    EXPECT_NE(low_check.out.find("detector 'c': a surface cuts 4 of 4 probed cylinders (the first at point [0, 0])"),
+              std::string::npos) << low_check.out;
     const fs::path out = dir / "r.h5";
     const Outcome o = run("run " + scene.string() + " --photons 200k --threads 2 --output " + out.string());
     ASSERT_EQ(o.code, 0) << o.out;

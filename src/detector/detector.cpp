@@ -99,13 +99,14 @@ void Detector::cylinder_entries(const Vec3& o, const Vec3& d, double t_max, std:
     const double hx = 0.5 * size_u + radius_m, hy = 0.5 * size_v + radius_m;
     if (!clip_to_slab(ol.x, dl.x, -hx, hx, t0, t1) || !clip_to_slab(ol.y, dl.y, -hy, hy, t0, t1)) return;
     // That piece seen along the axis, in cell units: point (i, j) sits at (i + 1/2, j + 1/2)
-    // and its cylinder reaches rx = r / du, ry = r / dv around it.
+    // and its cylinder reaches r / du across and r / dv along.
     const double du = size_u / nx, dv = size_v / ny;
     const double xa = (ol.x + t0 * dl.x + 0.5 * size_u) / du, xb = (ol.x + t1 * dl.x + 0.5 * size_u) / du;
     const double ya = (ol.y + t0 * dl.y + 0.5 * size_v) / dv, yb = (ol.y + t1 * dl.y + 0.5 * size_v) / dv;
-    // Walk the columns of the longer extent (p); in each the piece spans at most one cell
-    // of the other (s), widened by the radius: a few points per column. The slack keeps
-    // rounding from dropping a point the exact test below would accept.
+    // Walk the columns (coordinate p) of the piece's longer extent, widened by the radius
+    // (pr); within a column the piece moves along the other coordinate (s) no more than
+    // the column is wide (|slope| <= 1), so, widened by sr, a few points per column are
+    // tested. The slack keeps rounding from dropping a point the exact test would accept.
     const bool along_x = std::abs(xb - xa) >= std::abs(yb - ya);
     double pa = along_x ? xa : ya, pb = along_x ? xb : yb, sa = along_x ? ya : xa, sb = along_x ? yb : xb;
     const double pr = (along_x ? radius_m / du : radius_m / dv) + 1e-9;

@@ -1,8 +1,10 @@
 // The ray / lateral-surface test of cylindrical and semi-cylindrical detectors
 // (detector/cylinder.hpp) and the grid walk that picks the points a ray can reach
 // (Detector::cylinder_entries): hand-computed rays, a parallel beam whose count is the
-// lit surface's projected area, and the walk against testing every point.
+// lit surface's projected area, and the walk against testing every point; and the
+// modelling ratio (stats/modelling_ratio.hpp) by hand.
 #include "luxtrace/detector/detector.hpp"
+#include "luxtrace/stats/modelling_ratio.hpp"
 
 #include <gtest/gtest.h>
 
@@ -195,6 +197,40 @@ TEST(CylinderGrid, WalkFindsExactlyThePointsOfAnExhaustiveTest) {
     }
     // The rays must really reach cylinders for this to mean anything.
     EXPECT_GT(found, rays / 20);
+}
+
+// The modelling ratio from two estimates, by hand: two points, two bands.
+TEST(ModellingRatio, RatiosAndPropagatedErrorsByHand) {
+    DetectorEstimate c, h;
+    c.value = {2.0, 1.0, 3.0, 0.5};  // [point][band]
+    c.sigma_rel = {0.03, 0.06, 0.05, 0.1};
+    h.value = {4.0, 4.0, 0.0, 1.5};
+    h.sigma_rel = {0.04, 0.08, std::nan(""), 0.1};
+    c.mean_value = 1.6;
+    c.mean_sigma_rel = 0.012;
+    h.mean_value = 3.2;
+    h.mean_sigma_rel = 0.005;
+    const ModellingRatio m = modelling_ratio(c, h, 2);
+    ASSERT_EQ(m.ratio.size(), 4u);
+    EXPECT_DOUBLE_EQ(m.ratio[0], 0.5);
+    EXPECT_DOUBLE_EQ(m.sigma_rel[0], 0.05);  // sqrt(0.03^2 + 0.04^2)
+    EXPECT_DOUBLE_EQ(m.ratio[1], 0.25);
+    EXPECT_DOUBLE_EQ(m.sigma_rel[1], 0.1);   // sqrt(0.06^2 + 0.08^2)
+    EXPECT_TRUE(std::isnan(m.ratio[2]));     // no horizontal illuminance in that band
+    EXPECT_TRUE(std::isnan(m.sigma_rel[2]));
+    EXPECT_DOUBLE_EQ(m.ratio[3], 0.5 / 1.5);
+    EXPECT_DOUBLE_EQ(m.mean, 0.5);
+    EXPECT_DOUBLE_EQ(m.mean_sigma_rel, 0.013);  // sqrt(0.012^2 + 0.005^2)
+    // Over the points, bands summed: (2 + 1) / (4 + 4) and (3 + 0.5) / (0 + 1.5).
+    EXPECT_DOUBLE_EQ(m.min, 3.0 / 8.0);
+    EXPECT_DOUBLE_EQ(m.max, 3.5 / 1.5);
+    // No horizontal light anywhere: nothing to divide by.
+    h.value.assign(4, 0.0);
+    h.mean_value = 0.0;
+    const ModellingRatio none = modelling_ratio(c, h, 2);
+    EXPECT_TRUE(std::isnan(none.mean));
+    EXPECT_TRUE(std::isnan(none.min));
+    EXPECT_TRUE(std::isnan(none.max));
 }
 
 }  // namespace

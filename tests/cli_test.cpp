@@ -274,3 +274,43 @@ TEST_F(Cli, FormatOneFilesAreReadAndTheirCheckpointsRefused) {
         << restart.out;
     EXPECT_FALSE(fs::exists(dir / "r.h5"));
 }
+
+TEST_F(Cli, CylindricalDetectorsInCheckRunAndInfo) {
+    const std::string grid = "center = [0, 0, 0.5]\nsize = [1, 1]\ncells = [2, 2]\n";
+    const std::string dets = "[[detector]]\nname = \"h\"\n" + grid +
+                             "[[detector]]\nname = \"c\"\ntype = \"cylindrical\"\nhorizontal = \"h\"\n" + grid +
+                             "[[detector]]\nname = \"sc\"\ntype = \"semicylindrical\"\nfacing = [0, 1, 0]\n" + grid;
+    const fs::path scene = write("s.toml", kSmallScene + dets);
+    const Outcome check = run("check " + scene.string());
+    EXPECT_EQ(check.code, 0) << check.out;
+    EXPECT_NE(check.out.find("cylindrical  2 x 2 points, cylinders r 0.01 m h 0.2 m, modelling ratio over 'h'"),
+              std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("semicylindrical  2 x 2 points"), std::string::npos) << check.out;
+    EXPECT_EQ(check.out.find("cuts"), std::string::npos) << check.out;
+    // Cylinders 20 cm tall standing 5 cm above the floor: the floor cuts every one.
+    const fs::path low = write("low.toml", kSmallScene + std::string("[[detector]]\nname = \"c\"\n") +
+                                               "type = \"cylindrical\"\ncenter = [0, 0, 0.05]\nsize = [1, 1]\n"
+                                               "cells = [2, 2]\n");
+    const Outcome low_check = run("check " + low.string());
+    EXPECT_EQ(low_check.code, 0) << low_check.out;
+    EXPECT_NE(low_check.out.find("detector 'c': a surface cuts 4 of 4 probed cylinders (the first at point [0, 0])"),
+              std::string::npos) << low_check.out;
+    const fs::path out = dir / "r.h5";
+    const Outcome o = run("run " + scene.string() + " --photons 200k --threads 2 --output " + out.string());
+    ASSERT_EQ(o.code, 0) << o.out;
+    const Outcome info = run("info " + out.string());
+    EXPECT_EQ(info.code, 0);
+    for (const Outcome* x : {&o, &info}) {
+        EXPECT_NE(x->out.find("detector c              cylindrical, mean"), std::string::npos) << x->out;
+        EXPECT_NE(x->out.find("modelling    E_c/E_h of the means"), std::string::npos) << x->out;
+        EXPECT_NE(x->out.find("(horizontal: h)"), std::string::npos) << x->out;
+    }
+    // A semi-cylinder without its facing direction: exit 2, the file and the entry named.
+    const fs::path bad = write("bad.toml", kSmallScene + std::string("[[detector]]\nname = \"sc\"\n") +
+                                               "type = \"semicylindrical\"\n" + grid);
+    const Outcome b = run("run " + bad.string() + " --quiet --output " + (dir / "bad.h5").string());
+    EXPECT_EQ(b.code, 2);
+    EXPECT_NE(b.out.find("bad.toml:"), std::string::npos) << b.out;
+    EXPECT_NE(b.out.find("needs 'facing'"), std::string::npos) << b.out;
+    EXPECT_FALSE(fs::exists(dir / "bad.h5"));
+}

@@ -735,5 +735,57 @@ TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
     }
 }
 
+// Cylindrical and semicylindrical detectors: defaults, the facing direction, and the
+// horizontal detector of the modelling ratio, which may be defined after the cylinders.
+TEST_F(Loader, CylindricalDetectors) {
+    const std::string grid = "center = [0, 0, 1.2]\nsize = [2, 1]\ncells = [4, 2]\n";
+    const Scene s = load(kMat + kFloor + kLamp + "[[detector]]\nname = \"c\"\ntype = \"cylindrical\"\n" + grid +
+                         "horizontal = \"h\"\n[[detector]]\nname = \"sc\"\ntype = \"semicylindrical\"\n" + grid +
+                         "radius = 0.05\nheight = 0.1\nfacing = [0, -3, 0]\n[[detector]]\nname = \"h\"\n" + grid);
+    ASSERT_EQ(s.detectors.size(), 3u);
+    const Detector& c = s.detectors[0];
+    EXPECT_EQ(c.type, DetectorType::cylindrical);
+    EXPECT_EQ(c.radius_m, 0.01);
+    EXPECT_EQ(c.height_m, 0.2);
+    EXPECT_NEAR(c.lateral_area_m2(), 2 * kPi * 0.01 * 0.2, 1e-15);
+    EXPECT_NEAR(c.value_per_lm(), 1.0 / (2 * kPi * 0.01 * 0.2), 1e-9);
+    EXPECT_EQ(c.horizontal, "h");
+    EXPECT_EQ(c.horizontal_index, 2);
+    EXPECT_STREQ(c.units(), "lx");
+    const Detector& sc = s.detectors[1];
+    EXPECT_EQ(sc.type, DetectorType::semicylindrical);
+    EXPECT_NEAR(sc.lateral_area_m2(), kPi * 0.05 * 0.1, 1e-15);
+    expect_vec(sc.facing, Vec3(0, -1, 0), 1e-15);
+    // In the grid's frame (u = +x, v = +y) the half faces -v.
+    EXPECT_NEAR(sc.cylinder.facing_x, 0.0, 1e-15);
+    EXPECT_NEAR(sc.cylinder.facing_y, -1.0, 1e-15);
+    EXPECT_TRUE(sc.cylinder.half);
+    EXPECT_EQ(sc.horizontal_index, -1);
+}
+
+TEST_F(Loader, BadCylindricalDetectors) {
+    const std::string head = kMat + kFloor + kLamp + "[[detector]]\nname = \"c\"\ncenter = [0, 0, 1]\nsize = [1, 1]\n";
+    const std::string cyl = head + "type = \"cylindrical\"\n", semi = head + "type = \"semicylindrical\"\n";
+    expect_bad(cyl + "radius = 0\n", "radius", {"[[detector]] #1 'c'", "key 'radius'", "must be positive"});
+    expect_bad(cyl + "height = -0.1\n", "height", {"key 'height'", "must be positive"});
+    expect_bad(semi, "", {"[[detector]] #1 'c'", "needs 'facing'"});
+    expect_bad(semi + "facing = [0, 1, 0.5]\n", "facing", {"key 'facing'", "perpendicular to the cylinder axis"});
+    expect_bad(semi + "facing = [0, 0, 0]\n", "facing", {"key 'facing'", "non-zero"});
+    // Keys of other types are unknown here.
+    expect_bad(cyl + "facing = [1, 0, 0]\n", "facing", {"unknown key 'facing'"});
+    expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal", {"unknown key 'horizontal'"});
+    expect_bad(head + "radius = 0.1\n", "radius", {"unknown key 'radius'"});
+    expect_bad(cyl + "horizontal = \"\"\n", "horizontal", {"key 'horizontal'", "needs the name"});
+    expect_bad(cyl + "horizontal = \"nosuch\"\n", "horizontal",
+               {"key 'horizontal'", "no [[detector]] is named 'nosuch'"});
+    const std::string other = "[[detector]]\nname = \"h\"\ncenter = [0, 0, 1]\nsize = [1, 1]\n";
+    expect_bad(cyl + "horizontal = \"h\"\n" + other + "type = \"luminance\"\n", "horizontal",
+               {"key 'horizontal'", "detector 'h' is luminance", "needs an illuminance detector"});
+    expect_bad(cyl + "horizontal = \"h\"\n" + other + "cells = [2, 2]\n", "horizontal",
+               {"key 'horizontal'", "same grid", "'cells' differs"});
+    expect_bad(cyl + "horizontal = \"h\"\n" + other + "normal = [0, 0, -1]\n", "horizontal", {"'normal' differs"});
+    expect_bad(cyl + "horizontal = \"c\"\n", "horizontal", {"detector 'c' is cylindrical"});
+}
+
 }  // namespace
 }  // namespace luxtrace

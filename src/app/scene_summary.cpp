@@ -59,10 +59,19 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         out << '\n';
     }
     out << "detectors  " << s.detectors.size() << '\n';
-    for (const Detector& d : s.detectors)
-        out << "  " << std::left << std::setw(16) << d.name << std::right << " "
-            << (d.type == DetectorType::illuminance ? "illuminance" : "luminance") << "  " << d.nx << " x "
-            << d.ny << " cells of " << d.cell_area_m2() << " m^2, units " << d.units() << '\n';
+    for (const Detector& d : s.detectors) {
+        out << "  " << std::left << std::setw(16) << d.name << std::right << " " << detector_type_name(d.type) << "  "
+            << d.nx << " x " << d.ny;
+        if (d.cylinders()) {
+            out << " points, cylinders r " << d.radius_m << " m h " << d.height_m << " m";
+            if (d.type == DetectorType::semicylindrical)
+                out << " facing [" << d.facing.x << ", " << d.facing.y << ", " << d.facing.z << "]";
+            if (d.horizontal_index >= 0) out << ", modelling ratio over '" << d.horizontal << "'";
+        } else {
+            out << " cells of " << d.cell_area_m2() << " m^2";
+        }
+        out << ", units " << d.units() << '\n';
+    }
     out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
         << ", " << s.run.targets.size() << " target(s)\n";
     out << "warnings   " << warnings.size() << '\n';

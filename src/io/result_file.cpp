@@ -4,6 +4,7 @@
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/stats/modelling_ratio.hpp"
 
 #include <hdf5.h>
 
@@ -264,6 +265,28 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
     attr(glob, "photons_truncated", data[L.counter(TallyLayout::kTruncated)]);
 }
 
+// Cylindrical and semicylindrical detectors: the cylinders, and for a cylindrical one
+// with a `horizontal` detector the modelling ratio per point and of the grid means.
+void write_cylinders(hid_t g, const Scene& scene, std::size_t di, const std::vector<DetectorEstimate>& est) {
+    const Detector& d = scene.detectors[di];
+    attr(g, "radius_m", d.radius_m);
+    attr(g, "height_m", d.height_m);
+    attr(g, "lateral_area_m2", d.lateral_area_m2());
+    if (d.type == DetectorType::semicylindrical)
+        attr(g, "facing", std::vector<double>{d.facing.x, d.facing.y, d.facing.z});
+    if (d.horizontal_index < 0) return;
+    const std::size_t B = scene.bands.size();
+    const ModellingRatio m = modelling_ratio(est[di], est[static_cast<std::size_t>(d.horizontal_index)], B);
+    const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
+    dataset(g, "modelling_ratio", dims, m.ratio.data());
+    dataset(g, "modelling_ratio_sigma_rel", dims, m.sigma_rel.data());
+    attr(g, "horizontal", d.horizontal);
+    attr(g, "modelling_ratio_mean", m.mean);
+    attr(g, "modelling_ratio_mean_sigma_rel", m.mean_sigma_rel);
+    attr(g, "modelling_ratio_min", m.min);
+    attr(g, "modelling_ratio_max", m.max);
+}
+
 void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
                      const std::vector<DetectorEstimate>& est) {
     H5Id dets(group(file, "detectors"), H5Gclose, "group /detectors");
@@ -283,7 +306,7 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         dataset(g, "sumsq", dims, q.data());
         dataset(g, "value", dims, e.value.data());
         dataset(g, "sigma_rel", dims, e.sigma_rel.data());
-        attr(g, "type", d.type == DetectorType::illuminance ? "illuminance" : "luminance");
+        attr(g, "type", detector_type_name(d.type));
         attr(g, "units", d.units());
         attr(g, "center", std::vector<double>{d.center.x, d.center.y, d.center.z});
         attr(g, "normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
@@ -316,6 +339,7 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
             attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});
             attr(g, "half_angle_deg", d.half_angle_deg);
         }
+        if (d.cylinders()) write_cylinders(g, scene, di, est);
     }
 }
 

@@ -445,6 +445,13 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         if (r.has_attr(g, "error_estimator") && r.attr_str(g, "error_estimator") == "replicate_spread")
             out << "; errors from the replicate spread, " << r.attr_u64(g, "error_dof") << " dof";
         out << '\n';
+        if (r.has_attr(g, "modelling_ratio_mean"))
+            out << "  modelling    E_c/E_h of the means " << std::setprecision(3)
+                << r.attr_f64(g, "modelling_ratio_mean")
+                << " +- " << std::setprecision(2) << 100.0 * r.attr_f64(g, "modelling_ratio_mean_sigma_rel")
+                << " %, points " << std::setprecision(3) << r.attr_f64(g, "modelling_ratio_min") << " to "
+                << r.attr_f64(g, "modelling_ratio_max") << " (horizontal: " << r.attr_str(g, "horizontal") << ")\n"
+                << std::setprecision(2);
         if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0) {
             const double mf = r.attr_f64("/", "maintenance_factor");
             out << "  maintained   mean " << mf * r.attr_f64(g, "mean_value") << " " << units << " (initial x MF "

@@ -5,9 +5,38 @@
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace luxtrace {
+
+namespace {
+
+// Whether a surface cuts the small cylinder at point (i, j) of a cylindrical detector:
+// rays from its centre along the axis, across it at three heights, and to its rims.
+// A flight scattered from a surface inside a cylinder starts inside and is not counted.
+bool cylinder_cut(const Detector& d, int i, int j, const EmbreeScene& embree) {
+    const Vec3 p = d.center + ((i + 0.5) / d.nx - 0.5) * d.size_u * d.u_axis +
+                   ((j + 0.5) / d.ny - 0.5) * d.size_v * d.v_axis;
+    const double half_h = 0.5 * d.height_m;
+    auto cut = [&](const Vec3& from, const Vec3& to) {
+        const Vec3 r = to - from;
+        const double len = glm::length(r);
+        return embree.occluded(from, r / len, static_cast<float>(len));
+    };
+    if (cut(p, p + half_h * d.normal) || cut(p, p - half_h * d.normal)) return true;
+    for (int k = 0; k < 8; ++k) {
+        const double a = k * kPi / 4.0;
+        const Vec3 rim = d.radius_m * (std::cos(a) * d.u_axis + std::sin(a) * d.v_axis);
+        for (const double z : {-half_h, 0.0, half_h})
+            if (cut(p + z * d.normal, p + z * d.normal + rim)) return true;
+        if (cut(p, p + rim + half_h * d.normal) || cut(p, p + rim - half_h * d.normal)) return true;
+    }
+    return false;
+}
+
+}  // namespace
 
 std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embree, int rays) {
     std::vector<std::string> warnings;
@@ -49,6 +78,19 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
         const Vec3 lo = scene.bounds_min - Vec3(1e-3), hi = scene.bounds_max + Vec3(1e-3);
         if (glm::any(glm::lessThan(d.center, lo)) || glm::any(glm::greaterThan(d.center, hi)))
             warnings.push_back("detector '" + d.name + "': its centre lies outside the scene's bounding box");
+        if (!d.cylinders()) continue;
+        // At most about 4096 points, evenly strided, on a large grid.
+        const int stride = std::max(1, d.cells() / 4096);
+        int probed = 0, cut = 0, first = -1;
+        for (int c = 0; c < d.cells(); c += stride, ++probed)
+            if (cylinder_cut(d, c % d.nx, c / d.nx, embree)) {
+                if (cut++ == 0) first = c;
+            }
+        if (cut > 0)
+            warnings.push_back("detector '" + d.name + "': a surface cuts " + std::to_string(cut) + " of " +
+                               std::to_string(probed) + " probed cylinders (the first at point [" +
+                               std::to_string(first % d.nx) + ", " + std::to_string(first / d.nx) +
+                               "]): light scattered from a surface inside a cylinder is not counted");
     }
     std::vector<bool> used(scene.materials.size(), false);
     for (std::uint32_t m : scene.triangle_material) used[m] = true;

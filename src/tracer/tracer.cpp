@@ -18,8 +18,12 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
     if (layout_.replicates() != streams)
         throw std::logic_error("tally layout for " + std::to_string(layout_.replicates()) + " replicates, sampler with " +
                                std::to_string(streams));
-    for (std::uint32_t i = 0; i < scene.detectors.size(); ++i)
-        (scene.detectors[i].type == DetectorType::illuminance ? illuminance_dets_ : luminance_dets_).push_back(i);
+    for (std::uint32_t i = 0; i < scene.detectors.size(); ++i) {
+        const DetectorType type = scene.detectors[i].type;
+        (type == DetectorType::illuminance ? illuminance_dets_
+         : type == DetectorType::luminance ? luminance_dets_
+                                           : cylinder_dets_).push_back(i);
+    }
     for (Photon& p : flight_) {
         p.regs.reserve(32);
         p.arrivals.reserve(64);
@@ -30,6 +34,15 @@ void PhotonTracer::check_luminance(Photon& p, const Vec3& point) {
     for (std::uint32_t di : luminance_dets_) {
         const int cell = scene_.detectors[di].leaving(point, p.direction);
         if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
+    }
+}
+
+void PhotonTracer::check_cylinders(Photon& p, double t_max) {
+    const Vec3 o = embree_.to_scene(p.origin);
+    for (std::uint32_t di : cylinder_dets_) {
+        cylinder_cells_.clear();
+        scene_.detectors[di].cylinder_entries(o, p.direction, t_max, cylinder_cells_);
+        for (int cell : cylinder_cells_) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
     }
 }
 
@@ -84,6 +97,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
             if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
         }
     }
+    if (!cylinder_dets_.empty()) check_cylinders(p, t_max);
     if (!hit.found) {
         finish(p, TallyLayout::kEscaped, out);
         return false;

@@ -2,12 +2,19 @@
 // Virtual measuring grids. A detector never blocks light: the tracer asks it, for each
 // free flight and each scattering event, which cell (if any) the photon registers in.
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/detector/cylinder.hpp"
 
 #include <string>
+#include <vector>
 
 namespace luxtrace {
 
-enum class DetectorType { illuminance, luminance };
+// cylindrical / semicylindrical: a grid of points, each the centre of a small cylinder
+// whose axis is the grid's normal (cylinder.hpp).
+enum class DetectorType { illuminance, luminance, cylindrical, semicylindrical };
+
+// The name a scene file and a result file give the type.
+const char* detector_type_name(DetectorType type);
 
 struct Detector {
     std::string name;
@@ -23,11 +30,24 @@ struct Detector {
     double half_angle_deg = 5.0;
     double cos_half_angle = 0.0;
     double plane_tolerance_m = 1e-3;  // how far from the plane a scattering point may lie
+    // cylindrical, semicylindrical: the small cylinder at every cell centre, and the
+    // illuminance detector on the same grid whose values give the modelling ratio.
+    double radius_m = 0.01, height_m = 0.2;  // the loader's defaults (scene_loader.cpp says why)
+    Vec3 facing{1, 0, 0};                 // semicylindrical: the curved half faces this way
+    std::string horizontal;               // name of that detector, or empty
+    int horizontal_index = -1;            // its index in Scene::detectors, or -1
+    CylinderShape cylinder;               // derived: the cylinder in the grid's frame (u, v, normal)
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();
     int cells() const { return nx * ny; }
     double cell_area_m2() const { return size_u * size_v / (nx * ny); }
+    bool cylinders() const { return type == DetectorType::cylindrical || type == DetectorType::semicylindrical; }
+    // The curved surface a point's value is the mean illuminance on: 2 pi r h, or pi r h
+    // for the half cylinder.
+    double lateral_area_m2() const {
+        return (type == DetectorType::semicylindrical ? 1.0 : 2.0) * kPi * radius_m * height_m;
+    }
     // The cone's projected solid angle, integral of cos(gamma) d omega over the cone:
     // cos(theta) pi sin^2(a), exact while the cone stays above the plane (theta + a <= 90
     // degrees), since cos(gamma) is linear in the direction and the cone is symmetric.
@@ -39,9 +59,9 @@ struct Detector {
     bool cone_below_plane() const;
     // Value of one registration (times flux per photon) per unit count: 1/A (lux) or
     // 1/(A cos(theta) pi sin^2 a) (cd/m^2): the flux a Lambertian patch of luminance L
-    // sends into the cone is L A cos(theta) pi sin^2 a.
+    // sends into the cone is L A cos(theta) pi sin^2 a; cylinders: 1/lateral_area_m2().
     double value_per_lm() const;
-    const char* units() const { return type == DetectorType::illuminance ? "lx" : "cd/m^2"; }
+    const char* units() const { return type == DetectorType::luminance ? "cd/m^2" : "lx"; }
 
     // Cell index of a point in the detector plane, or -1 outside the rectangle.
     int cell_at(const Vec3& p) const;
@@ -50,6 +70,11 @@ struct Detector {
     int crossing(const Vec3& o, const Vec3& d, double t_max) const;
     // Luminance: the cell where a photon leaving point p along d registers, or -1.
     int leaving(const Vec3& p, const Vec3& d) const;
+    // Cylinders: append to `cells` every point whose cylinder the ray o + t d,
+    // 0 < t <= t_max, enters through its lateral surface from outside (through the
+    // facing half for semicylindrical). Only the points whose cylinders the ray's piece
+    // inside the grid's slab |z - z0| <= h/2 can reach are tested.
+    void cylinder_entries(const Vec3& o, const Vec3& d, double t_max, std::vector<int>& cells) const;
 };
 
 }  // namespace luxtrace

@@ -72,13 +72,16 @@ private:
     bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
     void finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out);
     void check_luminance(Photon& p, const Vec3& point);
+    // Cylindrical and semi-cylindrical detectors: the cylinders the free flight enters.
+    void check_cylinders(Photon& p, double t_max);
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     const SurfaceTable& surfaces_;
     const TallyLayout& layout_;
     PhotonSampler sampler_;
-    std::vector<std::uint32_t> illuminance_dets_, luminance_dets_;
+    std::vector<std::uint32_t> illuminance_dets_, luminance_dets_, cylinder_dets_;
+    std::vector<int> cylinder_cells_;  // scratch for check_cylinders
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));
     std::array<PhotonSampler::Block, PhiloxSampler::kBatch> start_blocks_{};

@@ -4,10 +4,18 @@
 #include "luxtrace/core/math.hpp"
 
 #include <string>
+#include <vector>
 
 namespace luxtrace {
 
 enum class DetectorType { illuminance, luminance };
+
+// A named rectangle of cells of an illuminance detector (a task area of EN 12464-1),
+// [i0, i1) x [j0, j1), 0-based, i along nx and j along ny like a run target's range.
+struct TaskArea {
+    std::string name;
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
 
 struct Detector {
     std::string name;
@@ -23,6 +31,7 @@ struct Detector {
     double half_angle_deg = 5.0;
     double cos_half_angle = 0.0;
     double plane_tolerance_m = 1e-3;  // how far from the plane a scattering point may lie
+    std::vector<TaskArea> task_areas;  // illuminance only: areas with their own metrics
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();

@@ -261,6 +261,7 @@ void write_metrics(hid_t g, const IlluminanceMetrics& initial, double mf) {
     attr(g, "E_max_competitors", initial.max_competitors);
     attr(g, "U0", initial.u0);
     attr(g, "U0_sigma", initial.u0_sigma);
+    attr(g, "U0_bias", initial.u0_bias);
     attr(g, "E_min_over_max", initial.min_over_max);
     attr(g, "E_min_over_max_sigma", initial.min_over_max_sigma);
     attr(g, "U0_unreliable", std::uint64_t{initial.unreliable ? 1u : 0u});

@@ -133,11 +133,12 @@ IlluminanceMetrics illuminance_metrics(std::span<const double> value, std::span<
     const double r_max = m.max_lx > 0.0 ? m.max_sigma_lx / m.max_lx : kNaN;
     if (m.avg_lx > 0.0) {
         m.u0 = m.min_lx / m.avg_lx;
+        m.u0_bias = m.min_bias_lx / m.avg_lx;
         const double cov = m.min_lx > 0.0 ? m.min_sigma_lx * m.min_sigma_lx / (k * m.min_lx * m.avg_lx) : 0.0;
         m.u0_sigma = m.min_lx > 0.0 ? m.u0 * std::sqrt(std::max(0.0, r_min * r_min + r_avg * r_avg - 2.0 * cov))
                                     : m.min_sigma_lx / m.avg_lx;
     } else {
-        m.u0 = m.u0_sigma = kNaN;
+        m.u0 = m.u0_sigma = m.u0_bias = kNaN;
     }
     if (m.max_lx > 0.0) {
         m.min_over_max = m.min_lx / m.max_lx;

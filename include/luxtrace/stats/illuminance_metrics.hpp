@@ -34,6 +34,7 @@ struct IlluminanceMetrics {
     int min_i = 0, min_j = 0, max_i = 0, max_j = 0;
     std::uint64_t min_competitors = 0, max_competitors = 0;
     double u0 = 0.0, u0_sigma = 0.0;                    // Emin / Eavg
+    double u0_bias = 0.0;                               // Emin's bias / Eavg (<= 0)
     double min_over_max = 0.0, min_over_max_sigma = 0.0;  // Emin / Emax
     // A cell got no photons, or Emin's error or bias exceeds kUniformityNoiseLimit.
     bool unreliable = false;

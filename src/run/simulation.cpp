@@ -375,7 +375,7 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
         << f("E_min_sigma_lx") << " lx (cell " << cell("E_min_cell") << std::defaultfloat << std::setprecision(3)
         << "; ";
     if (f("E_min_bias_lx") < 0.0)
-        out << "low by up to " << -f("E_min_bias_lx") << " lx on average, " << r.attr_u64(g, "E_min_competitors")
+        out << "biased low by about " << -f("E_min_bias_lx") << " lx: " << r.attr_u64(g, "E_min_competitors")
             << " cells within 3 sigma)";
     else out << "no other cell within 3 sigma)";
     out << std::fixed << std::setprecision(2) << ", Emax " << f("E_max_lx") << " +- " << f("E_max_sigma_lx")

@@ -264,6 +264,7 @@ void write_metrics(hid_t g, const IlluminanceMetrics& initial, double mf) {
     attr(g, "U0_bias", initial.u0_bias);
     attr(g, "E_min_over_max", initial.min_over_max);
     attr(g, "E_min_over_max_sigma", initial.min_over_max_sigma);
+    attr(g, "E_min_over_max_bias", initial.min_over_max_bias);
     attr(g, "U0_unreliable", std::uint64_t{initial.unreliable ? 1u : 0u});
 }
 

@@ -384,7 +384,7 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
         << ", Emin/Emax " << f("E_min_over_max") << " +- " << f("E_min_over_max_sigma");
     if (r.attr_u64(g, "U0_unreliable") != 0)
         out << "  WARNING: Emin too noisy or biased (error or bias above 2 % of Emin, or a cell without photons): "
-               "U0 not meaningful, run longer";
+               "U0 not meaningful; run longer or use coarser cells";
     out << '\n';
     if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0)
         out << std::setprecision(2) << "  " << std::setw(13) << "" << "maintained Eavg " << f("E_avg_maintained_lx")

@@ -147,12 +147,13 @@ IlluminanceMetrics illuminance_metrics(std::span<const double> value, std::span<
     }
     if (m.max_lx > 0.0) {
         m.min_over_max = m.min_lx / m.max_lx;
+        m.min_over_max_bias = m.min_over_max - (m.min_lx - m.min_bias_lx) / (m.max_lx - m.max_bias_lx);
         // Two different cells are independent; one cell (K = 1) gives exactly 1.
         m.min_over_max_sigma = cmin == cmax ? 0.0
                                : m.min_lx > 0.0 ? m.min_over_max * std::hypot(r_min, r_max)
                                                 : m.min_sigma_lx / m.max_lx;
     } else {
-        m.min_over_max = m.min_over_max_sigma = kNaN;
+        m.min_over_max = m.min_over_max_sigma = m.min_over_max_bias = kNaN;
     }
     m.unreliable = missing || !(m.min_lx > 0.0) ||
                    std::max(-m.min_bias_lx, m.min_sigma_lx) > kUniformityNoiseLimit * m.min_lx;

@@ -36,6 +36,8 @@ struct IlluminanceMetrics {
     double u0 = 0.0, u0_sigma = 0.0;                    // Emin / Eavg
     double u0_bias = 0.0;                               // Emin's bias / Eavg (<= 0)
     double min_over_max = 0.0, min_over_max_sigma = 0.0;  // Emin / Emax
+    // Emin / Emax minus its value with both extremes bias-corrected (<= 0)
+    double min_over_max_bias = 0.0;
     // A cell got no photons, or Emin's error or bias exceeds kUniformityNoiseLimit.
     bool unreliable = false;
 };

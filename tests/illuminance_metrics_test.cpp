@@ -235,7 +235,8 @@ TEST(IlluminanceMetrics, ErrorOfU0CoversTheTrueU0) {
     for (int k = 0; k < n; ++k) {
         f.draw(rng, v, s);
         const IlluminanceMetrics m = illuminance_metrics(v, s, 5, TaskArea{"", 0, 5, 0, 5});
-        const double z_u0 = (m.u0 - u0_true) / m.u0_sigma, z_ratio = (m.min_over_max - ratio_true) / m.min_over_max_sigma;
+        const double z_u0 = (m.u0 - u0_true) / m.u0_sigma;
+        const double z_ratio = (m.min_over_max - ratio_true) / m.min_over_max_sigma;
         z2_u0 += z_u0 * z_u0;
         z2_ratio += z_ratio * z_ratio;
         in1_u0 += std::abs(z_u0) < 1.0;

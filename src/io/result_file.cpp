@@ -243,7 +243,8 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
 void write_metrics(hid_t g, const IlluminanceMetrics& initial, double mf) {
     attr(g, "metrics_cells", initial.cells);
     const IlluminanceMetrics maint = maintained(initial, mf);
-    for (const auto& [suffix, m] : {std::pair<std::string, const IlluminanceMetrics&>{"", initial}, {"_maintained", maint}}) {
+    using Named = std::pair<std::string, const IlluminanceMetrics&>;
+    for (const auto& [suffix, m] : {Named{"", initial}, Named{"_maintained", maint}}) {
         attr(g, "E_avg" + suffix + "_lx", m.avg_lx);
         attr(g, "E_avg" + suffix + "_sigma_lx", m.avg_sigma_lx);
         attr(g, "E_min" + suffix + "_lx", m.min_lx);

@@ -380,8 +380,8 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
     else out << "no other cell within 3 sigma)";
     out << std::fixed << std::setprecision(2) << ", Emax " << f("E_max_lx") << " +- " << f("E_max_sigma_lx")
         << " lx (cell " << cell("E_max_cell") << ")\n";
-    out << std::setprecision(3) << "  " << std::setw(13) << "" << "U0 = Emin/Eavg " << f("U0") << " +- " << f("U0_sigma")
-        << ", Emin/Emax " << f("E_min_over_max") << " +- " << f("E_min_over_max_sigma");
+    out << std::setprecision(3) << "  " << std::setw(13) << "" << "U0 = Emin/Eavg " << f("U0") << " +- "
+        << f("U0_sigma") << ", Emin/Emax " << f("E_min_over_max") << " +- " << f("E_min_over_max_sigma");
     if (r.attr_u64(g, "U0_unreliable") != 0)
         out << "  WARNING: Emin too noisy or biased (error or bias above 2 % of Emin, or a cell without photons): "
                "U0 not meaningful; run longer or use coarser cells";

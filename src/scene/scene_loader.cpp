@@ -499,7 +499,8 @@ struct Loader {
             r.fail("task_area", "task areas belong to illuminance detectors (a luminance grid has no uniformity U0)");
         for (std::size_t k = 0; k < areas.size(); ++k) {
             const toml::table* t = areas[k].as_table();
-            if (t == nullptr) r.fail("task_area", "expected [[detector.task_area]] tables { name, cells = [i0, i1, j0, j1] }");
+            if (t == nullptr)
+                r.fail("task_area", "expected [[detector.task_area]] tables { name, cells = [i0, i1, j0, j1] }");
             std::string context = r.context() + " task_area #" + std::to_string(k + 1);
             if (const auto n = (*t)["name"].value<std::string>()) context += " '" + *n + "'";
             TableReader ar(*t, fname, context);
@@ -512,7 +513,8 @@ struct Loader {
             const auto cells = ar.numbers("cells", 4);
             if (!cells) ar.fail_entry("needs 'cells' = [i0, i1, j0, j1] (cells i0 <= i < i1, j0 <= j < j1, from 0)");
             for (double c : *cells)
-                if (c != std::floor(c) || c < 0) ar.fail("cells", "expected four whole numbers [i0, i1, j0, j1], none negative");
+                if (c != std::floor(c) || c < 0)
+                    ar.fail("cells", "expected four whole numbers [i0, i1, j0, j1], none negative");
             const std::vector<double>& c = *cells;
             if (!(c[0] < c[1] && c[1] <= d.nx && c[2] < c[3] && c[3] <= d.ny))
                 ar.fail("cells", "[" + fmt_count(c[0]) + ", " + fmt_count(c[1]) + ", " + fmt_count(c[2]) + ", " +

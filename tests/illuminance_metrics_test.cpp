@@ -363,6 +363,27 @@ TEST(IlluminanceMetricsEndToEnd, PointSourceOverAFloor) {
     fs::remove_all(dir);
 }
 
+// With sobol a task area's Eavg error is the spread of its replicate sums (7 dof here).
+TEST(IlluminanceMetricsEndToEnd, SobolTaskAreaAverage) {
+    const fs::path dir = fs::temp_directory_path() / ("luxtrace_metrics_sobol_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path out = dir / "pf.h5";
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "validation" / "point_floor_metrics.toml";
+    const auto run = test_support::run_luxtrace("run " + scene.string() + " --output " + out.string() +
+                                                " --threads 2 --quiet --sampler sobol --photons 2M");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const ResultReader r(out);
+    const std::string ga = "/detectors/floor_E/task_areas/side";
+    const Reference ref = point_source_reference(6, 10, 2, 5);
+    const double sigma = r.attr_f64(ga, "E_avg_sigma_lx");
+    const double z = (r.attr_f64(ga, "E_avg_lx") - ref.avg) / sigma;
+    std::cout << "[metrics] sobol task area: Eavg " << r.attr_f64(ga, "E_avg_lx") << " +- " << sigma << " (ref "
+              << ref.avg << ", z " << z << ")\n";
+    EXPECT_GT(sigma, 0.0);
+    EXPECT_LT(std::abs(z), 5.0);
+    fs::remove_all(dir);
+}
+
 TEST(IlluminanceMetricsEndToEnd, BadTaskAreaExitsWithTwoAndWritesNothing) {
     const fs::path dir = fs::temp_directory_path() / ("luxtrace_metrics_bad_" + std::to_string(::getpid()));
     fs::create_directories(dir);

@@ -217,6 +217,12 @@ TEST_F(EveryKey, Detectors) {
     EXPECT_EQ(a.size_v, 0.8);
     EXPECT_EQ(a.nx, 12);
     EXPECT_EQ(a.ny, 8);
+    ASSERT_EQ(a.task_areas.size(), 1u);
+    EXPECT_EQ(a.task_areas[0].name, "work");
+    EXPECT_EQ(a.task_areas[0].i0, 2);
+    EXPECT_EQ(a.task_areas[0].i1, 10);
+    EXPECT_EQ(a.task_areas[0].j0, 1);
+    EXPECT_EQ(a.task_areas[0].j1, 5);
 
     const Detector& b = s().detectors[1];
     EXPECT_EQ(b.name, "wall_view");
@@ -785,6 +791,43 @@ TEST_F(Loader, BadCylindricalDetectors) {
                {"key 'horizontal'", "same grid", "'cells' differs"});
     expect_bad(cyl + "horizontal = \"h\"\n" + other + "normal = [0, 0, -1]\n", "horizontal", {"'normal' differs"});
     expect_bad(cyl + "horizontal = \"c\"\n", "horizontal", {"detector 'c' is cylindrical"});
+}
+
+TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
+    // Both TOML spellings: a [[detector.task_area]] table and an inline array.
+    const Scene s = load(kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\nname = \"left\"\ncells = [0, 2, 0, 3]\n" +
+                         "[[detector]]\nname = \"d2\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n"
+                         "task_area = [{ name = \"a\", cells = [3, 4, 2, 3] }, { name = \"b\", cells = [0, 4, 0, 3] }]\n");
+    ASSERT_EQ(s.detectors.size(), 2u);
+    ASSERT_EQ(s.detectors[0].task_areas.size(), 1u);
+    EXPECT_EQ(s.detectors[0].task_areas[0].name, "left");
+    EXPECT_EQ(s.detectors[0].task_areas[0].i1, 2);
+    EXPECT_EQ(s.detectors[0].task_areas[0].j1, 3);
+    ASSERT_EQ(s.detectors[1].task_areas.size(), 2u);
+    EXPECT_EQ(s.detectors[1].task_areas[0].i0, 3);
+    EXPECT_EQ(s.detectors[1].task_areas[1].name, "b");
+}
+
+TEST_F(Loader, BadTaskAreasAreRefused) {
+    const std::string head = kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\n";  // a 4 x 3 grid
+    expect_bad(head + "name = \"t\"\ncells = [0, 5, 0, 3]\n", "cells = [0, 5",
+               {"[[detector]] #1 'desk' task_area #1 't'", "key 'cells'", "[0, 5, 0, 3] is empty or outside the 4 x 3 cells"});
+    expect_bad(head + "name = \"t\"\ncells = [2, 2, 0, 3]\n", "cells = [2", {"key 'cells'", "is empty or outside"});
+    expect_bad(head + "name = \"t\"\ncells = [0, 2, 1, 0]\n", "cells = [0, 2", {"key 'cells'", "is empty or outside"});
+    expect_bad(head + "name = \"t\"\ncells = [-1, 2, 0, 3]\n", "cells = [-1", {"key 'cells'", "none negative"});
+    expect_bad(head + "name = \"t\"\ncells = [0.5, 2, 0, 3]\n", "cells = [0.5", {"key 'cells'", "whole numbers"});
+    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0]\n", "cells = [0, 2, 0]", {"key 'cells'", "array of 4 numbers"});
+    expect_bad(head + "name = \"t\"\n", "", {"task_area #1 't'", "needs 'cells' = [i0, i1, j0, j1]"});
+    expect_bad(head + "cells = [0, 2, 0, 3]\n", "", {"task_area #1", "needs a 'name'"});
+    expect_bad(head + "name = \"a/b\"\ncells = [0, 2, 0, 3]\n", "name = \"a/b", {"key 'name'", "may not contain"});
+    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0, 3]\nwidth = 2\n", "width", {"task_area #1 't'", "unknown key 'width'"});
+    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0, 3]\n[[detector.task_area]]\nname = \"t\"\ncells = [0, 1, 0, 1]\n",
+               "name = \"t\"\ncells = [0, 1", {"task_area #2 't'", "task area 't' is defined twice"});
+    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = 3\n", "task_area", {"key 'task_area'", "expected an array"});
+    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = [1]\n", "task_area", {"key 'task_area'", "expected [[detector.task_area]]"});
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"v\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
+               "size = [1, 1]\ntask_area = [{ name = \"t\", cells = [0, 1, 0, 1] }]\n", "task_area",
+               {"key 'task_area'", "illuminance detectors", "no uniformity"});
 }
 
 }  // namespace

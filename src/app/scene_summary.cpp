@@ -71,6 +71,10 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
             out << " cells of " << d.cell_area_m2() << " m^2";
         }
         out << ", units " << d.units() << '\n';
+        for (const TaskArea& a : d.task_areas)
+            out << "    task area " << a.name << ": cells [" << a.i0 << ":" << a.i1 << "," << a.j0 << ":" << a.j1
+                << "], " << (a.i1 - a.i0) * (a.j1 - a.j0) << " cells, "
+                << (a.i1 - a.i0) * (a.j1 - a.j0) * d.cell_area_m2() << " m^2\n";
     }
     out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
         << ", " << s.run.targets.size() << " target(s)\n";

@@ -287,6 +287,37 @@ void write_cylinders(hid_t g, const Scene& scene, std::size_t di, const std::vec
     attr(g, "modelling_ratio_max", m.max);
 }
 
+// Eavg, Emin, Emax, U0 of a grid or task area (illuminance_metrics.hpp), initial and
+// maintained (times the lights' flux-weighted maintenance factor).
+void write_metrics(hid_t g, const IlluminanceMetrics& initial, double mf) {
+    attr(g, "metrics_cells", initial.cells);
+    const IlluminanceMetrics maint = maintained(initial, mf);
+    using Named = std::pair<std::string, const IlluminanceMetrics&>;
+    for (const auto& [suffix, m] : {Named{"", initial}, Named{"_maintained", maint}}) {
+        attr(g, "E_avg" + suffix + "_lx", m.avg_lx);
+        attr(g, "E_avg" + suffix + "_sigma_lx", m.avg_sigma_lx);
+        attr(g, "E_min" + suffix + "_lx", m.min_lx);
+        attr(g, "E_min" + suffix + "_sigma_lx", m.min_sigma_lx);
+        attr(g, "E_min" + suffix + "_bias_lx", m.min_bias_lx);
+        attr(g, "E_max" + suffix + "_lx", m.max_lx);
+        attr(g, "E_max" + suffix + "_sigma_lx", m.max_sigma_lx);
+        attr(g, "E_max" + suffix + "_bias_lx", m.max_bias_lx);
+    }
+    attr(g, "E_min_cell", std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.min_i),
+                                                     static_cast<std::uint64_t>(initial.min_j)});
+    attr(g, "E_max_cell", std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.max_i),
+                                                     static_cast<std::uint64_t>(initial.max_j)});
+    attr(g, "E_min_competitors", initial.min_competitors);
+    attr(g, "E_max_competitors", initial.max_competitors);
+    attr(g, "U0", initial.u0);
+    attr(g, "U0_sigma", initial.u0_sigma);
+    attr(g, "U0_bias", initial.u0_bias);
+    attr(g, "E_min_over_max", initial.min_over_max);
+    attr(g, "E_min_over_max_sigma", initial.min_over_max_sigma);
+    attr(g, "E_min_over_max_bias", initial.min_over_max_bias);
+    attr(g, "U0_unreliable", std::uint64_t{initial.unreliable ? 1u : 0u});
+}
+
 void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
                      const std::vector<DetectorEstimate>& est) {
     H5Id dets(group(file, "detectors"), H5Gclose, "group /detectors");
@@ -334,6 +365,22 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
             }
             dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
             attr(g, "replicate_total", rt);
+        }
+        if (!e.metrics.empty()) {
+            const double mf = scene.lights.maintenance_factor();
+            write_metrics(g, e.metrics.front(), mf);
+            if (e.metrics.size() > 1) {
+                H5Id areas(group(g, "task_areas"), H5Gclose, "group /detectors/" + d.name + "/task_areas");
+                for (std::size_t k = 1; k < e.metrics.size(); ++k) {
+                    const IlluminanceMetrics& m = e.metrics[k];
+                    H5Id a(group(areas, m.area), H5Gclose, "group task_areas/" + m.area);
+                    attr(a, "cell_range", std::vector<std::uint64_t>{static_cast<std::uint64_t>(m.i0),
+                                                                     static_cast<std::uint64_t>(m.i1),
+                                                                     static_cast<std::uint64_t>(m.j0),
+                                                                     static_cast<std::uint64_t>(m.j1)});
+                    write_metrics(a, m, mf);
+                }
+            }
         }
         if (d.type == DetectorType::luminance) {
             attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});

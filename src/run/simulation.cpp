@@ -383,6 +383,40 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     return summary;
 }
 
+namespace {
+
+// Eavg, Emin, Emax and U0 stored on an illuminance detector or a task area (SPEC §4).
+void print_metrics(const ResultReader& r, const std::string& g, const std::string& label, std::ostream& out) {
+    auto f = [&](const char* name) { return r.attr_f64(g, name); };
+    auto cell = [&](const char* name) {
+        const std::vector<double> c = r.f64_attr_array(g, name);
+        return c.size() == 2 ? std::to_string(static_cast<long>(c[0])) + "," + std::to_string(static_cast<long>(c[1]))
+                             : std::string("?");
+    };
+    out << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(13) << label << std::right
+        << "Eavg " << f("E_avg_lx") << " +- " << f("E_avg_sigma_lx") << " lx, Emin " << f("E_min_lx") << " +- "
+        << f("E_min_sigma_lx") << " lx (cell " << cell("E_min_cell") << std::defaultfloat << std::setprecision(3)
+        << "; ";
+    if (f("E_min_bias_lx") < 0.0)
+        out << "biased low by about " << -f("E_min_bias_lx") << " lx: " << r.attr_u64(g, "E_min_competitors")
+            << " cells within 3 sigma)";
+    else out << "no other cell within 3 sigma)";
+    out << std::fixed << std::setprecision(2) << ", Emax " << f("E_max_lx") << " +- " << f("E_max_sigma_lx")
+        << " lx (cell " << cell("E_max_cell") << ")\n";
+    out << std::setprecision(3) << "  " << std::setw(13) << "" << "U0 = Emin/Eavg " << f("U0") << " +- "
+        << f("U0_sigma") << ", Emin/Emax " << f("E_min_over_max") << " +- " << f("E_min_over_max_sigma");
+    if (r.attr_u64(g, "U0_unreliable") != 0)
+        out << "  WARNING: Emin too noisy or biased (error or bias above 2 % of Emin, or a cell without photons): "
+               "U0 not meaningful; run longer or use coarser cells";
+    out << '\n';
+    if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0)
+        out << std::setprecision(2) << "  " << std::setw(13) << "" << "maintained Eavg " << f("E_avg_maintained_lx")
+            << " +- " << f("E_avg_maintained_sigma_lx") << " lx, Emin " << f("E_min_maintained_lx") << " +- "
+            << f("E_min_maintained_sigma_lx") << " lx, Emax " << f("E_max_maintained_lx") << " lx\n";
+}
+
+}  // namespace
+
 void print_result_summary(const ResultReader& r, std::ostream& out) {
     const auto flags = out.flags();
     const std::uint64_t photons = r.attr_u64("/", "photons");
@@ -458,6 +492,19 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
                 << std::defaultfloat << std::setprecision(3) << mf
                 << (r.attr_u64("/", "maintenance_factor_uniform") ? "" : ", flux-weighted over lights that differ")
                 << ")\n" << std::fixed << std::setprecision(2);
+        }
+        if (r.has_attr(g, "U0")) {
+            print_metrics(r, g, "whole grid", out);
+            for (const std::string& area : r.children(g + "/task_areas")) {
+                const std::string ga = g + "/task_areas/" + area;
+                std::vector<long> c;
+                for (double x : r.f64_attr_array(ga, "cell_range")) c.push_back(static_cast<long>(x));
+                if (c.size() != 4) c.assign(4, 0);
+                out << "  task area '" << area << "' cells [" << c[0] << ":" << c[1] << "," << c[2] << ":" << c[3]
+                    << "], " << r.attr_u64(ga, "metrics_cells") << " cells\n";
+                print_metrics(r, ga, "", out);
+            }
+            out << std::fixed << std::setprecision(2);
         }
     }
     if (r.has("/history/target_value")) {

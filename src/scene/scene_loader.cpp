@@ -492,6 +492,41 @@ struct Loader {
         return out;
     }
 
+    // [[detector.task_area]] (or task_area = [{...}]): name, cells = [i0, i1, j0, j1],
+    // half-open and 0-based like a run target's [i0:i1,j0:j1].
+    void parse_task_areas(TableReader& r, const toml::array& areas, Detector& d) {
+        if (d.type != DetectorType::illuminance)
+            r.fail("task_area", "task areas belong to illuminance detectors (a luminance grid has no uniformity U0)");
+        for (std::size_t k = 0; k < areas.size(); ++k) {
+            const toml::table* t = areas[k].as_table();
+            if (t == nullptr)
+                r.fail("task_area", "expected [[detector.task_area]] tables { name, cells = [i0, i1, j0, j1] }");
+            std::string context = r.context() + " task_area #" + std::to_string(k + 1);
+            if (const auto n = (*t)["name"].value<std::string>()) context += " '" + *n + "'";
+            TableReader ar(*t, fname, context);
+            const auto name = ar.string("name");
+            if (!name || name->empty()) ar.fail_entry("needs a 'name'");
+            if (name->find_first_of("/[]:. ") != std::string::npos)
+                ar.fail("name", "may not contain '/', '[', ']', ':', '.' or spaces");
+            for (const TaskArea& other : d.task_areas)
+                if (other.name == *name) ar.fail("name", "task area '" + *name + "' is defined twice in this detector");
+            const auto cells = ar.numbers("cells", 4);
+            if (!cells) ar.fail_entry("needs 'cells' = [i0, i1, j0, j1] (cells i0 <= i < i1, j0 <= j < j1, from 0)");
+            for (double c : *cells)
+                if (c != std::floor(c) || c < 0)
+                    ar.fail("cells", "expected four whole numbers [i0, i1, j0, j1], none negative");
+            const std::vector<double>& c = *cells;
+            if (!(c[0] < c[1] && c[1] <= d.nx && c[2] < c[3] && c[3] <= d.ny))
+                ar.fail("cells", "[" + fmt_count(c[0]) + ", " + fmt_count(c[1]) + ", " + fmt_count(c[2]) + ", " +
+                                     fmt_count(c[3]) + "] is empty or outside the " + std::to_string(d.nx) + " x " +
+                                     std::to_string(d.ny) + " cells (need i0 < i1 <= nx, j0 < j1 <= ny)");
+            const TaskArea a{*name, static_cast<int>(c[0]), static_cast<int>(c[1]), static_cast<int>(c[2]),
+                             static_cast<int>(c[3])};
+            ar.finish();
+            d.task_areas.push_back(a);
+        }
+    }
+
     void parse_detector(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("detector", i, t));
         Detector d;
@@ -534,6 +569,7 @@ struct Loader {
             d.nx = static_cast<int>(nx);
             d.ny = static_cast<int>(ny);
         }
+        if (const toml::array* areas = r.array("task_area")) parse_task_areas(r, *areas, d);
         if (d.type == DetectorType::luminance) {
             d.view_direction = unit(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
             d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);

@@ -95,6 +95,7 @@ GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64
 DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const TallyLayout& L,
                                    std::span<const std::uint64_t> data, double e0,
                                    std::uint64_t photons, CellRange r) {
+    const bool whole_grid = r.i1 == 0;
     if (r.i1 == 0) r = {0, det.nx, 0, det.ny};
     const std::size_t nb = L.bands();
     const double per_count = e0 * det.value_per_lm();
@@ -166,6 +167,41 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
     out.mean_sigma_rel = R == 0 ? rel(tn, tq) : replicate_rel([&](std::size_t rep) {
         return static_cast<double>(data[L.detector_replicate_total_n(di, rep)]);
     });
+    if (whole_grid && det.type == DetectorType::illuminance) {
+        // Band-summed cells and their absolute errors; the whole grid's Eavg error is the
+        // exact one above, a task area's the replicate spread of its sum (sobol) or the
+        // cells' errors combined as independent (random).
+        std::vector<double> v(det.cells()), s(det.cells());
+        for (int c = 0; c < det.cells(); ++c) {
+            double n = 0.0, q = 0.0;
+            for (std::size_t b = 0; b < nb; ++b) {
+                n += static_cast<double>(data[L.detector_n(di, c, b)]);
+                q += static_cast<double>(data[L.detector_q(di, c, b)]);
+            }
+            v[c] = n * per_count;
+            s[c] = n > 0.0 ? cell_rel(c, 0, nb, n, q) * v[c] : nan;
+        }
+        out.metrics.push_back(illuminance_metrics(v, s, det.nx, TaskArea{"", 0, det.nx, 0, det.ny},
+                                                  out.mean_value * out.mean_sigma_rel));
+        for (const TaskArea& a : det.task_areas) {
+            std::optional<double> avg_sigma;
+            if (R > 0) {
+                const double k = (a.i1 - a.i0) * (a.j1 - a.j0);
+                double area_sum = 0.0;
+                for (int j = a.j0; j < a.j1; ++j)
+                    for (int i = a.i0; i < a.i1; ++i) area_sum += v[j * det.nx + i];
+                avg_sigma = area_sum / k * replicate_rel([&](std::size_t rep) {
+                    double sum = 0.0;
+                    for (int j = a.j0; j < a.j1; ++j)
+                        for (int i = a.i0; i < a.i1; ++i)
+                            for (std::size_t b = 0; b < nb; ++b)
+                                sum += static_cast<double>(data[L.detector_replicate_n(di, rep, j * det.nx + i, b)]);
+                    return sum;
+                });
+            }
+            out.metrics.push_back(illuminance_metrics(v, s, det.nx, a, avg_sigma));
+        }
+    }
     return out;
 }
 

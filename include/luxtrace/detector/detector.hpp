@@ -16,6 +16,13 @@ enum class DetectorType { illuminance, luminance, cylindrical, semicylindrical }
 // The name a scene file and a result file give the type.
 const char* detector_type_name(DetectorType type);
 
+// A named rectangle of cells of an illuminance detector (a task area of EN 12464-1),
+// [i0, i1) x [j0, j1), 0-based, i along nx and j along ny like a run target's range.
+struct TaskArea {
+    std::string name;
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
 struct Detector {
     std::string name;
     DetectorType type = DetectorType::illuminance;
@@ -37,6 +44,7 @@ struct Detector {
     std::string horizontal;               // name of that detector, or empty
     int horizontal_index = -1;            // its index in Scene::detectors, or -1
     CylinderShape cylinder;               // derived: the cylinder in the grid's frame (u, v, normal)
+    std::vector<TaskArea> task_areas;  // illuminance only: areas with their own metrics
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();

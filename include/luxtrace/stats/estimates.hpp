@@ -1,6 +1,7 @@
 #pragma once
 // Error estimates of SPEC §3 from reduced tallies. Pure functions of the counts: rank 0
 // calls them after every reduction and the result writer stores what they return.
+#include "luxtrace/stats/illuminance_metrics.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
@@ -76,6 +77,9 @@ struct DetectorEstimate {
     // `dof` = R - 1 degrees of freedom (0 for eq. 8).
     bool replicate_spread = false;
     int dof = 0;
+    // Illuminance detectors, whole-grid estimates only: Eavg, Emin, Emax, U0 of the whole
+    // grid (first, area "") and of each of its task areas (illuminance_metrics.hpp).
+    std::vector<IlluminanceMetrics> metrics;
 };
 
 // A mean from R independent randomisations of a QMC estimator (replicates, issue 11;

@@ -58,11 +58,22 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
         out << '\n';
     }
-    out << "detectors  " << s.detectors.size() << '\n';
+    out << "detectors  " << s.detectors.size() - s.observers.size() << '\n';
     for (const Detector& d : s.detectors)
-        out << "  " << std::left << std::setw(16) << d.name << std::right << " "
+        if (d.observer < 0)
+            out << "  " << std::left << std::setw(16) << d.name << std::right << " "
             << (d.type == DetectorType::illuminance ? "illuminance" : "luminance") << "  " << d.nx << " x "
             << d.ny << " cells of " << d.cell_area_m2() << " m^2, units " << d.units() << '\n';
+    if (!s.observers.empty()) out << "observers  " << s.observers.size() << " (UGR, CIE 117)\n";
+    for (const Observer& o : s.observers) {
+        out << "  " << std::left << std::setw(16) << o.name << std::right << " eye (" << o.position.x << ", "
+            << o.position.y << ", " << o.position.z << "), looking (" << o.view_direction.x << ", "
+            << o.view_direction.y << ", " << o.view_direction.z << "), " << o.sources.size()
+            << " luminaire(s) in view, eye detector " << o.eye_detector_size_m << " m\n";
+        for (const GlareSource& g : o.sources)
+            out << "    " << g.label << ": L " << g.luminance_cd_m2 << " cd/m^2, omega " << g.solid_angle_sr
+                << " sr, p " << g.position_index << ", L^2 omega / p^2 " << g.term() << '\n';
+    }
     out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
         << ", " << s.run.targets.size() << " target(s)\n";
     out << "warnings   " << warnings.size() << '\n';

@@ -23,6 +23,12 @@ struct Detector {
     double half_angle_deg = 5.0;
     double cos_half_angle = 0.0;
     double plane_tolerance_m = 1e-3;  // how far from the plane a scattering point may lie
+    // Illuminance: count only photons that have scattered at least once (not the direct
+    // flight from a light), as an observer's eye detector does for UGR's background.
+    bool indirect_only = false;
+    // >= 0: the eye detector of Scene::observers[observer], stored with the observer in
+    // the result (/observers/NAME), not among the user's detectors.
+    int observer = -1;
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();

@@ -48,8 +48,8 @@ TEST(GuthPositionIndex, FitsTheTableAboveTheLineOfSight) {
 }
 
 // Over the table's field (H/R <= 1.9, T/R <= 3), p grows as a source moves away from the
-// line of sight in any plane, and a source above is worse placed (larger p) for comfort
-// than one beside at the same angle only beyond small angles: p(0, b) > p(90, b).
+// line of sight in any plane; and a source straight above the line of sight glares less
+// (larger p) than one level with the eye at the same angle: p(0, b) > p(90, b).
 TEST(GuthPositionIndex, GrowsAwayFromTheLineOfSight) {
     for (double alpha = 0.0; alpha <= 90.0; alpha += 10.0) {
         // The edge of the table in the plane alpha: H = s cos(alpha), T = s sin(alpha).
@@ -62,9 +62,10 @@ TEST(GuthPositionIndex, GrowsAwayFromTheLineOfSight) {
             EXPECT_GT(p, last) << "alpha " << alpha << " beta " << beta;
             last = p;
         }
-        EXPECT_LT(last, 40.0) << "alpha " << alpha;  // the table's largest entries are in the 10s
+        EXPECT_LT(last, 20.0) << "alpha " << alpha;  // the table's entries stay below 20
     }
-    for (double beta = 10.0; beta <= 60.0; beta += 10.0) EXPECT_GT(guth_position_index(0.0, beta), guth_position_index(90.0, beta));
+    for (double beta = 10.0; beta <= 60.0; beta += 10.0)
+        EXPECT_GT(guth_position_index(0.0, beta), guth_position_index(90.0, beta)) << beta;
 }
 
 TEST(Ugr, FormulaAndError) {
@@ -272,7 +273,8 @@ TEST_F(GlareRun, TwoPanelsByHand) {
     EXPECT_NEAR(r.attr_f64(g, "ugr"), ugr, 1e-3);
     EXPECT_NEAR(r.attr_f64(g, "ugr_sigma"), 8.0 / std::log(10.0) * rel, 1e-12);
     // E_ind is eq. (8) on the eye detector's n and q: recompute it from the stored tallies.
-    const double n = static_cast<double>(r.u64(g + "/eye_count").at(0)), q = static_cast<double>(r.u64(g + "/eye_sumsq").at(0));
+    const double n = static_cast<double>(r.u64(g + "/eye_count").at(0));
+    const double q = static_cast<double>(r.u64(g + "/eye_sumsq").at(0));
     const double photons = static_cast<double>(r.attr_u64("/", "photons"));
     EXPECT_NEAR(e_ind, r.attr_f64("/", "flux_per_photon_lm") * n / 0.04, 1e-9 * e_ind);
     EXPECT_NEAR(rel, std::sqrt(q / (n * n) - 1.0 / photons), 1e-12);

@@ -113,7 +113,8 @@ std::vector<GlareSource> glare_sources(Observer& o, const LightSet& lights) {
         if (!luminous && l.type != LightType::area) {
             // Lights that cannot be placed in the field are left out of the sum; say so
             // only for those in front of the eye, the others could not count anyway.
-            if (l.type != LightType::directional && glm::dot(l.position - o.position, o.view_direction) <= 0.0) continue;
+            const bool behind = glm::dot(l.position - o.position, o.view_direction) <= 0.0;
+            if (l.type != LightType::directional && behind) continue;
             o.notes.push_back(who + l.label + " is left out of UGR: " + why);
             continue;
         }

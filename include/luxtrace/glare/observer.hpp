@@ -28,7 +28,9 @@ struct GlareSource {
     double beta_deg = 0.0;     // Guth: angle between the line of sight and the direction of the source
     double position_index = 1.0;      // p (ugr.hpp)
     // L^2 omega / p^2, the luminaire's share of the UGR sum (cd^2 m^-4 sr).
-    double term() const { return luminance_cd_m2 * luminance_cd_m2 * solid_angle_sr / (position_index * position_index); }
+    double term() const {
+        return luminance_cd_m2 * luminance_cd_m2 * solid_angle_sr / (position_index * position_index);
+    }
 };
 
 struct Observer {

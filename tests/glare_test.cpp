@@ -197,6 +197,22 @@ TEST_F(ObserverKeys, LightsWithoutLuminousAreaAreNamed) {
     EXPECT_EQ(all.find("light 4"), std::string::npos) << all;  // behind the eye: it could not count
 }
 
+// UGR does not test what the eye sees; `luxtrace check` says when a surface hides a
+// luminaire it counts, and only then.
+TEST_F(ObserverKeys, CheckNamesHiddenLuminaires) {
+    const std::string observer = "[[observer]]\nposition = [0.5, 2, 1.2]\nview_direction = [1, 0, 0]\n";
+    const auto open = run_luxtrace("check " + write(observer).string());
+    ASSERT_EQ(open.code, 0) << open.out;
+    EXPECT_EQ(open.out.find("hidden"), std::string::npos) << open.out;
+    const auto hidden = run_luxtrace("check " + write(observer + "[[shape]]\ntype = \"rectangle\"\ncenter = [2, 2, 1.5]\n"
+                                                                 "normal = [-1, 0, 0]\nsize = [4, 3]\nup = [0, 0, 1]\n"
+                                                                 "material = \"g\"\n").string());
+    ASSERT_EQ(hidden.code, 0) << hidden.out;
+    EXPECT_NE(hidden.out.find("observer 'observer_1': light 1 (point) is hidden from the eye by a surface"),
+              std::string::npos)
+        << hidden.out;
+}
+
 // ---- whole runs ---------------------------------------------------------------------
 
 fs::path scene(const std::string& name) { return fs::path(LUXTRACE_TEST_DATA_DIR) / "glare" / (name + ".toml"); }

@@ -302,6 +302,28 @@ TEST_F(GlareRun, TwoPanelsByHand) {
     EXPECT_NE(info.out.find("UGR "), std::string::npos) << info.out;
 }
 
+// `on = "observer:NAME"` stops the run when E_ind's relative error (hence UGR's, 3.47
+// times it) reaches the goal.
+TEST_F(GlareRun, ObserverTargetStopsTheRun) {
+    std::ifstream in(scene("office"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text += "report_every_photons = 250000\n[[run.target]]\non = \"observer:desk\"\nrelative_error = 0.06\n";
+    fs::copy_file(scene("office").parent_path() / "panel_600.ies", dir_ / "panel_600.ies");
+    std::ofstream(dir_ / "office.toml") << text;
+    const fs::path out = dir_ / "office.h5";
+    const auto run = run_luxtrace("run " + (dir_ / "office.toml").string() + " --output " + out.string() +
+                                  " --quiet --threads 2 --photons 20M --seed 13");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const ResultReader r(out);
+    const std::string reason = r.attr_str("/", "stop_reason");
+    EXPECT_NE(reason.find("observer:desk"), std::string::npos) << reason;
+    EXPECT_LT(r.attr_u64("/", "photons"), 20'000'000u);
+    const double rel = r.attr_f64("/observers/desk", "indirect_vertical_illuminance_sigma_rel");
+    EXPECT_LE(rel, 0.06);
+    EXPECT_GT(rel, 0.03);  // it stopped at the first reduction that met the goal, not much later
+    EXPECT_NEAR(r.attr_f64("/observers/desk", "ugr_sigma"), 8.0 / std::log(10.0) * rel, 1e-12);
+}
+
 // In an integrating sphere lit uniformly the walls share one luminance, rho F / ((1 - rho)
 // pi S), so any plane inside receives E_ind = rho F / ((1 - rho) S) from them; the direct
 // light at the eye, F cos / (4 pi d^2), 3.4 times as much here, must not be counted (the

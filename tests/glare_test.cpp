@@ -204,9 +204,9 @@ TEST_F(ObserverKeys, CheckNamesHiddenLuminaires) {
     const auto open = run_luxtrace("check " + write(observer).string());
     ASSERT_EQ(open.code, 0) << open.out;
     EXPECT_EQ(open.out.find("hidden"), std::string::npos) << open.out;
-    const auto hidden = run_luxtrace("check " + write(observer + "[[shape]]\ntype = \"rectangle\"\ncenter = [2, 2, 1.5]\n"
-                                                                 "normal = [-1, 0, 0]\nsize = [4, 3]\nup = [0, 0, 1]\n"
-                                                                 "material = \"g\"\n").string());
+    const std::string partition = "[[shape]]\ntype = \"rectangle\"\ncenter = [2, 2, 1.5]\nnormal = [-1, 0, 0]\n"
+                                  "size = [4, 3]\nup = [0, 0, 1]\nmaterial = \"g\"\n";
+    const auto hidden = run_luxtrace("check " + write(observer + partition).string());
     ASSERT_EQ(hidden.code, 0) << hidden.out;
     EXPECT_NE(hidden.out.find("observer 'observer_1': light 1 (point) is hidden from the eye by a surface"),
               std::string::npos)
@@ -322,6 +322,28 @@ TEST_F(GlareRun, ObserverTargetStopsTheRun) {
     EXPECT_LE(rel, 0.06);
     EXPECT_GT(rel, 0.03);  // it stopped at the first reduction that met the goal, not much later
     EXPECT_NEAR(r.attr_f64("/observers/desk", "ugr_sigma"), 8.0 / std::log(10.0) * rel, 1e-12);
+}
+
+// An observer only watches: the same run without it has bit-identical surface tallies
+// (photon k's random numbers do not depend on the detectors).
+TEST_F(GlareRun, AnObserverChangesNothingElse) {
+    std::ifstream in(scene("office"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t from = text.find("[[observer]]"), to = text.find("[run]");
+    ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to);
+    fs::copy_file(scene("office").parent_path() / "panel_600.ies", dir_ / "panel_600.ies");
+    std::ofstream(dir_ / "plain.toml") << text.substr(0, from) + text.substr(to);
+    for (const std::string& s : {scene("office").string(), (dir_ / "plain.toml").string()}) {
+        const fs::path out = dir_ / (fs::path(s).stem().string() + ".h5");
+        const auto run =
+            run_luxtrace("run " + s + " --output " + out.string() + " --quiet --threads 2 --photons 300000 --seed 4");
+        ASSERT_EQ(run.code, 0) << run.out;
+    }
+    const ResultReader with(dir_ / "office.h5"), without(dir_ / "plain.h5");
+    EXPECT_TRUE(with.has("/observers/desk"));
+    EXPECT_FALSE(without.has("/observers"));
+    for (const char* d : {"/global/count_odd", "/global/count_even", "/global/direct_odd", "/global/direct_even"})
+        EXPECT_EQ(with.u64(d), without.u64(d)) << d;
 }
 
 // In an integrating sphere lit uniformly the walls share one luminance, rho F / ((1 - rho)

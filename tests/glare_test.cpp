@@ -265,6 +265,7 @@ TEST_F(GlareRun, TwoPanelsByHand) {
     const Vec3 eye(0.5, 2, 1.2);
     const HandTerms t[2] = {hand_terms(eye, Vec3(3, 1, 2.9)), hand_terms(eye, Vec3(5, 3, 2.9))};
     ASSERT_EQ(r.attr_u64(g, "luminaires_in_view"), 2u);
+    EXPECT_FALSE(r.has_attr(g, "ugr_maintained"));  // maintenance factor 1
     const std::vector<double> L = r.f64(g + "/luminance_cd_m2"), omega = r.f64(g + "/solid_angle_sr"),
                               p = r.f64(g + "/position_index"), alpha = r.f64(g + "/alpha_deg"),
                               beta = r.f64(g + "/beta_deg");
@@ -308,6 +309,7 @@ TEST_F(GlareRun, ObserverTargetStopsTheRun) {
     std::ifstream in(scene("office"));
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text += "report_every_photons = 250000\n[[run.target]]\non = \"observer:desk\"\nrelative_error = 0.06\n";
+    text.replace(text.find("[scene]\n"), 8, "[scene]\nmaintenance_factor = 0.8\n");  // and a maintained UGR
     fs::copy_file(scene("office").parent_path() / "panel_600.ies", dir_ / "panel_600.ies");
     std::ofstream(dir_ / "office.toml") << text;
     const fs::path out = dir_ / "office.h5";
@@ -322,6 +324,9 @@ TEST_F(GlareRun, ObserverTargetStopsTheRun) {
     EXPECT_LE(rel, 0.06);
     EXPECT_GT(rel, 0.03);  // it stopped at the first reduction that met the goal, not much later
     EXPECT_NEAR(r.attr_f64("/observers/desk", "ugr_sigma"), 8.0 / std::log(10.0) * rel, 1e-12);
+    // L^2 / Lb scales as the maintenance factor.
+    EXPECT_NEAR(r.attr_f64("/observers/desk", "ugr_maintained"),
+                r.attr_f64("/observers/desk", "ugr") + 8.0 * std::log10(0.8), 1e-12);
 }
 
 // An observer only watches: the same run without it has bit-identical surface tallies

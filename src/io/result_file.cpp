@@ -310,6 +310,9 @@ void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const
         H5Id g(group(obs, o.name), H5Gclose, "group /observers/" + o.name);
         attr(g, "ugr", u.ugr);
         attr(g, "ugr_sigma", u.ugr_sigma);
+        // Maintained: L^2 / Lb scales as a maintenance factor that all lights share.
+        if (const double mf = scene.lights.maintenance_factor(); scene.lights.maintenance_factor_uniform() && mf < 1.0)
+            attr(g, "ugr_maintained", u.ugr + 8.0 * std::log10(mf));
         attr(g, "background_luminance_cd_m2", u.background_luminance_cd_m2);
         attr(g, "indirect_vertical_illuminance_lx", u.indirect_illuminance_lx);
         attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);

@@ -432,6 +432,10 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             << 100.0 * r.attr_f64(g, "indirect_vertical_illuminance_sigma_rel") << " %";
         if (std::isfinite(ugr) && !r.attr_u64(g, "in_cie117_range")) out << "; outside CIE 117's range 10-30";
         out << '\n';
+        if (r.has_attr(g, "ugr_maintained") && std::isfinite(ugr))
+            out << "  maintained   UGR " << std::setprecision(1) << r.attr_f64(g, "ugr_maintained") << " (x MF "
+                << std::defaultfloat << std::setprecision(3) << r.attr_f64("/", "maintenance_factor") << ")\n"
+                << std::fixed;
     }
     if (r.has("/history/target_value")) {
         std::vector<std::size_t> shape;

@@ -59,11 +59,12 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         out << '\n';
     }
     out << "detectors  " << s.detectors.size() - s.observers.size() << '\n';
-    for (const Detector& d : s.detectors)
-        if (d.observer < 0)
-            out << "  " << std::left << std::setw(16) << d.name << std::right << " "
+    for (const Detector& d : s.detectors) {
+        if (d.observer >= 0) continue;  // an observer's eye detector: listed with the observer
+        out << "  " << std::left << std::setw(16) << d.name << std::right << " "
             << (d.type == DetectorType::illuminance ? "illuminance" : "luminance") << "  " << d.nx << " x "
             << d.ny << " cells of " << d.cell_area_m2() << " m^2, units " << d.units() << '\n';
+    }
     if (!s.observers.empty()) out << "observers  " << s.observers.size() << " (UGR, CIE 117)\n";
     for (const Observer& o : s.observers) {
         out << "  " << std::left << std::setw(16) << o.name << std::right << " eye (" << o.position.x << ", "

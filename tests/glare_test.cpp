@@ -351,6 +351,22 @@ TEST_F(GlareRun, AnObserverChangesNothingElse) {
         EXPECT_EQ(with.u64(d), without.u64(d)) << d;
 }
 
+// Under --sampler sobol E_ind's error is the replicate spread (R - 1 degrees of freedom),
+// and UGR's follows it.
+TEST_F(GlareRun, SobolErrorsComeFromTheReplicates) {
+    const fs::path out = dir_ / "sobol.h5";
+    const auto run = run_luxtrace("run " + scene("office").string() + " --output " + out.string() +
+                                  " --quiet --threads 2 --photons 512K --sampler sobol --replicates 8 --seed 2");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const ResultReader r(out);
+    const std::string g = "/observers/desk";
+    EXPECT_EQ(r.attr_str(g, "error_estimator"), "replicate_spread");
+    EXPECT_EQ(r.attr_u64(g, "error_dof"), 7u);
+    const double rel = r.attr_f64(g, "indirect_vertical_illuminance_sigma_rel");
+    EXPECT_TRUE(rel > 0.0 && rel < 0.5) << rel;
+    EXPECT_NEAR(r.attr_f64(g, "ugr_sigma"), 8.0 / std::log(10.0) * rel, 1e-12);
+}
+
 // In an integrating sphere lit uniformly the walls share one luminance, rho F / ((1 - rho)
 // pi S), so any plane inside receives E_ind = rho F / ((1 - rho) S) from them; the direct
 // light at the eye, F cos / (4 pi d^2), 3.4 times as much here, must not be counted (the

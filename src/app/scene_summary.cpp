@@ -58,8 +58,9 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
         out << '\n';
     }
-    out << "detectors  " << s.detectors.size() << '\n';
+    out << "detectors  " << s.detectors.size() - s.observers.size() << '\n';
     for (const Detector& d : s.detectors) {
+        if (d.observer >= 0) continue;  // an observer's eye detector: listed with the observer
         out << "  " << std::left << std::setw(16) << d.name << std::right << " " << detector_type_name(d.type) << "  "
             << d.nx << " x " << d.ny;
         if (d.cylinders()) {
@@ -75,6 +76,16 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
             out << "    task area " << a.name << ": cells [" << a.i0 << ":" << a.i1 << "," << a.j0 << ":" << a.j1
                 << "], " << (a.i1 - a.i0) * (a.j1 - a.j0) << " cells, "
                 << (a.i1 - a.i0) * (a.j1 - a.j0) * d.cell_area_m2() << " m^2\n";
+    }
+    if (!s.observers.empty()) out << "observers  " << s.observers.size() << " (UGR, CIE 117)\n";
+    for (const Observer& o : s.observers) {
+        out << "  " << std::left << std::setw(16) << o.name << std::right << " eye (" << o.position.x << ", "
+            << o.position.y << ", " << o.position.z << "), looking (" << o.view_direction.x << ", "
+            << o.view_direction.y << ", " << o.view_direction.z << "), " << o.sources.size()
+            << " luminaire(s) in view, eye detector " << o.eye_detector_size_m << " m\n";
+        for (const GlareSource& g : o.sources)
+            out << "    " << g.label << ": L " << g.luminance_cd_m2 << " cd/m^2, omega " << g.solid_angle_sr
+                << " sr, p " << g.position_index << ", L^2 omega / p^2 " << g.term() << '\n';
     }
     out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
         << ", " << s.run.targets.size() << " target(s)\n";

@@ -1,6 +1,7 @@
 #include "luxtrace/io/result_file.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/glare/ugr.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -324,6 +325,7 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
     const std::size_t B = scene.bands.size();
     for (std::size_t di = 0; di < scene.detectors.size(); ++di) {
         const Detector& d = scene.detectors[di];
+        if (d.observer >= 0) continue;  // an eye detector: /observers/NAME
         const DetectorEstimate& e = est[di];
         H5Id g(group(dets, d.name), H5Gclose, "group /detectors/" + d.name);
         const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
@@ -387,6 +389,80 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
             attr(g, "half_angle_deg", d.half_angle_deg);
         }
         if (d.cylinders()) write_cylinders(g, scene, di, est);
+    }
+}
+
+// /observers/NAME: UGR (CIE 117) from the eye detector's indirect illuminance and the
+// luminaires' terms fixed at load (glare/observer.hpp), with the eye detector's tallies.
+void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+                     const std::vector<DetectorEstimate>& est) {
+    if (scene.observers.empty()) return;
+    H5Id obs(group(file, "observers"), H5Gclose, "group /observers");
+    const std::size_t B = scene.bands.size();
+    for (const Observer& o : scene.observers) {
+        const std::size_t di = o.eye_detector;
+        const Detector& d = scene.detectors[di];
+        const DetectorEstimate& e = est[di];
+        const UgrEstimate u = estimate_ugr(o.sources, e.mean_value, e.mean_sigma_rel);
+        H5Id g(group(obs, o.name), H5Gclose, "group /observers/" + o.name);
+        attr(g, "ugr", u.ugr);
+        attr(g, "ugr_sigma", u.ugr_sigma);
+        // Maintained: L^2 / Lb scales as a maintenance factor that all lights share.
+        if (const double mf = scene.lights.maintenance_factor(); scene.lights.maintenance_factor_uniform() && mf < 1.0)
+            attr(g, "ugr_maintained", u.ugr + 8.0 * std::log10(mf));
+        attr(g, "background_luminance_cd_m2", u.background_luminance_cd_m2);
+        attr(g, "indirect_vertical_illuminance_lx", u.indirect_illuminance_lx);
+        attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);
+        attr(g, "glare_sum", u.glare_sum);
+        attr(g, "position", std::vector<double>{o.position.x, o.position.y, o.position.z});
+        attr(g, "view_direction", std::vector<double>{o.view_direction.x, o.view_direction.y, o.view_direction.z});
+        attr(g, "eye_detector_size_m", o.eye_detector_size_m);
+        attr(g, "eye_detector_normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
+        attr(g, "photons_received", e.photons_received);
+        attr(g, "error_estimator", e.replicate_spread ? "replicate_spread" : "independent_photons_eq8");
+        attr(g, "error_dof", static_cast<std::uint64_t>(e.dof));
+        attr(g, "luminaires_in_view", static_cast<std::uint64_t>(o.sources.size()));
+        attr(g, "position_index_formula", "CIE 117:1995 analytic form of Guth's table");
+        attr(g, "in_cie117_range", static_cast<std::uint64_t>(u.in_cie117_range() ? 1 : 0));
+        if (!o.notes.empty()) attr_strings(g, "notes", o.notes, false);
+        // The eye detector's n and q per band (one cell), as a detector's count / sumsq.
+        std::vector<std::uint64_t> n(B), q(B);
+        for (std::size_t b = 0; b < B; ++b) {
+            n[b] = data[L.detector_n(di, 0, b)];
+            q[b] = data[L.detector_q(di, 0, b)];
+        }
+        dataset(g, "eye_count", {B}, n.data());
+        dataset(g, "eye_sumsq", {B}, q.data());
+        // Per luminaire in view, in the order of the lights.
+        const std::size_t S = o.sources.size();
+        if (S == 0) continue;
+        std::vector<double> L_, omega, p, pos, alpha, beta, inten, area, dist;
+        std::vector<std::uint64_t> light;
+        std::vector<std::string> labels;
+        for (const GlareSource& s : o.sources) {
+            L_.push_back(s.luminance_cd_m2);
+            omega.push_back(s.solid_angle_sr);
+            p.push_back(s.position_index);
+            pos.insert(pos.end(), {s.position.x, s.position.y, s.position.z});
+            alpha.push_back(s.alpha_deg);
+            beta.push_back(s.beta_deg);
+            inten.push_back(s.intensity_cd);
+            area.push_back(s.projected_area_m2);
+            dist.push_back(s.distance_m);
+            light.push_back(s.light);
+            labels.push_back(s.label);
+        }
+        dataset(g, "luminance_cd_m2", {S}, L_.data());
+        dataset(g, "solid_angle_sr", {S}, omega.data());
+        dataset(g, "position_index", {S}, p.data());
+        dataset(g, "luminaire_position", {S, 3}, pos.data());
+        dataset(g, "alpha_deg", {S}, alpha.data());
+        dataset(g, "beta_deg", {S}, beta.data());
+        dataset(g, "intensity_cd", {S}, inten.data());
+        dataset(g, "projected_area_m2", {S}, area.data());
+        dataset(g, "distance_m", {S}, dist.data());
+        dataset(g, "light_index", {S}, light.data());
+        attr_strings(g, "luminaire_labels", labels, false);
     }
 }
 
@@ -481,6 +557,7 @@ void write_result(const fs::path& path, const Scene& scene, const TallyLayout& l
         attr(file, "tally_words", static_cast<std::uint64_t>(layout.size()));
         write_surface(file, scene, layout, tallies, info, global);
         write_detectors(file, scene, layout, tallies, detectors);
+        write_observers(file, scene, layout, tallies, detectors);
         write_history(file, history, info);
         if (checkpoint != nullptr) {
             H5Id ck(group(file, "checkpoint"), H5Gclose, "group /checkpoint");

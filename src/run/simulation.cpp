@@ -507,6 +507,25 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             out << std::fixed << std::setprecision(2);
         }
     }
+    for (const std::string& name : r.has("/observers") ? r.children("/observers") : std::vector<std::string>{}) {
+        const std::string g = "/observers/" + name;
+        const double ugr = r.attr_f64(g, "ugr");
+        out << "observer " << std::left << std::setw(14) << name << std::right << " UGR ";
+        if (std::isfinite(ugr))
+            out << std::setprecision(1) << ugr << " +- " << std::setprecision(2) << r.attr_f64(g, "ugr_sigma");
+        else
+            out << "undefined";
+        out << " (" << r.attr_u64(g, "luminaires_in_view") << " luminaire(s) in view), Lb " << std::setprecision(2)
+            << r.attr_f64(g, "background_luminance_cd_m2") << " cd/m^2 from E_ind "
+            << r.attr_f64(g, "indirect_vertical_illuminance_lx") << " lx +- "
+            << 100.0 * r.attr_f64(g, "indirect_vertical_illuminance_sigma_rel") << " %";
+        if (std::isfinite(ugr) && !r.attr_u64(g, "in_cie117_range")) out << "; outside CIE 117's range 10-30";
+        out << '\n';
+        if (r.has_attr(g, "ugr_maintained") && std::isfinite(ugr))
+            out << "  maintained   UGR " << std::setprecision(1) << r.attr_f64(g, "ugr_maintained") << " (x MF "
+                << std::defaultfloat << std::setprecision(3) << r.attr_f64("/", "maintenance_factor") << ")\n"
+                << std::fixed;
+    }
     if (r.has("/history/target_value")) {
         std::vector<std::size_t> shape;
         const std::vector<double> v = r.f64("/history/target_value", &shape);

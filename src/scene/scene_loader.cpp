@@ -641,6 +641,60 @@ struct Loader {
         d.horizontal_index = static_cast<int>(it - scene.detectors.begin());
     }
 
+    // [[observer]]: an eye and a line of sight for UGR (glare/observer.hpp), with its eye
+    // detector appended to the detectors (after the user's).
+    void parse_observer(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("observer", i, t));
+        Observer o;
+        o.name = r.string("name").value_or("observer_" + std::to_string(i + 1));
+        if (o.name.empty()) r.fail("name", "must not be empty");
+        if (o.name.find_first_of("/[]:. ") != std::string::npos)
+            r.fail("name", "may not contain '/', '[', ']', ':', '.' or spaces");
+        for (const Observer& other : scene.observers)
+            if (other.name == o.name) r.fail("name", "observer '" + o.name + "' is defined twice");
+        const auto pos = r.vec3("position");
+        if (!pos) r.fail_entry("needs 'position' (the eye)");
+        o.position = *pos;
+        const auto view = r.vec3("view_direction");
+        if (!view) r.fail_entry("needs 'view_direction' (the line of sight)");
+        o.view_direction = unit(r, "view_direction", *view);
+        // Guth's index is defined about a line of sight with a vertical beside it.
+        if (std::abs(o.view_direction.z) > std::cos(10.0 * kPi / 180.0))
+            r.fail("view_direction", "must lie more than 10 degrees from the vertical (CIE 117's line of sight is "
+                                     "about horizontal)");
+        // Side of the square eye detector: a head's width (0.2 m) is local on the scale over
+        // which a room's indirect light changes (metres), and gathers 16 times the photons a
+        // 5 cm one would.
+        o.eye_detector_size_m = r.number("eye_detector_size").value_or(0.2);
+        if (!(o.eye_detector_size_m > 0.0 && o.eye_detector_size_m <= 1.0))
+            r.fail("eye_detector_size", "must lie in (0, 1] metres");
+        r.finish();
+        o.finalize();
+        if (std::abs(o.view_direction.z) > std::sin(1.0 * kPi / 180.0))
+            scene.warnings.push_back(fname + ": " + entry_name("observer", i, t) +
+                                     ": the line of sight is not horizontal; CIE 117 assumes a horizontal one (UGR "
+                                     "is computed about the given one, the eye detector stays vertical)");
+        Detector d;
+        d.name = "observer:" + o.name;
+        d.type = DetectorType::illuminance;
+        d.center = o.position;
+        // Vertical, facing along the horizontal line of sight: it counts the light arriving
+        // at the eye from in front (CIE 117's vertical illuminance at the eye).
+        d.normal = glm::normalize(Vec3(o.view_direction.x, o.view_direction.y, 0.0));
+        d.up = Vec3(0, 0, 1);
+        d.size_u = d.size_v = o.eye_detector_size_m;
+        d.indirect_only = true;
+        d.observer = static_cast<int>(scene.observers.size());
+        d.finalize();
+        o.eye_detector = scene.detectors.size();
+        scene.detectors.push_back(d);
+        o.sources = glare_sources(o, scene.lights);
+        if (o.sources.empty())
+            o.notes.push_back("observer '" + o.name + "': no luminaire in the field of view: UGR is undefined");
+        for (const std::string& n : o.notes) scene.warnings.push_back(fname + ": " + n);
+        scene.observers.push_back(std::move(o));
+    }
+
     void parse_camera(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("camera", i, t));
         Camera c;
@@ -714,9 +768,18 @@ struct Loader {
         TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1));
         Target g;
         g.on = r.string("on").value_or("global");
-        if (g.on != "global") {
+        if (g.on.rfind("observer:", 0) == 0) {
+            // An observer's eye detector (one cell): its relative error is E_ind's, and
+            // UGR's error is 8 / ln 10 = 3.47 times it (glare/ugr.hpp).
+            g.detector = g.on;
+            const auto det = std::find_if(scene.detectors.begin(), scene.detectors.end(),
+                                          [&](const Detector& d) { return d.name == g.detector; });
+            if (det == scene.detectors.end()) r.fail("on", "no [[observer]] is named '" + g.on.substr(9) + "'");
+            g.i1 = det->nx;
+            g.j1 = det->ny;
+        } else if (g.on != "global") {
             if (g.on.rfind("detector:", 0) != 0)
-                r.fail("on", "expected 'global', 'detector:NAME' or 'detector:NAME[i0:i1,j0:j1]'");
+                r.fail("on", "expected 'global', 'detector:NAME', 'detector:NAME[i0:i1,j0:j1]' or 'observer:NAME'");
             std::string rest = g.on.substr(9);
             const auto br = rest.find('[');
             g.detector = rest.substr(0, br);
@@ -784,7 +847,8 @@ Scene load_scene(const fs::path& file) {
     }
     TableReader root(root_table, L.fname, "top level");
     for (const auto& [key, node] : root_table) {
-        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run", "camera"};
+        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run", "camera",
+                                           "observer"};
         if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
             throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
                              ": top level: unknown key '" + std::string(key.str()) + "'");
@@ -829,6 +893,8 @@ Scene load_scene(const fs::path& file) {
     const auto detector_tables = L.tables_of(root, "detector");
     for (std::size_t i = 0; i < detector_tables.size(); ++i) L.parse_detector(*detector_tables[i], i);
     for (std::size_t i = 0; i < detector_tables.size(); ++i) L.link_horizontal(*detector_tables[i], i);
+    const auto observer_tables = L.tables_of(root, "observer");
+    for (std::size_t i = 0; i < observer_tables.size(); ++i) L.parse_observer(*observer_tables[i], i);
     const auto camera_tables = L.tables_of(root, "camera");
     for (std::size_t i = 0; i < camera_tables.size(); ++i) L.parse_camera(*camera_tables[i], i);
     L.parse_run(root);

@@ -92,6 +92,18 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
                                std::to_string(first % d.nx) + ", " + std::to_string(first / d.nx) +
                                "]): light scattered from a surface inside a cylinder is not counted");
     }
+    // UGR counts every luminaire in an observer's field of view (glare/observer.hpp): say
+    // when a surface stands between the eye and a luminous centre. The ray stops 1 cm short
+    // of the centre, so a recessed opening flush with its ceiling is not hidden by it.
+    for (const Observer& o : scene.observers)
+        for (const GlareSource& g : o.sources) {
+            const Vec3 d = g.position - o.position;
+            const double r = glm::length(d);
+            if (r > 0.02 && embree.occluded(o.position, d / r, static_cast<float>(r - 0.01)))
+                warnings.push_back("observer '" + o.name + "': " + g.label +
+                                   " is hidden from the eye by a surface, but UGR counts it (luxtrace does not "
+                                   "test what the eye sees)");
+        }
     std::vector<bool> used(scene.materials.size(), false);
     for (std::uint32_t m : scene.triangle_material) used[m] = true;
     for (std::size_t m = 0; m < used.size(); ++m)

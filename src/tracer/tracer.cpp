@@ -19,10 +19,10 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
         throw std::logic_error("tally layout for " + std::to_string(layout_.replicates()) + " replicates, sampler with " +
                                std::to_string(streams));
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i) {
-        const DetectorType type = scene.detectors[i].type;
-        (type == DetectorType::illuminance ? illuminance_dets_
-         : type == DetectorType::luminance ? luminance_dets_
-                                           : cylinder_dets_).push_back(i);
+        const Detector& d = scene.detectors[i];
+        if (d.type == DetectorType::luminance) luminance_dets_.push_back(i);
+        else if (d.cylinders()) cylinder_dets_.push_back(i);
+        else (d.indirect_only ? indirect_dets_ : illuminance_dets_).push_back(i);
     }
     for (Photon& p : flight_) {
         p.regs.reserve(32);
@@ -98,6 +98,14 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
         }
     }
     if (!cylinder_dets_.empty()) check_cylinders(p, t_max);
+    // Indirect only: the flight from the light (bounce 0) is the direct one.
+    if (!indirect_dets_.empty() && p.bounce > 0) {
+        const Vec3 o = embree_.to_scene(p.origin);
+        for (std::uint32_t di : indirect_dets_) {
+            const int cell = scene_.detectors[di].crossing(o, p.direction, t_max);
+            if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
+        }
+    }
     if (!hit.found) {
         finish(p, TallyLayout::kEscaped, out);
         return false;

@@ -294,6 +294,14 @@ void check_scene(const Scene& s) {
     }
     for (const Camera& c : s.cameras)
         if (!(c.width >= 1 && c.height >= 1 && c.width <= 16384 && c.height <= 16384)) broken("camera size");
+    for (const Observer& o : s.observers) {
+        if (o.eye_detector >= s.detectors.size() || !s.detectors[o.eye_detector].indirect_only)
+            broken("observer " + o.name + ": eye detector");
+        for (const GlareSource& g : o.sources)
+            if (!(g.luminance_cd_m2 >= 0.0 && g.solid_angle_sr > 0.0 && g.position_index >= 1.0 &&
+                  std::isfinite(g.term())))
+                broken("observer " + o.name + ": " + g.label + ": UGR term not finite");
+    }
 }
 
 // Runs `f`; InputError is the expected answer to bad input.

@@ -45,6 +45,12 @@ struct Detector {
     int horizontal_index = -1;            // its index in Scene::detectors, or -1
     CylinderShape cylinder;               // derived: the cylinder in the grid's frame (u, v, normal)
     std::vector<TaskArea> task_areas;  // illuminance only: areas with their own metrics
+    // Illuminance: count only photons that have scattered at least once (not the direct
+    // flight from a light), as an observer's eye detector does for UGR's background.
+    bool indirect_only = false;
+    // >= 0: the eye detector of Scene::observers[observer], stored with the observer in
+    // the result (/observers/NAME), not among the user's detectors.
+    int observer = -1;
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();

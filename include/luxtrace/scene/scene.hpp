@@ -4,6 +4,7 @@
 // then shared read-only by its threads.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/detector/detector.hpp"
+#include "luxtrace/glare/observer.hpp"
 #include "luxtrace/light/light.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/scene/run_config.hpp"
@@ -36,7 +37,8 @@ struct Scene {
     std::vector<double> triangle_area_m2;
     std::vector<Vec3> triangle_normal;  // unit geometric normal (front side)
     LightSet lights;
-    std::vector<Detector> detectors;
+    std::vector<Detector> detectors;  // the user's, then one eye detector per observer
+    std::vector<Observer> observers;
     std::vector<Camera> cameras;
     RunConfig run;
     std::vector<std::string> warnings;

@@ -81,6 +81,7 @@ private:
     const TallyLayout& layout_;
     PhotonSampler sampler_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_, cylinder_dets_;
+    std::vector<std::uint32_t> indirect_dets_;  // illuminance detectors of indirect light only (observers' eyes)
     std::vector<int> cylinder_cells_;  // scratch for check_cylinders
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));

@@ -90,7 +90,8 @@ def error_figure(d, bands=None):
     fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
     cmap = plt.get_cmap("inferno").copy()
     cmap.set_bad("0.62")
-    pct = np.ma.masked_invalid(100 * rel)
+    with np.errstate(over="ignore"):  # a damaged file's error can overflow in %: shown as no estimate
+        pct = np.ma.masked_invalid(100 * rel)
     top = float(pct.max()) if pct.count() else 1.0
     im = ax.imshow(pct, origin="lower", extent=_extent(d), cmap=cmap, interpolation="nearest", vmin=0.0, vmax=top)
     fig.colorbar(im, ax=ax, label="\u03c3 rel (%)")
@@ -112,7 +113,9 @@ def error_histogram_figure(d, bands=None):
     """Histogram of the per-cell relative errors (cells with hits only), with the two
     eq. (9) summaries as vertical lines."""
     _, rel = d.band_sum()
-    e = 100 * rel[np.isfinite(rel)]
+    with np.errstate(over="ignore"):  # a damaged file can hold errors beyond any float in %
+        e = 100 * rel
+    e = e[np.isfinite(e)]
     fig, ax = plt.subplots(figsize=(8, 5), layout="constrained")
     bins = int(np.clip(round(np.sqrt(max(len(e), 1))), 10, 60))
     ax.hist(e, bins=bins, color="C3", alpha=0.75, edgecolor="0.25")

@@ -460,37 +460,80 @@ def open(path, check=True):  # noqa: A001  (luxtrace.open, like h5py.File / open
         f = h5py.File(path, "r")
     except OSError as e:
         raise ResultError(f"{path}: not an HDF5 file ({e})") from None
-    with f:
-        attrs = _attrs(f)
-        if attrs.get("format") not in ("luxtrace-result", "luxtrace-checkpoint"):
-            raise ResultError(f"{path}: not a luxtrace result (root attribute format = {attrs.get('format')!r})")
-        version = int(attrs.get("format_version", 1))
-        if not 1 <= version <= NEWEST_FORMAT_VERSION:
-            raise ResultError(f"{path}: format_version {version}; this package reads 1 to {NEWEST_FORMAT_VERSION}")
-        for g in ("mesh", "global"):
-            if g not in f:
-                raise ResultError(f"{path}: damaged result: no /{g} group")
-        m = f["mesh"]
-        names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
-        mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
-        g = _read_datasets(f["global"])
-        gattrs = _attrs(f["global"])
-        if version == 1:
-            for k in ("count_odd", "count_even", "direct_odd", "direct_even", "illuminance", "illuminance_direct"):
-                g[k] = _with_sides(g[k])
-            g["odd_even_difference_lx"] = _with_sides(g["odd_even_difference_lx"])
-            g["sigma_lx"] = np.full((mesh.triangle_count, 2), np.nan)
-        surface = SurfaceMap(g, gattrs, mesh.area_m2, version)
-        photons = int(attrs.get("photons", 0))
-        rep_photons = attrs.get("replicate_photons")
-        detectors = {}
-        if "detectors" in f:
-            for name, grp in f["detectors"].items():
-                detectors[name] = Detector(name, _read_datasets(grp), _attrs(grp), photons,
-                                           None if rep_photons is None else np.atleast_1d(rep_photons))
-        observers = {}
-        if "observers" in f:
-            for name, grp in f["observers"].items():
-                observers[name] = Group(name, _attrs(grp), _read_datasets(grp))
-        history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
+    try:
+        with f:
+            res = _read(f, path)
+    except ResultError:
+        raise
+    except (OSError, RuntimeError, KeyError, ValueError, TypeError, IndexError) as e:
+        # HDF5's checksums, missing datasets, attributes of the wrong kind: a file that
+        # was changed after luxtrace wrote it (unsealed files of 0.1 are not checked first).
+        raise ResultError(f"{path}: damaged result: {e}") from None
+    _validate(res, path)
+    return res
+
+
+def _read(f, path):
+    """The groups of an open file as a Result (shapes not yet checked)."""
+    attrs = _attrs(f)
+    if attrs.get("format") not in ("luxtrace-result", "luxtrace-checkpoint"):
+        raise ResultError(f"{path}: not a luxtrace result (root attribute format = {attrs.get('format')!r})")
+    version = int(attrs.get("format_version", 1))
+    if not 1 <= version <= NEWEST_FORMAT_VERSION:
+        raise ResultError(f"{path}: format_version {version}; this package reads 1 to {NEWEST_FORMAT_VERSION}")
+    for g in ("mesh", "global"):
+        if g not in f:
+            raise ResultError(f"{path}: damaged result: no /{g} group")
+    m = f["mesh"]
+    names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
+    mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
+    g = _read_datasets(f["global"])
+    gattrs = _attrs(f["global"])
+    if version == 1:
+        for k in ("count_odd", "count_even", "direct_odd", "direct_even", "illuminance", "illuminance_direct"):
+            g[k] = _with_sides(g[k])
+        g["odd_even_difference_lx"] = _with_sides(g["odd_even_difference_lx"])
+        g["sigma_lx"] = np.full((mesh.triangle_count, 2), np.nan)
+    surface = SurfaceMap(g, gattrs, mesh.area_m2, version)
+    photons = int(attrs.get("photons", 0))
+    rep_photons = attrs.get("replicate_photons")
+    detectors = {}
+    if "detectors" in f:
+        for name, grp in f["detectors"].items():
+            detectors[name] = Detector(name, _read_datasets(grp), _attrs(grp), photons,
+                                       None if rep_photons is None else np.atleast_1d(rep_photons))
+    observers = {}
+    if "observers" in f:
+        for name, grp in f["observers"].items():
+            observers[name] = Group(name, _attrs(grp), _read_datasets(grp))
+    history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
     return Result(attrs, mesh, surface, detectors, observers, history, path=path)
+
+
+def _validate(r, path):
+    """Shapes that agree with each other, so that no later computation misreads a damaged
+    file: the mesh's arrays, the maps [T,2,B] and each detector's [ny,nx,B]."""
+    def bad(what):
+        raise ResultError(f"{path}: damaged result: {what}")
+    m = r.mesh
+    T, B = m.triangle_count, len(r.bands)
+    if m.triangles.shape != (T, 3) or m.material.shape != (T,) or m.vertices.ndim != 2 or m.vertices.shape[1] != 3:
+        bad("the /mesh arrays do not agree in size")
+    if T and (m.triangles.min() < 0 or m.triangles.max() >= len(m.vertices)):
+        bad("/mesh/triangles names vertices that do not exist")
+    for k, v in r.surface.datasets.items():
+        want = (T, 2) if k in ("sigma_lx", "odd_even_difference_lx") else (T, 2, B)
+        if np.shape(v) != want:
+            bad(f"/global/{k} has shape {np.shape(v)}, expected {want} ({T} triangles, {B} bands)")
+    for name, d in r.detectors.items():
+        cells, size = np.atleast_1d(d.attrs.get("cells", [])), np.atleast_1d(d.attrs.get("size", []))
+        if (cells.shape != (2,) or size.shape != (2,) or not np.all(np.isfinite(size)) or not np.all(size > 0)
+                or not np.all(cells >= 1) or not np.all(cells == np.floor(cells))):
+            bad(f"/detectors/{name}: attributes cells or size are not two positive numbers")
+        want = (d.ny, d.nx, B)
+        for k in ("count", "sumsq", "value", "sigma_rel"):
+            if np.shape(d.datasets.get(k)) != want:
+                bad(f"/detectors/{name}/{k} has shape {np.shape(d.datasets.get(k))}, expected {want}")
+        for k in ("normal", "up", "center"):
+            if np.shape(d.attrs.get(k)) != (3,):
+                bad(f"/detectors/{name}: attribute {k} is not a 3-vector")

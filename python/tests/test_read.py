@@ -1,11 +1,14 @@
 """Reading results: both formats in one shape, values that match hand computations from
 the stored counts, every attribute exposed, damaged and foreign files refused."""
+import glob
+import os
+
 import h5py
 import numpy as np
 import pytest
 
 import luxtrace
-from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, NX, NY, copy, write_v2, simulate
+from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, REPO, copy, simulate, write_v2
 
 
 def test_format1_from_the_binary_in_format2_shape(room_runs):
@@ -118,3 +121,26 @@ def test_foreign_and_future_files_are_refused(tmp_path):
         f.attrs["format_version"] = np.uint64(3)
     with pytest.raises(luxtrace.ResultError, match="format_version 3"):
         luxtrace.open(path)
+
+
+def test_fuzz_corpus_opens_or_is_refused(tmp_path):
+    """The result fuzzer's corpus and crashers (bit flips, truncations, unsealed 0.1 files,
+    absurd attributes): a file is read or refused with ResultError, never another error;
+    the pictures of every file that opens are drawn."""
+    from luxtrace import plot
+    root = os.path.join(REPO, "tests", "fuzz")
+    files = sorted(glob.glob(os.path.join(root, "corpus", "result", "*")) +
+                   glob.glob(os.path.join(root, "crashers", "result", "*")))
+    files = [f for f in files if os.path.isfile(f) and not os.path.basename(f).startswith("README")]
+    assert len(files) > 10
+    opened = 0
+    for f in files:
+        try:
+            r = luxtrace.open(f)
+        except luxtrace.ResultError:
+            continue
+        opened += 1
+        if "crashers" in f:
+            for name in r.detectors:
+                plot.detector_pictures(r, name, str(tmp_path / os.path.basename(f)))
+    assert opened > 0

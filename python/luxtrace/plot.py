@@ -61,10 +61,17 @@ def _extent(d):
 
 
 def _figsize(d):
-    """About 9 inches wide for the map and its colour bar, the map keeping its aspect."""
+    """9 inches wide for the map (about 6.9), its labels and colour bar; the map keeps its
+    aspect, between 2.4 and 8 inches high, with room for two title lines."""
     su, sv = d.size_m
-    h = float(np.clip(7.2 * sv / su, 2.6, 8.0))
-    return 9.0, h + 1.6
+    return 9.0, float(np.clip(6.9 * sv / su, 2.4, 8.0)) + 1.5
+
+
+def _grid_line(d, photons):
+    """'48 x 24 cells of 25 x 25 mm, 257951 photons received of 3.00e+06 emitted'."""
+    su, sv = d.size_m
+    return (f"{d.nx} \u00d7 {d.ny} cells of {1000 * su / d.nx:.3g} \u00d7 {1000 * sv / d.ny:.3g} mm, "
+            f"{d.photons_received} photons received of {photons:.3g} emitted")
 
 
 def value_figure(d, bands=None):
@@ -78,7 +85,7 @@ def value_figure(d, bands=None):
     fig.colorbar(im, ax=ax, label=f"{_quantity(d)} ({_units(d)})")
     note = _band_note(d, bands)
     ax.set_title(f"{d.name} \u2014 {d.type}{f' ({note})' if note else ''}, mean {d.mean_value:.4g} {_units(d)} "
-                 f"\u00b1 {100 * d.mean_sigma_rel:.3g} %", fontsize=11)
+                 f"\u00b1 {100 * d.mean_sigma_rel:.3g} %\n{_grid_line(d, float(d.photons))}", fontsize=11)
     _map_axes(ax, d)
     return fig
 

@@ -158,8 +158,11 @@ def sections_figure(d, i=None, j=None, bands=None):
     su, sv = d.size_m
     fig, axes = plt.subplots(2, 1, figsize=(8, 7.6), layout="constrained")
     note = _band_note(d, bands)
+    u, v = d.cell_coordinates()
+    err = f"\u00b1 {100 * rel[j, i]:.3g} %" if np.isfinite(rel[j, i]) else "(no hits)"
     fig.suptitle(f"{d.name} \u2014 sections through cell i = {i}, j = {j}{f' ({note})' if note else ''}; "
-                 "band: \u00b1 1 \u03c3", fontsize=11)
+                 f"band: \u00b1 1 \u03c3\nvalue {value[j, i]:.4g} {_units(d)} {err} at u = {u[i]:.3g} m, "
+                 f"v = {v[j]:.3g} m from the centre", fontsize=11)
     for ax, vals, r, size, n, at, axis in (
             (axes[0], value[j, :], rel[j, :], su, d.nx, i, f"u (m) along {_vec(d.u)}"),
             (axes[1], value[:, i], rel[:, i], sv, d.ny, j, f"v (m) along up {_vec(d.up)}")):

@@ -83,7 +83,19 @@ def check_seal(path):
     return True
 
 
-class Group:
+class _AttrAccess:
+    """Attributes of the HDF5 group that no property names are readable as Python
+    attributes too (``detector.E_min`` for ``detector.attrs["E_min"]``), so attributes a
+    newer luxtrace writes need no change here."""
+
+    def __getattr__(self, name):
+        attrs = self.__dict__.get("attrs")
+        if attrs is not None and name in attrs:
+            return attrs[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute or HDF5 attribute '{name}'")
+
+
+class Group(_AttrAccess):
     """A group of the file as it was read: ``attrs`` (dict) and ``datasets`` (name -> array).
 
     Observers (``/observers/NAME``) and anything this package has no class for come as a
@@ -133,7 +145,7 @@ class Mesh:
                 and np.array_equal(self.material, other.material) and self.material_names == other.material_names)
 
 
-class SurfaceMap:
+class SurfaceMap(_AttrAccess):
     """Per-triangle maps of the whole scene (``/global``), always in format 2's shape.
 
     Count and illuminance arrays are [T, 2, B]: triangle, side (0 = front, the side the
@@ -205,7 +217,7 @@ class SurfaceMap:
     photons_truncated = property(lambda self: self._attr("photons_truncated", 0))
 
 
-class Detector:
+class Detector(_AttrAccess):
     """One measuring grid (``/detectors/NAME``).
 
     Arrays are [ny, nx, B]: row j along the detector's ``up`` axis, column i along
@@ -364,7 +376,7 @@ class History:
         return 0 if t is None else len(t)
 
 
-class Result:
+class Result(_AttrAccess):
     """A luxtrace result or checkpoint, read whole (see :func:`open`), or several combined
     (see :func:`luxtrace.combine`).
 
@@ -521,7 +533,13 @@ def _validate(r, path):
         bad("the /mesh arrays do not agree in size")
     if T and (m.triangles.min() < 0 or m.triangles.max() >= len(m.vertices)):
         bad("/mesh/triangles names vertices that do not exist")
-    for k, v in r.surface.datasets.items():
+    known = SurfaceMap._COUNTS + ("illuminance", "illuminance_direct", "sumsq", "sigma_lx", "odd_even_difference_lx")
+    for k in known:  # datasets a newer luxtrace adds are passed on unchecked
+        if k not in r.surface.datasets:
+            if k == "sumsq" and r.format_version == 1:
+                continue
+            bad(f"no /global/{k}")
+        v = r.surface.datasets[k]
         want = (T, 2) if k in ("sigma_lx", "odd_even_difference_lx") else (T, 2, B)
         if np.shape(v) != want:
             bad(f"/global/{k} has shape {np.shape(v)}, expected {want} ({T} triangles, {B} bands)")

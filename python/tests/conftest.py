@@ -157,7 +157,8 @@ def write_v2(path, runs, extra_detector_attrs=None):
                         up=[0.0, 1.0, 0.0], size=[0.6, 0.4], cells=np.array([NX, NY], dtype=np.uint64),
                         mean_value=cells.mean(), mean_sigma_rel=np.sqrt(n * grid.var()) / grid.sum(),
                         mean_arithmetic=cells.mean(), mean_quadratic=np.sqrt((cells ** 2).mean()),
-                        sigma_rel_arithmetic=sig9 / cells.mean(), sigma_rel_quadratic=sig9 / np.sqrt((cells ** 2).mean()),
+                        sigma_rel_arithmetic=sig9 / cells.mean(),
+                        sigma_rel_quadratic=sig9 / np.sqrt((cells ** 2).mean()),
                         photons_received=np.uint64((det.sum(axis=(1, 2)) > 0).sum()),
                         error_estimator="independent_photons_eq8", error_dof=np.uint64(0),
                         **(extra_detector_attrs or {}))

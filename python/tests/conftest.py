@@ -41,14 +41,17 @@ ROOM = os.path.join(REPO, "tests", "data", "run", "room.toml")
 
 @pytest.fixture(scope="session")
 def room_runs(binary, tmp_path_factory):
-    """room.toml (an illuminance and a luminance detector) with seeds 1 and 2, sampler
-    random and sobol, 200k photons each (about 0.2 s per run)."""
+    """room.toml (an illuminance and a luminance detector) with seeds 1 and 2 (200k photons
+    each) and 3 (400k), sampler random and sobol (about 0.2 s per run)."""
     d = tmp_path_factory.mktemp("room")
     runs = {}
     for sampler in ("random", "sobol"):
         for seed in (1, 2):
             runs[sampler, seed] = run_luxtrace(binary, ROOM, d / f"{sampler}{seed}.h5", "--photons", "200k",
                                                "--seed", str(seed), "--sampler", sampler)
+        # An independent reference with as many photons as seeds 1 and 2 together.
+        runs[sampler, 3] = run_luxtrace(binary, ROOM, d / f"{sampler}3.h5", "--photons", "400k", "--seed", "3",
+                                        "--sampler", sampler)
     return runs
 
 

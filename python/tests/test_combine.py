@@ -99,3 +99,24 @@ def test_mismatches_are_refused(room_runs, room_variant, v2_pair):
         luxtrace.combine([a, luxtrace.open(v2_pair[0])])
     with pytest.raises(ValueError):
         luxtrace.combine([])
+
+
+@pytest.mark.parametrize("sampler", ["random", "sobol"])
+def test_combined_errors_are_honest_against_an_independent_run(room_runs, sampler):
+    """Seeds 1 + 2 combined against seed 3 with as many photons: per cell,
+    z = (L_12 - L_3) / sqrt(sigma_12^2 + sigma_3^2) must stay within 5, and the mean of z^2
+    over the K cells within 1 +- 5 sqrt(2/K) (docs/VALIDATION.md's rule). Combined errors
+    too small would push mean z^2 up, too large down."""
+    c = luxtrace.combine([luxtrace.open(room_runs[sampler, s]) for s in (1, 2)])
+    ref = luxtrace.open(room_runs[sampler, 3])
+    for name in ("table", "wall"):
+        dc, dr = c.detectors[name], ref.detectors[name]
+        ok = (dc.count[:, :, 0] > 0) & (dr.count[:, :, 0] > 0)
+        z = ((dc.value - dr.value) / np.hypot(dc.sigma, dr.sigma))[:, :, 0][ok]
+        k = z.size
+        assert k >= 40
+        assert np.abs(z).max() < 5, name
+        assert abs(np.mean(z**2) - 1) < 5 * np.sqrt(2 / k), (name, np.mean(z**2))
+        zm = (dc.mean_value - dr.mean_value) / np.hypot(dc.mean_value * dc.mean_sigma_rel,
+                                                          dr.mean_value * dr.mean_sigma_rel)
+        assert abs(zm) < 5, (name, zm)

@@ -317,9 +317,9 @@ def main(argv=None, prog="python3 -m luxtrace.plot"):
     one message and writes nothing."""
     p = argparse.ArgumentParser(prog=prog, description="Detector pictures and convergence plot of a luxtrace result.")
     p.add_argument("result", help="result or checkpoint file (.h5)")
-    p.add_argument("--detector", action="append", default=[], help="pictures of detector NAME (repeatable)")
-    p.add_argument("--cell", default="", help="i,j: the cell the sections go through (default: the brightest)")
-    p.add_argument("-o", "--out-dir", help="folder for the PNGs (default: beside the result)")
+    p.add_argument("--detector", action="append", default=[], metavar="NAME", help="pictures of detector NAME (repeatable)")
+    p.add_argument("--cell", default="", metavar="I,J", help="i,j: the cell the sections go through (default: the brightest)")
+    p.add_argument("-o", "--out-dir", metavar="DIR", help="folder for the PNGs (default: beside the result)")
     p.add_argument("--convergence", action="store_true", help="also convergence.png (error against time)")
     a = p.parse_args(argv)
     if not a.detector and not a.convergence:

@@ -166,3 +166,38 @@ def test_three_bands_combined_alone_are_themselves(binary, tmp_path, sampler):
     np.testing.assert_allclose(cd.sigma_rel, d.sigma_rel, rtol=1e-10)
     _attrs_close(cd.attrs, d.attrs, DETECTOR_STATS)
     _attrs_close(c.surface.attrs, r.surface.attrs, GLOBAL_STATS)
+
+
+def _same_result(a, b):
+    assert a.format_version == b.format_version and a.photons == b.photons
+    for k, v in a.surface.datasets.items():
+        np.testing.assert_array_equal(b.surface.datasets[k], v, err_msg=k)
+    for name, d in a.detectors.items():
+        for k, v in d.datasets.items():
+            np.testing.assert_array_equal(b.detectors[name].datasets[k], v, err_msg=f"{name}/{k}")
+        assert set(b.detectors[name].attrs) == set(d.attrs)
+
+
+def test_a_written_combination_reads_back_and_luxtrace_reads_it(binary, room_runs, tmp_path):
+    import subprocess
+    c = luxtrace.combine([luxtrace.open(room_runs["random", s]) for s in (1, 2)])
+    path = luxtrace.write(c, tmp_path / "merged.h5")
+    assert luxtrace.check_seal(path) is True
+    back = luxtrace.open(path)
+    _same_result(c, back)
+    assert back.seeds == (1, 2) and back.stop_reason == "combined"
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    info = subprocess.run([binary, "info", path], capture_output=True, text=True, env=env)
+    assert info.returncode == 0, info.stdout + info.stderr
+    t = c.detectors["table"]
+    assert f"mean {t.mean_value:.2f} lx +- {100 * t.mean_sigma_rel:.2f} %" in info.stdout, info.stdout
+    assert "400000" in info.stdout
+    xdmf = subprocess.run([binary, "export-xdmf", path], capture_output=True, text=True, env=env)
+    assert xdmf.returncode == 0, xdmf.stderr
+
+
+def test_format2_written_reads_back(v2_pair, tmp_path):
+    c = luxtrace.combine([luxtrace.open(p) for p in v2_pair[:2]])
+    back = luxtrace.open(luxtrace.write(c, tmp_path / "merged_v2.h5"))
+    _same_result(c, back)
+    assert back.surface.sumsq.shape == (2, 2, 2) and back.format_version == 2

@@ -7,7 +7,7 @@ packages=(
   libembree-dev libtbb-dev libopenmpi-dev openmpi-bin libhdf5-dev hdf5-tools
   libcli11-dev libglm-dev libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libassimp-dev librandom123-dev libboost-dev
-  python3-h5py python3-numpy python3-matplotlib
+  python3-h5py python3-numpy python3-matplotlib python3-pytest python3-setuptools
   slurm-wlm munge
   libcairo2-dev libpng-dev libopenexr-dev fonts-dejavu-core libxml2-utils
   clang-14 libclang-rt-14-dev   # the libFuzzer build (tests/fuzz/README.md)

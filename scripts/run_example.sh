@@ -15,11 +15,13 @@ mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/office/off
   --threads 1 --output "$out/office.h5"
 echo
 # Pictures: the room as seen by the scene's "overview" camera (global illumination from
-# the stored maps), and the desk detector (value, error, histogram, sections).
+# the stored maps), drawn by luxtrace; the desk and wall detectors (value, error,
+# histogram, sections), drawn by the Python package with matplotlib.
 "$lux" render "$out/office.h5" --view overview -o "$out/office_view.png"
-"$lux" render "$out/office.h5" --detector desk --detector west_wall --out-dir "$out"
+/usr/bin/python3 "$root/scripts/plot_detector.py" "$out/office.h5" --detector desk --detector west_wall -o "$out"
 echo
 echo "Result file:   $out/office.h5   (luxtrace info $out/office.h5; read it with h5py)"
 echo "ParaView:      $out/office.xdmf"
 echo "Rendered view: $out/office_view.png (luminance in $out/office_view.exr)"
 echo "Desk pictures: $out/desk_value.png, desk_error.png, desk_error_hist.png, desk_sections.png"
+echo "               (scripts/plot_detector.py; in Python: import luxtrace, README \"Results in Python\")"

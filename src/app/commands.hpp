@@ -18,9 +18,6 @@ struct RenderArgs {
     double gamma = 2.2;
     std::optional<double> falsecolour_max;  // cd/m^2 at the top of the scale
     int samples = 4;              // rays per pixel (anti-aliasing)
-    std::vector<std::string> detectors;  // --detector NAME (repeatable): detector pictures
-    std::string cell;             // --cell i,j: the cell the sections go through
-    std::string out_dir;          // where detector pictures go (default: beside the result)
     int threads = 0;
 };
 

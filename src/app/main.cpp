@@ -206,7 +206,7 @@ int main(int argc, char** argv) {
     info->add_option("result", info_path, "result file (.h5)")->required();
 
     RenderArgs rd;
-    auto* render = app.add_subcommand("render", "pictures of a result: a rendered view and/or detector images");
+    auto* render = app.add_subcommand("render", "rendered views of a result (detector pictures: python3 -m luxtrace.plot)");
     render->add_option("result", rd.result, "result file (.h5)")->required();
     render->add_option("--camera", rd.camera, "position,target[,up] as 6 or 9 comma-separated numbers");
     render->add_option("--view", rd.camera_name, "name of a [[camera]] in the scene file");
@@ -218,9 +218,6 @@ int main(int argc, char** argv) {
     render->add_option("--gamma", rd.gamma, "display gamma of the exposure mapping");
     render->add_option("--falsecolour-max", rd.falsecolour_max, "top of the false-colour scale (cd/m^2)");
     render->add_option("--samples", rd.samples, "rays per pixel");
-    render->add_option("--detector", rd.detectors, "detector pictures for this detector (repeatable)");
-    render->add_option("--cell", rd.cell, "i,j: the cell the detector sections go through");
-    render->add_option("--out-dir", rd.out_dir, "folder for detector pictures");
     render->add_option("--threads", rd.threads, "threads (default: all cores)");
     std::vector<std::string> photometry_files;
     int lamp_set = 1;

@@ -10,12 +10,6 @@
 #include "luxtrace/render/tone_map.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
-// Detector pictures come from their own module; without it, --detector says so.
-#if __has_include("luxtrace/render/detector_plot.hpp")
-#include "luxtrace/render/detector_plot.hpp"
-#define LUXTRACE_HAVE_DETECTOR_PLOT 1
-#endif
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -94,7 +88,7 @@ std::vector<ViewJob> plan_views(const RenderArgs& a, const Scene& scene) {
     } else {
         cams = scene.cameras;
         if (cams.empty())
-            throw InputError(a.result + ": nothing to render: give --camera, --view or --detector (the scene " +
+            throw InputError(a.result + ": nothing to render: give --camera or --view (the scene " +
                              scene.file.string() + " defines no [[camera]])");
     }
     const std::optional<std::pair<int, int>> size =
@@ -121,28 +115,13 @@ int cmd_render(const RenderArgs& args) {
     check_options(args);
     if (!args.size.empty()) parse_size_option(args.size);
     if (!args.camera.empty()) parse_camera_option(args.camera);
-    const bool want_views = !args.camera.empty() || !args.camera_name.empty() || args.detectors.empty();
-#ifndef LUXTRACE_HAVE_DETECTOR_PLOT
-    if (!args.detectors.empty())
-        throw InputError("--detector: detector pictures are not available in this build of luxtrace");
-#endif
-    // Everything is read and checked before anything is written.
-    std::optional<RenderInput> input;
-    std::vector<ViewJob> jobs;
-    if (want_views) {
-        input.emplace(load_render_input(args.result));
-        jobs = plan_views(args, input->scene);
-    }
-#ifdef LUXTRACE_HAVE_DETECTOR_PLOT
-    const fs::path out_dir = !args.out_dir.empty() ? fs::path(args.out_dir)
-                             : fs::path(args.result).parent_path().empty() ? fs::path(".")
-                                                                           : fs::path(args.result).parent_path();
-    for (const std::string& detector : args.detectors) render_detector_pictures(args.result, detector, args.cell, out_dir);
-#endif
-    if (jobs.empty()) return 0;
+    // Everything is read and checked before anything is written. (Detector pictures are
+    // drawn by the Python package: python3 -m luxtrace.plot, scripts/plot_detector.py.)
+    RenderInput input = load_render_input(args.result);
+    const std::vector<ViewJob> jobs = plan_views(args, input.scene);
 
-    const EmbreeScene embree(input->scene);
-    const Renderer renderer(input->scene, embree, std::move(input->secondary_lx));
+    const EmbreeScene embree(input.scene);
+    const Renderer renderer(input.scene, embree, std::move(input.secondary_lx));
     RenderOptions opt;
     opt.samples = args.samples;
     opt.threads = args.threads;

@@ -462,7 +462,7 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
             << (moment && used == estimator ? ", used by targets" : "") << '\n';
     };
     out << "global map     mean " << r.attr_f64("/global", "mean_arithmetic_lx") << " lx";
-    if (r.has_attr("/global", "lit_area_m2"))
+    if (r.has_attr("/global", "lit_sides") && r.has_attr("/global", "lit_area_m2"))
         out << " over " << r.attr_u64("/global", "lit_sides") << " lit triangle sides, " << r.attr_f64("/global", "lit_area_m2")
             << " m^2";
     out << '\n';

@@ -7,7 +7,6 @@
 #include "luxtrace/light/luminaire_file.hpp"
 #include "luxtrace/light/luminous_opening.hpp"
 #include "luxtrace/render/camera.hpp"
-#include "luxtrace/render/detector_plot.hpp"
 #include "luxtrace/render/renderer.hpp"
 #include "luxtrace/render/tone_map.hpp"
 #include "luxtrace/run/simulation.hpp"
@@ -459,11 +458,6 @@ int fuzz_result(const std::uint8_t* data, std::size_t size) {
         }
     });
     check_hdf5_closed("render");
-    std::vector<std::string> detectors;
-    expect_input_error_only([&] { detectors = ResultReader(file).children("/detectors"); });
-    for (const std::string& d : detectors)
-        expect_input_error_only([&] { render_detector_pictures(file, d, "", private_dir() / "pictures"); });
-    check_hdf5_closed("detector pictures");
     std::error_code ec;
     fs::remove(file, ec);
     return 0;

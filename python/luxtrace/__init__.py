@@ -1,0 +1,20 @@
+"""Reading, combining, exporting and drawing luxtrace results (the role of openmc.StatePoint).
+
+    import luxtrace
+    r = luxtrace.open("office.h5")              # a result or checkpoint, format 1 or 2
+    desk = r.detectors["desk"]                  # values, errors, counts, every attribute
+    both = luxtrace.combine([r, luxtrace.open("office-seed2.h5")])
+    both.detectors["desk"].to_csv("desk.csv")
+    luxtrace.write(both, "office-merged.h5")    # a sealed result: luxtrace info/render read it
+
+Pictures: ``luxtrace.plot`` (matplotlib), also ``python3 -m luxtrace.plot RESULT --detector NAME``.
+Needs numpy and h5py (Debian: python3-numpy, python3-h5py); pictures need matplotlib.
+"""
+from .combine import MismatchError, combine
+from .result_file import write
+from .result import (BACK, FRONT, NEWEST_FORMAT_VERSION, Detector, Group, History, Mesh, Result, ResultError,
+                     SurfaceMap, check_seal, open)
+
+__version__ = "0.2.0"
+__all__ = ["open", "combine", "write", "check_seal", "Result", "Mesh", "SurfaceMap", "Detector", "Group", "History",
+           "ResultError", "MismatchError", "FRONT", "BACK", "NEWEST_FORMAT_VERSION"]

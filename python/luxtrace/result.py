@@ -1,0 +1,557 @@
+"""Reading luxtrace result and checkpoint files (docs/SPEC.md §4) into typed objects.
+
+A file is read whole into memory and closed again, so a :class:`Result` needs no
+``with`` block and can be combined, plotted or exported after the file is gone. Every
+attribute of every group is also kept in a plain ``attrs`` dict, so attributes a newer
+luxtrace adds are there without a change to this package.
+"""
+import builtins
+import csv
+import os
+import zlib
+
+import h5py
+import numpy as np
+
+from . import statistics
+
+#: The newest result layout this package reads (SPEC §4 ``format_version``).
+NEWEST_FORMAT_VERSION = 2
+FRONT, BACK = 0, 1  #: side indices of the surface maps: front = where the normal points
+
+_SEAL_BYTES = 512
+_SEAL_MAGIC = b"luxtrace-seal v1 "
+_HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+class ResultError(ValueError):
+    """A file that is not a luxtrace result, is damaged, or is of an unknown format."""
+
+
+def _plain(v):
+    """An HDF5 attribute as plain Python: str for strings, int/float for scalars, lists
+    of str for string arrays, numpy arrays otherwise."""
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.ndarray):
+        if v.dtype.kind in ("O", "S", "U"):
+            return [x.decode() if isinstance(x, bytes) else str(x) for x in v.ravel()]
+        if v.shape == ():
+            return v.item()
+        return v
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+def _attrs(obj):
+    return {k: _plain(v) for k, v in obj.attrs.items()}
+
+
+def check_seal(path):
+    """Check the seal luxtrace 0.2 and later put in a file's first 512 bytes (SPEC §4).
+
+    Returns True for a sealed file whose CRC-32 and length match, False for an unsealed
+    file of luxtrace 0.1 (HDF5's signature at byte 0); raises ResultError for a file that
+    was cut short, appended to, changed, or is not HDF5 at all.
+    """
+    with builtins.open(path, "rb") as f:
+        head = f.read(_SEAL_BYTES)
+        if head.startswith(_HDF5_SIGNATURE):
+            return False
+        if not head.startswith(_SEAL_MAGIC):
+            raise ResultError(f"{path}: damaged file: it does not begin with a luxtrace seal or an HDF5 signature")
+        try:
+            words = head[len(_SEAL_MAGIC):].split(b"\n", 1)[0].split()
+            if words[0] != b"crc32" or words[2] != b"length":
+                raise ValueError
+            want_crc, want_length = int(words[1], 16), int(words[3])
+        except (ValueError, IndexError):
+            raise ResultError(f"{path}: damaged file: its luxtrace seal cannot be read") from None
+        crc, length = 0, 0
+        while True:
+            block = f.read(1 << 20)
+            if not block:
+                break
+            crc = zlib.crc32(block, crc)
+            length += len(block)
+    if length != want_length:
+        raise ResultError(f"{path}: damaged file: it has {length} bytes after its seal, {want_length} when "
+                          "luxtrace wrote it (cut short, or appended to)")
+    if crc != want_crc:
+        raise ResultError(f"{path}: damaged file: its contents changed after luxtrace wrote it (CRC-32 mismatch)")
+    return True
+
+
+class _AttrAccess:
+    """Attributes of the HDF5 group that no property names are readable as Python
+    attributes too (``detector.E_min`` for ``detector.attrs["E_min"]``), so attributes a
+    newer luxtrace writes need no change here."""
+
+    def __getattr__(self, name):
+        attrs = self.__dict__.get("attrs")
+        if attrs is not None and name in attrs:
+            return attrs[name]
+        raise AttributeError(f"{type(self).__name__} has no attribute or HDF5 attribute '{name}'")
+
+
+class Group(_AttrAccess):
+    """A group of the file as it was read: ``attrs`` (dict) and ``datasets`` (name -> array).
+
+    Observers (``/observers/NAME``) and anything this package has no class for come as a
+    Group; item access reads a dataset: ``g["count"]``.
+    """
+
+    def __init__(self, name, attrs, datasets):
+        self.name = name
+        self.attrs = dict(attrs)
+        self.datasets = dict(datasets)
+
+    def __getitem__(self, key):
+        return self.datasets[key]
+
+    def __contains__(self, key):
+        return key in self.datasets
+
+    def __repr__(self):
+        return f"<{type(self).__name__} {self.name}: datasets {sorted(self.datasets)}, attrs {sorted(self.attrs)}>"
+
+
+class Mesh:
+    """The triangulated scene as placed: vertices [V,3] (m), triangles [T,3] (vertex
+    indices, counter-clockwise seen from the front side), area_m2 [T], material [T]
+    (index into material_names)."""
+
+    def __init__(self, vertices, triangles, area_m2, material, material_names):
+        self.vertices = np.asarray(vertices, dtype=float)
+        self.triangles = np.asarray(triangles)
+        self.area_m2 = np.asarray(area_m2, dtype=float)
+        self.material = np.asarray(material)
+        self.material_names = list(material_names)
+
+    @property
+    def triangle_count(self):
+        return len(self.area_m2)
+
+    def normals(self):
+        """Unit normal of every triangle [T,3]: the front side (counter-clockwise winding)."""
+        v = self.vertices[self.triangles]
+        n = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
+        return n / np.linalg.norm(n, axis=1, keepdims=True)
+
+    def same_as(self, other):
+        return (self.vertices.shape == other.vertices.shape and self.triangles.shape == other.triangles.shape
+                and np.array_equal(self.vertices, other.vertices) and np.array_equal(self.triangles, other.triangles)
+                and np.array_equal(self.material, other.material) and self.material_names == other.material_names)
+
+
+class SurfaceMap(_AttrAccess):
+    """Per-triangle maps of the whole scene (``/global``), always in format 2's shape.
+
+    Count and illuminance arrays are [T, 2, B]: triangle, side (0 = front, the side the
+    normal points to; 1 = back) and band. A format-1 file counted both sides together; its
+    data are shown as the front side with a zero back side, and what format 1 does not
+    store (``sumsq``, ``sigma_lx``) is None or NaN. ``attrs`` holds every /global attribute.
+    """
+
+    _COUNTS = ("count_odd", "count_even", "direct_odd", "direct_even")
+
+    def __init__(self, datasets, attrs, area_m2, format_version):
+        self.datasets = dict(datasets)
+        self.attrs = dict(attrs)
+        self.area_m2 = np.asarray(area_m2, dtype=float)
+        self.format_version = format_version
+
+    # ------------------------------------------------------------------ counts
+    count_odd = property(lambda self: self.datasets["count_odd"], doc="uint64 [T,2,B]: arrivals of odd photons")
+    count_even = property(lambda self: self.datasets["count_even"], doc="uint64 [T,2,B]: arrivals of even photons")
+    direct_odd = property(lambda self: self.datasets["direct_odd"], doc="uint64 [T,2,B]: first hits after emission")
+    direct_even = property(lambda self: self.datasets["direct_even"], doc="uint64 [T,2,B]")
+    sumsq = property(lambda self: self.datasets.get("sumsq"),
+                     doc="uint64 [T,2,B]: sum over photons of (arrivals per photon)^2; None in format 1")
+
+    # ------------------------------------------------------------------ maps (lux)
+    illuminance_lx = property(lambda self: self.datasets["illuminance"], doc="float64 [T,2,B]: all arrivals")
+    illuminance_direct_lx = property(lambda self: self.datasets["illuminance_direct"],
+                                     doc="float64 [T,2,B]: first arrivals after emission")
+
+    @property
+    def illuminance_secondary_lx(self):
+        """float64 [T,2,B]: interreflected light, all arrivals minus direct ones."""
+        return self.illuminance_lx - self.illuminance_direct_lx
+
+    odd_even_difference_lx = property(lambda self: self.datasets["odd_even_difference_lx"],
+                                      doc="float64 [T,2]: E_odd - E_even, band-summed (the terms of eq. 5)")
+
+    @property
+    def sigma_lx(self):
+        """float64 [T,2]: standard error of each side's band-summed illuminance from the
+        second moment (format 2); NaN for format-1 files, which lack the moment."""
+        return self.datasets["sigma_lx"]
+
+    @property
+    def total_illuminance_lx(self):
+        """float64 [T]: both sides and all bands summed (what format 1 stored per triangle)."""
+        return self.illuminance_lx.sum(axis=(1, 2))
+
+    # ------------------------------------------------------------------ summaries
+    def _attr(self, name, default=float("nan")):
+        return self.attrs.get(name, default)
+
+    odd_even_sigma_lx = property(lambda self: self._attr("sigma_lx"),
+                                 doc="RMS error of the map from the odd/even halves, D / 2 (eq. 5)")
+    odd_even_rms_lx = property(lambda self: self._attr("odd_even_rms_lx"), doc="D of eq. (5)")
+    sigma_rel_arithmetic = property(lambda self: self._attr("sigma_rel_arithmetic"))
+    sigma_rel_quadratic = property(lambda self: self._attr("sigma_rel_quadratic"))
+    mean_arithmetic_lx = property(lambda self: self._attr("mean_arithmetic_lx"))
+    mean_quadratic_lx = property(lambda self: self._attr("mean_quadratic_lx"))
+    moment_sigma_lx = property(lambda self: self._attr("moment_sigma_lx"),
+                               doc="format 2: area-weighted RMS of the per-side sigmas; NaN in format 1")
+    moment_sigma_rel_arithmetic = property(lambda self: self._attr("moment_sigma_rel_arithmetic"))
+    moment_sigma_rel_quadratic = property(lambda self: self._attr("moment_sigma_rel_quadratic"))
+    error_estimator = property(lambda self: self._attr("error_estimator", "odd_even"),
+                               doc='"second_moment" or "odd_even" (format 1 has only the latter)')
+    lit_area_m2 = property(lambda self: self._attr("lit_area_m2"))
+    photons_escaped = property(lambda self: self._attr("photons_escaped", 0))
+    photons_absorbed = property(lambda self: self._attr("photons_absorbed", 0))
+    photons_truncated = property(lambda self: self._attr("photons_truncated", 0))
+
+
+class Detector(_AttrAccess):
+    """One measuring grid (``/detectors/NAME``).
+
+    Arrays are [ny, nx, B]: row j along the detector's ``up`` axis, column i along
+    u = up x normal, band b. ``attrs`` holds every attribute of the group (also those
+    added after this package was written); the properties below name the known ones.
+    """
+
+    def __init__(self, name, datasets, attrs, photons, replicate_photons=None):
+        self.name = name
+        self.datasets = dict(datasets)
+        self.attrs = dict(attrs)
+        self.photons = int(photons)
+        self.replicate_photons = None if replicate_photons is None else np.asarray(replicate_photons)
+
+    def __repr__(self):
+        return f"<Detector {self.name}: {self.type}, {self.nx} x {self.ny} cells, {self.bands} band(s)>"
+
+    # ------------------------------------------------------------------ datasets
+    count = property(lambda self: self.datasets["count"], doc="uint64 [ny,nx,B]: n_c = sum of E_i over photons")
+    sumsq = property(lambda self: self.datasets["sumsq"], doc="uint64 [ny,nx,B]: q_c = sum of E_i^2")
+    value = property(lambda self: self.datasets["value"], doc="float64 [ny,nx,B] in `units` (lx or cd/m^2)")
+    sigma_rel = property(lambda self: self.datasets["sigma_rel"],
+                         doc="float64 [ny,nx,B]: relative error per cell (eq. 8, or replicate spread); NaN: no hits")
+    replicate_count = property(lambda self: self.datasets.get("replicate_count"),
+                               doc="uint64 [R,ny,nx,B]: sobol only, n_c per replicate; None otherwise")
+
+    @property
+    def sigma(self):
+        """float64 [ny,nx,B]: absolute standard error per cell, in `units`."""
+        return self.value * self.sigma_rel
+
+    @property
+    def bands(self):
+        return self.value.shape[2]
+
+    # ------------------------------------------------------------------ known attributes
+    def _attr(self, name, default=float("nan")):
+        return self.attrs.get(name, default)
+
+    type = property(lambda self: self._attr("type", ""), doc='"illuminance", "luminance", ...')
+    units = property(lambda self: self._attr("units", ""), doc='"lx" or "cd/m^2"')
+    center = property(lambda self: np.asarray(self._attr("center"), dtype=float))
+    normal = property(lambda self: np.asarray(self._attr("normal"), dtype=float))
+    up = property(lambda self: np.asarray(self._attr("up"), dtype=float))
+    size_m = property(lambda self: tuple(float(x) for x in self._attr("size")), doc="(along u, along up) in m")
+    nx = property(lambda self: int(self._attr("cells")[0]))
+    ny = property(lambda self: int(self._attr("cells")[1]))
+    mean_value = property(lambda self: self._attr("mean_value"), doc="the grid's mean, band-summed")
+    mean_sigma_rel = property(lambda self: self._attr("mean_sigma_rel"), doc="relative error of mean_value")
+    sigma_rel_arithmetic = property(lambda self: self._attr("sigma_rel_arithmetic"), doc="eq. (9)")
+    sigma_rel_quadratic = property(lambda self: self._attr("sigma_rel_quadratic"), doc="eq. (9)")
+    photons_received = property(lambda self: self._attr("photons_received", 0))
+    error_estimator = property(lambda self: self._attr("error_estimator", "independent_photons_eq8"))
+    error_dof = property(lambda self: self._attr("error_dof", 0), doc="0 (eq. 8), or R - 1 for sobol")
+
+    @property
+    def u(self):
+        """Unit vector of the columns: up x normal (as the detector was built)."""
+        u = np.cross(self.up, self.normal)
+        return u / np.linalg.norm(u)
+
+    def cell_coordinates(self):
+        """(u [nx], v [ny]) of the cell centres in m from the detector's centre."""
+        su, sv = self.size_m
+        return (-su / 2 + (np.arange(self.nx) + 0.5) * su / self.nx,
+                -sv / 2 + (np.arange(self.ny) + 0.5) * sv / self.ny)
+
+    def cell_centres(self):
+        """float64 [ny,nx,3]: world position of every cell's centre (m)."""
+        u, v = self.cell_coordinates()
+        return (self.center + u[None, :, None] * self.u + v[:, None, None] * self.up)
+
+    def band_sum(self):
+        """(value [ny,nx], sigma_rel [ny,nx]) of the band sum.
+
+        A photon carries one band, so counts and sums of squares add over bands and
+        eq. (8) holds for the sum as for one band; sobol results use the replicate counts
+        summed over bands instead. With one band these are the stored arrays.
+        """
+        if self.bands == 1:
+            return self.value[:, :, 0], self.sigma_rel[:, :, 0]
+        value = self.value.sum(axis=2)
+        if self.replicate_count is not None and self.replicate_photons is not None:
+            rel = statistics.replicate_sigma_rel(self.replicate_count.sum(axis=3), self.replicate_photons)
+            rel = np.where(self.count.sum(axis=2) > 0, rel, np.nan)
+        else:
+            rel = statistics.cell_sigma_rel(self.count.sum(axis=2), self.sumsq.sum(axis=2), self.photons)
+        return value, rel
+
+    def to_csv(self, path, band_names=None):
+        """Write one row per cell: i, j, the cell centre (u, v from the detector's centre and
+        x, y, z in the scene), then per band the value, its relative and absolute errors and
+        the counts n_c, q_c; with several bands also the band sum. Units are in the header.
+        Returns the path."""
+        names = list(band_names) if band_names else [f"band{b}" for b in range(self.bands)]
+        u, v = self.cell_coordinates()
+        xyz = self.cell_centres()
+        unit = self.units
+        header = ["i", "j", "u_m", "v_m", "x_m", "y_m", "z_m"]
+        cols = []
+        for b, name in enumerate(names):
+            header += [f"value_{name} [{unit}]", f"sigma_rel_{name}", f"sigma_{name} [{unit}]",
+                       f"count_{name}", f"sumsq_{name}"]
+            cols.append((self.value[:, :, b], self.sigma_rel[:, :, b], self.sigma[:, :, b],
+                         self.count[:, :, b], self.sumsq[:, :, b]))
+        if self.bands > 1:
+            sv, sr = self.band_sum()
+            header += [f"value_sum [{unit}]", "sigma_rel_sum", f"sigma_sum [{unit}]"]
+        with builtins.open(path, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(header)
+            for j in range(self.ny):
+                for i in range(self.nx):
+                    row = [i, j, repr(float(u[i])), repr(float(v[j]))] + [repr(float(c)) for c in xyz[j, i]]
+                    for val, rel, sig, n, q in cols:
+                        row += [repr(float(val[j, i])), repr(float(rel[j, i])), repr(float(sig[j, i])),
+                                int(n[j, i]), int(q[j, i])]
+                    if self.bands > 1:
+                        row += [repr(float(sv[j, i])), repr(float(sr[j, i])), repr(float(sv[j, i] * sr[j, i]))]
+                    w.writerow(row)
+        return path
+
+
+class History:
+    """The convergence history (``/history``): one row per reduction.
+
+    time_s, photons, sigma_rel_global, forecast_s [rows]; with targets also
+    target_value, target_forecast_s, target_forecast_photons [rows, targets] and
+    target_labels, target_goals. Absent datasets are None.
+    """
+
+    def __init__(self, datasets, attrs):
+        self.datasets = dict(datasets)
+        self.attrs = dict(attrs)
+
+    def __getattr__(self, name):
+        if name in ("datasets", "attrs"):
+            raise AttributeError(name)
+        if name in self.datasets:
+            return self.datasets[name]
+        if name in ("time_s", "photons", "sigma_rel_global", "forecast_s", "target_value", "target_forecast_s",
+                    "target_forecast_photons"):
+            return None
+        raise AttributeError(name)
+
+    @property
+    def target_labels(self):
+        return list(self.attrs.get("target_labels", []))
+
+    @property
+    def target_goals(self):
+        return list(np.atleast_1d(self.attrs.get("target_goals", [])))
+
+    def __len__(self):
+        t = self.datasets.get("time_s")
+        return 0 if t is None else len(t)
+
+
+class Result(_AttrAccess):
+    """A luxtrace result or checkpoint, read whole (see :func:`open`), or several combined
+    (see :func:`luxtrace.combine`).
+
+    ``attrs``: every root attribute; ``mesh``: :class:`Mesh`; ``surface``:
+    :class:`SurfaceMap`; ``detectors`` and ``observers``: dicts of :class:`Detector` and
+    :class:`Group` by name; ``history``: :class:`History` (None for a combination).
+    """
+
+    def __init__(self, attrs, mesh, surface, detectors, observers=None, history=None, path=None, notes=()):
+        self.attrs = dict(attrs)
+        self.mesh = mesh
+        self.surface = surface
+        self.detectors = dict(detectors)
+        self.observers = dict(observers or {})
+        self.history = history
+        self.path = path
+        self.notes = list(notes)  #: what a combination left out, and why
+
+    def __repr__(self):
+        return (f"<Result {self.path or 'combined'}: {self.photons} photons, format {self.format_version}, "
+                f"detectors {sorted(self.detectors)}>")
+
+    def _attr(self, name, default=None):
+        return self.attrs.get(name, default)
+
+    format = property(lambda self: self._attr("format"), doc='"luxtrace-result" or "luxtrace-checkpoint"')
+    format_version = property(lambda self: int(self._attr("format_version", 1)))
+    is_checkpoint = property(lambda self: self.format == "luxtrace-checkpoint")
+    luxtrace_version = property(lambda self: self._attr("luxtrace_version"))
+    scene_file = property(lambda self: self._attr("scene_file"))
+    scene_name = property(lambda self: self._attr("scene_name"))
+    seed = property(lambda self: self._attr("seed"), doc="the run's seed (of a combination: the first)")
+    seeds = property(lambda self: tuple(self._attr("seeds", (self._attr("seed"),))),
+                     doc="all seeds: one for a run, one per run for a combination")
+    photons = property(lambda self: int(self._attr("photons", 0)), doc="photons emitted, N")
+    flux_per_photon_lm = property(lambda self: self._attr("flux_per_photon_lm"), doc="E0 = total_flux_lm / N")
+    total_flux_lm = property(lambda self: self._attr("total_flux_lm"), doc="initial flux of all lights")
+    maintenance_factor = property(lambda self: self._attr("maintenance_factor", 1.0))
+    elapsed_s = property(lambda self: self._attr("elapsed_s"))
+    stop_reason = property(lambda self: self._attr("stop_reason"))
+    bands = property(lambda self: list(self._attr("bands", ["Y"])))
+    sampler = property(lambda self: self._attr("sampler", "random"))
+    replicates = property(lambda self: int(self._attr("replicates", 0)), doc="R of sobol, 0 for random")
+    ranks = property(lambda self: self._attr("ranks"))
+    threads_per_rank = property(lambda self: self._attr("threads_per_rank"))
+
+    def detector(self, name):
+        """The detector NAME; KeyError naming the detectors there are otherwise."""
+        try:
+            return self.detectors[name]
+        except KeyError:
+            known = ", ".join(sorted(self.detectors)) or "none"
+            where = self.path or "the combined result"
+            raise KeyError(f"{where}: no detector '{name}' (the file has: {known})") from None
+
+    def summary(self):
+        """A few lines like ``luxtrace info``'s: photons, the global map, each detector."""
+        s = self.surface
+        lines = [f"{self.path or 'combined result'}: format {self.format_version}, sampler {self.sampler}, "
+                 f"seed(s) {', '.join(str(x) for x in self.seeds)}",
+                 f"photons {self.photons}, flux {self.total_flux_lm:g} lm",
+                 f"global map: mean {s.mean_arithmetic_lx:.4g} lx, RMS error {s.odd_even_sigma_lx:.4g} lx "
+                 f"({100 * s.sigma_rel_arithmetic:.3g} % arithmetic)"]
+        for d in self.detectors.values():
+            lines.append(f"detector {d.name}: {d.type}, mean {d.mean_value:.5g} {d.units} "
+                         f"+- {100 * d.mean_sigma_rel:.3g} %, per-cell error {100 * d.sigma_rel_arithmetic:.3g} % "
+                         f"(eq. 9)")
+        return "\n".join(lines)
+
+
+def _read_datasets(group):
+    return {k: v[()] for k, v in group.items() if isinstance(v, h5py.Dataset)}
+
+
+def _with_sides(a):
+    """A format-1 [T,B] map as format 2's [T,2,B]: the data on the front, zeros behind."""
+    out = np.zeros((a.shape[0], 2) + a.shape[1:], dtype=a.dtype)
+    out[:, FRONT] = a
+    return out
+
+
+def open(path, check=True):  # noqa: A001  (luxtrace.open, like h5py.File / openmc.StatePoint)
+    """Read a result or checkpoint file of any format_version luxtrace writes (1 or 2).
+
+    With ``check`` the file's seal is verified first, as ``luxtrace info`` does. Raises
+    ResultError for a damaged file, a file that is not a luxtrace result, or a format
+    newer than this package; FileNotFoundError when there is no such file.
+    """
+    path = os.fspath(path)
+    if check:
+        check_seal(path)
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise ResultError(f"{path}: not an HDF5 file ({e})") from None
+    try:
+        with f:
+            res = _read(f, path)
+    except ResultError:
+        raise
+    except (OSError, RuntimeError, KeyError, ValueError, TypeError, IndexError) as e:
+        # HDF5's checksums, missing datasets, attributes of the wrong kind: a file that
+        # was changed after luxtrace wrote it (unsealed files of 0.1 are not checked first).
+        raise ResultError(f"{path}: damaged result: {e}") from None
+    _validate(res, path)
+    return res
+
+
+def _read(f, path):
+    """The groups of an open file as a Result (shapes not yet checked)."""
+    attrs = _attrs(f)
+    if attrs.get("format") not in ("luxtrace-result", "luxtrace-checkpoint"):
+        raise ResultError(f"{path}: not a luxtrace result (root attribute format = {attrs.get('format')!r})")
+    version = int(attrs.get("format_version", 1))
+    if not 1 <= version <= NEWEST_FORMAT_VERSION:
+        raise ResultError(f"{path}: format_version {version}; this package reads 1 to {NEWEST_FORMAT_VERSION}")
+    for g in ("mesh", "global"):
+        if g not in f:
+            raise ResultError(f"{path}: damaged result: no /{g} group")
+    m = f["mesh"]
+    names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
+    mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
+    g = _read_datasets(f["global"])
+    gattrs = _attrs(f["global"])
+    if version == 1:
+        for k in ("count_odd", "count_even", "direct_odd", "direct_even", "illuminance", "illuminance_direct"):
+            g[k] = _with_sides(g[k])
+        g["odd_even_difference_lx"] = _with_sides(g["odd_even_difference_lx"])
+        g["sigma_lx"] = np.full((mesh.triangle_count, 2), np.nan)
+    surface = SurfaceMap(g, gattrs, mesh.area_m2, version)
+    photons = int(attrs.get("photons", 0))
+    rep_photons = attrs.get("replicate_photons")
+    detectors = {}
+    if "detectors" in f:
+        for name, grp in f["detectors"].items():
+            detectors[name] = Detector(name, _read_datasets(grp), _attrs(grp), photons,
+                                       None if rep_photons is None else np.atleast_1d(rep_photons))
+    observers = {}
+    if "observers" in f:
+        for name, grp in f["observers"].items():
+            observers[name] = Group(name, _attrs(grp), _read_datasets(grp))
+    history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
+    return Result(attrs, mesh, surface, detectors, observers, history, path=path)
+
+
+def _validate(r, path):
+    """Shapes that agree with each other, so that no later computation misreads a damaged
+    file: the mesh's arrays, the maps [T,2,B] and each detector's [ny,nx,B]."""
+    def bad(what):
+        raise ResultError(f"{path}: damaged result: {what}")
+    m = r.mesh
+    T, B = m.triangle_count, len(r.bands)
+    if m.triangles.shape != (T, 3) or m.material.shape != (T,) or m.vertices.ndim != 2 or m.vertices.shape[1] != 3:
+        bad("the /mesh arrays do not agree in size")
+    if T and (m.triangles.min() < 0 or m.triangles.max() >= len(m.vertices)):
+        bad("/mesh/triangles names vertices that do not exist")
+    known = SurfaceMap._COUNTS + ("illuminance", "illuminance_direct", "sumsq", "sigma_lx", "odd_even_difference_lx")
+    for k in known:  # datasets a newer luxtrace adds are passed on unchecked
+        if k not in r.surface.datasets:
+            if k == "sumsq" and r.format_version == 1:
+                continue
+            bad(f"no /global/{k}")
+        v = r.surface.datasets[k]
+        want = (T, 2) if k in ("sigma_lx", "odd_even_difference_lx") else (T, 2, B)
+        if np.shape(v) != want:
+            bad(f"/global/{k} has shape {np.shape(v)}, expected {want} ({T} triangles, {B} bands)")
+    for name, d in r.detectors.items():
+        cells, size = np.atleast_1d(d.attrs.get("cells", [])), np.atleast_1d(d.attrs.get("size", []))
+        if (cells.shape != (2,) or size.shape != (2,) or not np.all(np.isfinite(size)) or not np.all(size > 0)
+                or not np.all(cells >= 1) or not np.all(cells == np.floor(cells))):
+            bad(f"/detectors/{name}: attributes cells or size are not two positive numbers")
+        want = (d.ny, d.nx, B)
+        for k in ("count", "sumsq", "value", "sigma_rel"):
+            if np.shape(d.datasets.get(k)) != want:
+                bad(f"/detectors/{name}/{k} has shape {np.shape(d.datasets.get(k))}, expected {want}")
+        for k in ("normal", "up", "center"):
+            if np.shape(d.attrs.get(k)) != (3,):
+                bad(f"/detectors/{name}: attribute {k} is not a 3-vector")

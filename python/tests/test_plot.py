@@ -1,0 +1,116 @@
+"""Detector pictures show the detector's data: the map's pixels are the cells' values, the
+colour scale spans the data, the histogram counts every cell with hits, the sections
+read the asked row and column; the PNGs are written, and bad input writes nothing."""
+import os
+import subprocess
+import sys
+
+import matplotlib.image
+import numpy as np
+import pytest
+
+import luxtrace
+from luxtrace import plot
+from conftest import HERE, REPO, simulate, write_v2
+
+import matplotlib.pyplot as plt
+
+
+@pytest.fixture
+def grid(tmp_path):
+    """The hand-made 3 x 2 detector of two bands with one cell never hit."""
+    return luxtrace.open(write_v2(tmp_path / "v2.h5", [(4, simulate(4, 3000))]))
+
+
+def test_value_map_is_the_data_with_its_range(grid):
+    d = grid.detectors["grid"]
+    value, _ = d.band_sum()
+    fig = plot.value_figure(d)
+    im = fig.axes[0].images[0]
+    assert np.array_equal(im.get_array(), value), "one pixel per cell, the band sum, row 0 first"
+    assert im.origin == "lower" and im.get_clim() == (0.0, value.max())
+    assert im.get_extent() == [-0.3, 0.3, -0.2, 0.2]
+    plt.close(fig)
+
+
+def test_error_map_masks_the_cells_without_hits(grid):
+    d = grid.detectors["grid"]
+    _, rel = d.band_sum()
+    fig = plot.error_figure(d)
+    im = fig.axes[0].images[0]
+    a = im.get_array()
+    assert a.mask[1, 2] and a.mask.sum() == 1, "exactly the cell without hits"
+    assert im.get_clim() == (0.0, pytest.approx(100 * np.nanmax(rel)))
+    (marks,) = fig.axes[0].lines
+    assert marks.get_xdata() == pytest.approx([0.2]) and marks.get_ydata() == pytest.approx([0.1])
+    plt.close(fig)
+
+
+def test_histogram_counts_every_cell_with_hits(room_runs):
+    d = luxtrace.open(room_runs["random", 1]).detectors["wall"]
+    _, rel = d.band_sum()
+    fig = plot.error_histogram_figure(d)
+    bars = fig.axes[0].patches
+    assert sum(b.get_height() for b in bars) == np.isfinite(rel).sum()
+    lo = min(b.get_x() for b in bars)
+    hi = max(b.get_x() + b.get_width() for b in bars)
+    assert lo == pytest.approx(100 * np.nanmin(rel)) and hi == pytest.approx(100 * np.nanmax(rel))
+    xs = sorted(line.get_xdata()[0] for line in fig.axes[0].lines)
+    assert xs == pytest.approx(sorted([100 * d.sigma_rel_arithmetic, 100 * d.sigma_rel_quadratic]))
+    plt.close(fig)
+
+
+def _steps(ax):
+    """The value staircase of a section panel: the stairs drawn without a fill."""
+    for p in ax.patches:
+        if not p.get_fill():
+            v = p.get_path().vertices
+            return v[1:-1:2, 1] if len(v) > 2 else v[:, 1]
+    raise AssertionError("no staircase")
+
+
+def test_sections_read_the_asked_row_and_column(room_runs):
+    d = luxtrace.open(room_runs["random", 1]).detectors["table"]
+    value, _ = d.band_sum()
+    fig = plot.sections_figure(d, 3, 5)
+    row, col = _steps(fig.axes[0]), _steps(fig.axes[1])
+    np.testing.assert_allclose(row, value[5, :])
+    np.testing.assert_allclose(col, value[:, 3])
+    plt.close(fig)
+    assert plot.brightest_cell(d) == tuple(int(x) for x in np.unravel_index(np.argmax(value), value.shape))[::-1]
+    with pytest.raises(ValueError, match="outside"):
+        plot.sections_figure(d, 10, 0)
+
+
+def test_detector_pictures_are_written(room_runs, out_dir):
+    r = luxtrace.open(room_runs["random", 1])
+    paths = plot.detector_pictures(r, "wall", str(out_dir), cell=(2, 1))
+    assert [os.path.basename(p) for p in paths] == ["wall_value.png", "wall_error.png", "wall_error_hist.png",
+                                                    "wall_sections.png"]
+    for p in paths:
+        img = matplotlib.image.imread(p)
+        assert img.ndim == 3 and min(img.shape[:2]) > 200
+    assert sorted(os.listdir(out_dir)) == sorted(os.path.basename(p) for p in paths), "no temporary files left"
+
+
+def test_command_line(room_runs, out_dir):
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(HERE))
+    cmd = [sys.executable, "-m", "luxtrace.plot", room_runs["random", 1], "-o", str(out_dir)]
+    bad = subprocess.run(cmd + ["--detector", "table", "--detector", "ceiling"], env=env, capture_output=True,
+                         text=True)
+    assert bad.returncode == 2 and "ceiling" in bad.stderr and "table, wall" in bad.stderr
+    bad = subprocess.run(cmd + ["--detector", "table", "--cell", "10,0"], env=env, capture_output=True, text=True)
+    assert bad.returncode == 2 and "--cell" in bad.stderr
+    assert os.listdir(out_dir) == [], "bad input writes nothing"
+    ok = subprocess.run(cmd + ["--detector", "table", "--convergence"], env=env, capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stderr
+    assert sorted(os.listdir(out_dir)) == ["convergence.png", "table_error.png", "table_error_hist.png",
+                                           "table_sections.png", "table_value.png"]
+
+
+def test_plot_convergence_script_uses_the_package(room_runs, out_dir):
+    script = os.path.join(REPO, "scripts", "plot_convergence.py")
+    p = subprocess.run([sys.executable, script, room_runs["random", 2], "-o", str(out_dir), "--detector", "wall"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert {"convergence.png", "wall_value.png", "wall_sections.png"} <= set(os.listdir(out_dir))

@@ -1,4 +1,4 @@
-// Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
+// Scene file (docs/REFERENCE.md §2) -> Scene. Every key is checked; the first problem found is
 // thrown as an InputError naming the file, the line and the key.
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/luminaire_file.hpp"
@@ -6,6 +6,7 @@
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/scene/scene_schema.hpp"
 #include "luxtrace/scene/shapes.hpp"
 #include "toml_reader.hpp"
 
@@ -100,7 +101,7 @@ struct Loader {
     void parse_scene_table(TableReader& root) {
         const toml::table* t = root.table("scene");
         if (t == nullptr) return;
-        TableReader r(*t, fname, "[scene]");
+        TableReader r(*t, fname, "[scene]", "scene");
         scene.name = r.string("name").value_or(file.stem().string());
         if (auto b = r.strings("bands")) {
             if (b->empty()) r.fail("bands", "needs at least one band");
@@ -113,7 +114,7 @@ struct Loader {
     }
 
     void parse_material(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("material", i, t));
+        TableReader r(t, fname, entry_name("material", i, t), "material");
         Material m;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -206,13 +207,13 @@ struct Loader {
     }
 
     void parse_mesh(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("mesh", i, t));
+        TableReader r(t, fname, entry_name("mesh", i, t), "mesh");
         const auto f = r.string("file");
         if (!f) r.fail_entry("needs a 'file'");
         const std::uint32_t mat = material_ref(r, "material", false);
         Transform tr;
         if (const toml::table* tt = r.table("transform")) {
-            TableReader tx(*tt, fname, r.context() + " transform");
+            TableReader tx(*tt, fname, r.context() + " transform", "mesh.transform");
             tr.translate = tx.vec3("translate").value_or(Vec3(0.0));
             tr.rotate_deg = tx.vec3("rotate_deg").value_or(Vec3(0.0));
             if (tx.has("scale")) {
@@ -231,7 +232,7 @@ struct Loader {
     }
 
     void parse_shape(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("shape", i, t));
+        TableReader r(t, fname, entry_name("shape", i, t), "shape");
         const std::string type = r.string("type").value_or("");
         const std::uint32_t mat = material_ref(r, "material", true);
         const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
@@ -306,7 +307,7 @@ struct Loader {
         }
         const toml::table* g = r.table("grid");
         if (g == nullptr) r.fail("grid", "expected a table { first = [x, y, z], spacing = [dx, dy], count = [nx, ny] }");
-        TableReader gr(*g, fname, r.context() + " grid");
+        TableReader gr(*g, fname, r.context() + " grid", "light.grid");
         const auto first = gr.vec3("first");
         const auto spacing = gr.numbers("spacing", 2);
         const auto count = gr.numbers("count", 2);
@@ -350,7 +351,7 @@ struct Loader {
     }
 
     std::vector<Light> parse_light(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("light", i, t));
+        TableReader r(t, fname, entry_name("light", i, t), "light");
         Light l;
         const std::string type = r.string("type").value_or("");
         l.label = "light " + std::to_string(i + 1) + " (" + type + ")";
@@ -493,7 +494,7 @@ struct Loader {
     }
 
     void parse_detector(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("detector", i, t));
+        TableReader r(t, fname, entry_name("detector", i, t), "detector");
         Detector d;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -551,7 +552,7 @@ struct Loader {
     }
 
     void parse_camera(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("camera", i, t));
+        TableReader r(t, fname, entry_name("camera", i, t), "camera");
         Camera c;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -585,7 +586,7 @@ struct Loader {
         run.output = (fs::path(file.stem().string() + ".h5")).string();
         const toml::table* t = root.table("run");
         if (t == nullptr) return;
-        TableReader r(*t, fname, "[run]");
+        TableReader r(*t, fname, "[run]", "run");
         run.seed = r.count("seed").value_or(run.seed);
         run.photons = r.count("photons").value_or(run.photons);
         if (run.photons == 0) r.fail("photons", "must be positive");
@@ -620,7 +621,7 @@ struct Loader {
     }
 
     Target parse_target(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1));
+        TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1), "run.target");
         Target g;
         g.on = r.string("on").value_or("global");
         if (g.on != "global") {
@@ -691,13 +692,11 @@ Scene load_scene(const fs::path& file) {
         throw InputError(L.fname + ":" + std::to_string(e.source().begin.line) +
                          ": TOML syntax error: " + std::string(e.description()));
     }
-    TableReader root(root_table, L.fname, "top level");
-    for (const auto& [key, node] : root_table) {
-        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run", "camera"};
-        if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
+    TableReader root(root_table, L.fname, "top level", "");
+    for (const auto& [key, node] : root_table)  // unknown tables first, before any file is read
+        if (!scene_table_schema("").accepts(key.str()))
             throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
                              ": top level: unknown key '" + std::string(key.str()) + "'");
-    }
     L.scene.name = file.stem().string();
     L.parse_scene_table(root);
     {

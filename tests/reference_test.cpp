@@ -107,8 +107,8 @@ TEST(Reference, EveryAcceptedSceneKeyIsDocumentedAndEveryDocumentedKeyIsAccepted
             continue;
         }
         for (const std::string& k : keys)
-            EXPECT_TRUE(d->second.count(k)) << show(path) << " key '" << k
-                                            << "' is accepted by the loader but not documented in docs/REFERENCE.md";
+            EXPECT_TRUE(d->second.count(k))
+                << show(path) << " key '" << k << "' is accepted by the loader but not documented in docs/REFERENCE.md";
     }
     for (const auto& [path, keys] : doc) {
         const auto s = schema.find(path);
@@ -117,8 +117,8 @@ TEST(Reference, EveryAcceptedSceneKeyIsDocumentedAndEveryDocumentedKeyIsAccepted
             continue;
         }
         for (const std::string& k : keys)
-            EXPECT_TRUE(s->second.count(k)) << show(path) << " key '" << k
-                                            << "' is documented but not in src/scene/scene_schema.cpp";
+            EXPECT_TRUE(s->second.count(k))
+                << show(path) << " key '" << k << "' is documented but not in src/scene/scene_schema.cpp";
     }
 }
 
@@ -132,8 +132,8 @@ TEST(Reference, ScenesThatUseEverySchemaKeyLoad) {
     }
     for (const auto& [path, keys] : schema_keys())
         for (const std::string& k : keys)
-            EXPECT_TRUE(used[path].count(k)) << show(path) << " key '" << k
-                                             << "' is used by no reference scene (tests/data/reference/)";
+            EXPECT_TRUE(used[path].count(k))
+                << show(path) << " key '" << k << "' is used by no reference scene (tests/data/reference/)";
 }
 
 TEST(Reference, UnknownAndMisplacedKeysAreRefusedWithTheirNames) {
@@ -152,8 +152,9 @@ TEST(Reference, UnknownAndMisplacedKeysAreRefusedWithTheirNames) {
         return "(loaded)";
     };
     // Not in the schema: unknown, with the keys the table does take.
-    const std::string unknown = message(base + lamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
-                                                      "radius = 2\n");
+    const std::string unknown = message(base + lamp +
+                                        "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+                                        "radius = 2\n");
     EXPECT_NE(unknown.find("unknown key 'radius'"), std::string::npos) << unknown;
     EXPECT_NE(unknown.find("half_angle_deg"), std::string::npos) << unknown;
     // In the schema but not for this type: a rectangle has no radius.

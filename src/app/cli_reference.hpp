@@ -9,7 +9,8 @@
 namespace luxtrace {
 
 // Markdown: one table per visible subcommand (arguments and options, value type, help text),
-// the program's own options first (with -h/--help, which every subcommand also takes). Hidden subcommands (empty group) are left out.
+// the program's own options first (with -h/--help, which every subcommand also takes). Hidden subcommands (empty group)
+// are left out.
 void print_cli_reference(const CLI::App& app, std::ostream& os);
 
 }  // namespace luxtrace

@@ -11,7 +11,9 @@ bool SceneTableSchema::accepts(std::string_view key) const {
 }
 
 const std::vector<SceneTableSchema>& scene_schema() {
-    // One place to add a key (docs/REFERENCE.md §2 documents each with its type, default and unit).
+    // One place to add a key (docs/REFERENCE.md §2 documents each with its type, default and
+    // unit). Kept as a table, one scene table per entry, not one key per line:
+    // clang-format off
     static const std::vector<SceneTableSchema> schema = {
         {"", {"scene", "material", "mesh", "shape", "light", "detector", "camera", "run"}},
         {"scene", {"name", "bands", "maintenance_factor"}},
@@ -34,6 +36,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
           "checkpoint_every_s", "sampler", "replicates", "max_bounces", "target"}},
         {"run.target", {"on", "relative_error", "absolute_error", "photons_received", "averaging"}},
     };
+    // clang-format on
     return schema;
 }
 

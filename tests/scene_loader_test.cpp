@@ -1,4 +1,4 @@
-// Tests of load_scene (SPEC §2): every key of tests/data/scenes/every_key.toml lands
+// Tests of load_scene (docs/REFERENCE.md §2): every key of tests/data/scenes/every_key.toml lands
 // where it should; built-in shapes and transformed meshes have the right areas,
 // positions and front sides; and each class of bad input is an InputError whose
 // message names the scene file, the line (or key) and what is wrong.

@@ -50,10 +50,10 @@ void print_options(const CLI::App& app, std::ostream& os, bool with_help) {
 }  // namespace
 
 void print_cli_reference(const CLI::App& app, std::ostream& os) {
-    os << "### `" << app.get_name() << "`\n\n" << app.get_description() << "\n\n";
+    os << "#### `" << app.get_name() << "`\n\n" << app.get_description() << "\n\n";
     print_options(app, os, true);
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App* s) { return !s->get_group().empty(); })) {
-        os << "\n### `" << app.get_name() << ' ' << sub->get_name() << "`\n\n" << sub->get_description() << "\n\n";
+        os << "\n#### `" << app.get_name() << ' ' << sub->get_name() << "`\n\n" << sub->get_description() << "\n\n";
         print_options(*sub, os, false);
     }
 }

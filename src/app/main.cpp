@@ -1,4 +1,5 @@
-// luxtrace command line (docs/REFERENCE.md §1). Thin: parse, call the library, map errors to exit codes.
+// luxtrace command line (docs/REFERENCE.md §1). Thin: parse, call the library, map errors
+// to exit codes.
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
@@ -187,9 +188,12 @@ int main(int argc, char** argv) {
     RunArgs ra;
     auto* run = app.add_subcommand("run", "simulate a scene and write the result file");
     run->add_option("scene", ra.scene, "scene file (TOML)")->required();
-    run->add_option("--photons", ra.photons, "photon budget (1000000, 1e6 and 1M are the same); with --restart the new budget, at least the checkpoint's photons");
+    run->add_option("--photons", ra.photons,
+                    "photon budget (1000000, 1e6 and 1M are the same); with --restart the new budget, at least the "
+                    "checkpoint's photons");
     run->add_option("--time-limit", ra.time_limit, "wall-time limit in seconds");
-    run->add_option("--target", ra.target, "relative error goal of the first [[run.target]] (a global target if the scene has none)");
+    run->add_option("--target", ra.target,
+                    "relative error goal of the first [[run.target]] (a global target if the scene has none)");
     run->add_option("--seed", ra.seed, "random seed (a restart keeps the checkpoint's)");
     run->add_option("--threads", ra.threads, "threads per rank (default: all cores given to the rank)");
     run->add_option("--output", ra.output, "result file (.h5), relative to the working directory");

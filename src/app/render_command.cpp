@@ -1,5 +1,5 @@
-// `luxtrace render`: pictures of a result. Thin: check the
-// options, load, call the render library, say what was written.
+// `luxtrace render`: pictures of a result. Thin: check the options, load, call the render
+// library, say what was written.
 #include "commands.hpp"
 
 #include "luxtrace/core/error.hpp"

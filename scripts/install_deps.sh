@@ -5,12 +5,14 @@ set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
   libembree-dev libtbb-dev libopenmpi-dev openmpi-bin libhdf5-dev hdf5-tools
-  libcli11-dev libglm-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libglm-dev libgtest-dev
   libtomlplusplus-dev libassimp-dev librandom123-dev libboost-dev
   python3-h5py python3-numpy python3-matplotlib python3-pytest python3-setuptools
   slurm-wlm munge
-  libcairo2-dev libpng-dev libopenexr-dev fonts-dejavu-core libxml2-utils
+  libcairo2-dev libopenexr-dev fonts-dejavu-core   # render (LUXTRACE_RENDER; cairo brings libpng)
+  libxml2-utils                 # xmllint: the XDMF companions in the tests
   clang-14 libclang-rt-14-dev   # the libFuzzer build (tests/fuzz/README.md)
+  clang-format-14               # scripts/check_format.sh (.clang-format)
 )
 missing=()
 for p in "${packages[@]}"; do

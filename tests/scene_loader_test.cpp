@@ -1,4 +1,4 @@
-// Tests of load_scene (SPEC §2): every key of tests/data/scenes/every_key.toml lands
+// Tests of load_scene (docs/REFERENCE.md §2): every key of tests/data/scenes/every_key.toml lands
 // where it should; built-in shapes and transformed meshes have the right areas,
 // positions and front sides; and each class of bad input is an InputError whose
 // message names the scene file, the line (or key) and what is wrong.
@@ -778,9 +778,9 @@ TEST_F(Loader, BadCylindricalDetectors) {
     expect_bad(semi + "facing = [0, 1, 0.5]\n", "facing", {"key 'facing'", "perpendicular to the cylinder axis"});
     expect_bad(semi + "facing = [0, 0, 0]\n", "facing", {"key 'facing'", "non-zero"});
     // Keys of other types are unknown here.
-    expect_bad(cyl + "facing = [1, 0, 0]\n", "facing", {"unknown key 'facing'"});
-    expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal", {"unknown key 'horizontal'"});
-    expect_bad(head + "radius = 0.1\n", "radius", {"unknown key 'radius'"});
+    expect_bad(cyl + "facing = [1, 0, 0]\n", "facing", {"key 'facing' does not apply here"});
+    expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal", {"key 'horizontal' does not apply here"});
+    expect_bad(head + "radius = 0.1\n", "radius", {"key 'radius' does not apply here"});
     expect_bad(cyl + "horizontal = \"\"\n", "horizontal", {"key 'horizontal'", "needs the name"});
     expect_bad(cyl + "horizontal = \"nosuch\"\n", "horizontal",
                {"key 'horizontal'", "no [[detector]] is named 'nosuch'"});

@@ -1,4 +1,5 @@
-// luxtrace command line (SPEC §1). Thin: parse, call the library, map errors to exit codes.
+// luxtrace command line (docs/REFERENCE.md §1). Thin: parse, call the library, map errors
+// to exit codes.
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
@@ -9,6 +10,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
+#include "cli_reference.hpp"
 #include "commands.hpp"
 #include "scene_summary.hpp"
 
@@ -180,20 +182,25 @@ int cmd_info(const std::string& path) {
 int main(int argc, char** argv) {
     Communicator comm(&argc, &argv);
     CLI::App app{"luxtrace: forward Monte Carlo photon simulation for lighting"};
+    app.name("luxtrace");  // not argv[0]: the reference printed below must not depend on the path
     app.require_subcommand(1);
+    app.set_version_flag("--version", "luxtrace " LUXTRACE_VERSION, "print the version and git commit, then exit");
     RunArgs ra;
     auto* run = app.add_subcommand("run", "simulate a scene and write the result file");
     run->add_option("scene", ra.scene, "scene file (TOML)")->required();
-    run->add_option("--photons", ra.photons, "photon budget, e.g. 1e8 or 100M");
+    run->add_option("--photons", ra.photons,
+                    "photon budget (1000000, 1e6 and 1M are the same); with --restart the new budget, at least the "
+                    "checkpoint's photons");
     run->add_option("--time-limit", ra.time_limit, "wall-time limit in seconds");
-    run->add_option("--target", ra.target, "relative error goal of the first target");
-    run->add_option("--seed", ra.seed, "random seed");
+    run->add_option("--target", ra.target,
+                    "relative error goal of the first [[run.target]] (a global target if the scene has none)");
+    run->add_option("--seed", ra.seed, "random seed (a restart keeps the checkpoint's)");
     run->add_option("--threads", ra.threads, "threads per rank (default: all cores given to the rank)");
-    run->add_option("--output", ra.output, "result file (.h5)");
-    run->add_option("--checkpoint", ra.checkpoint, "checkpoint file");
+    run->add_option("--output", ra.output, "result file (.h5), relative to the working directory");
+    run->add_option("--checkpoint", ra.checkpoint, "checkpoint file (default: OUTPUT.checkpoint.h5)");
     run->add_option("--checkpoint-every", ra.checkpoint_every, "seconds between checkpoints");
-    run->add_option("--restart", ra.restart, "continue from a checkpoint");
-    run->add_option("--report-every", ra.report_every, "seconds between progress lines");
+    run->add_option("--restart", ra.restart, "continue the run a checkpoint holds, on any number of ranks");
+    run->add_option("--report-every", ra.report_every, "seconds between reductions and progress lines");
     run->add_option("--report-every-photons", ra.report_every_photons,
                     "reduce and report every N photons instead (a history that is the same on any machine)");
     run->add_option("--sampler", ra.sampler, "random (Philox) | sobol (Owen-scrambled, docs/QMC.md)");
@@ -229,6 +236,11 @@ int main(int argc, char** argv) {
     xdmf->add_option("result", xdmf_result, "result file (.h5)")->required();
     xdmf->add_option("-o,--output", xdmf_output, "XDMF file (default: RESULT.xdmf)");
 
+    // Hidden: the reference tables of docs/REFERENCE.md that are made from the program itself.
+    std::string reference_part;
+    auto* reference = app.add_subcommand("reference", "print the reference tables made from the program")->group("");
+    reference->add_option("part", reference_part, "cli: the command line")->required()->check(CLI::IsMember({"cli"}));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -245,6 +257,10 @@ int main(int argc, char** argv) {
         if (*render) return comm.is_root() ? cmd_render(rd) : 0;
         if (*photometry) return comm.is_root() ? cmd_photometry(photometry_files, lamp_set) : 0;
         if (*xdmf) return comm.is_root() ? cmd_export_xdmf(xdmf_result, xdmf_output) : 0;
+        if (*reference) {
+            if (comm.is_root()) print_cli_reference(app, std::cout);
+            return 0;
+        }
     } catch (const InputError& e) {
         // Every rank reads the same input and fails the same way; one message is enough.
         if (comm.is_root()) std::cerr << "luxtrace: error: " << e.what() << '\n';

@@ -1,9 +1,8 @@
-// `luxtrace render` and `luxtrace export-xdmf`: pictures of a result. Thin: check the
-// options, load, call the render library, say what was written.
+// `luxtrace render`: pictures of a result. Thin: check the options, load, call the render
+// library, say what was written.
 #include "commands.hpp"
 
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/image_io.hpp"
 #include "luxtrace/render/renderer.hpp"
@@ -151,12 +150,6 @@ int cmd_render(const RenderArgs& args) {
                   << "  " << fs::absolute(job.png).string() << "\n  " << fs::absolute(job.exr).string()
                   << " (luminance, cd/m^2)\n";
     }
-    return 0;
-}
-
-int cmd_export_xdmf(const std::string& result, const std::string& output) {
-    write_xdmf(result, output.empty() ? std::filesystem::path(result).replace_extension(".xdmf")
-                                      : std::filesystem::path(output));
     return 0;
 }
 

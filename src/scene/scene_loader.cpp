@@ -1,4 +1,4 @@
-// Scene file (SPEC §2) -> Scene. Every key is checked; the first problem found is
+// Scene file (docs/REFERENCE.md §2) -> Scene. Every key is checked; the first problem found is
 // thrown as an InputError naming the file, the line and the key.
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/luminaire_file.hpp"
@@ -6,6 +6,7 @@
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/scene/scene_schema.hpp"
 #include "luxtrace/scene/shapes.hpp"
 #include "toml_reader.hpp"
 
@@ -100,7 +101,7 @@ struct Loader {
     void parse_scene_table(TableReader& root) {
         const toml::table* t = root.table("scene");
         if (t == nullptr) return;
-        TableReader r(*t, fname, "[scene]");
+        TableReader r(*t, fname, "[scene]", "scene");
         scene.name = r.string("name").value_or(file.stem().string());
         if (auto b = r.strings("bands")) {
             if (b->empty()) r.fail("bands", "needs at least one band");
@@ -113,7 +114,7 @@ struct Loader {
     }
 
     void parse_material(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("material", i, t));
+        TableReader r(t, fname, entry_name("material", i, t), "material");
         Material m;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -206,13 +207,13 @@ struct Loader {
     }
 
     void parse_mesh(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("mesh", i, t));
+        TableReader r(t, fname, entry_name("mesh", i, t), "mesh");
         const auto f = r.string("file");
         if (!f) r.fail_entry("needs a 'file'");
         const std::uint32_t mat = material_ref(r, "material", false);
         Transform tr;
         if (const toml::table* tt = r.table("transform")) {
-            TableReader tx(*tt, fname, r.context() + " transform");
+            TableReader tx(*tt, fname, r.context() + " transform", "mesh.transform");
             tr.translate = tx.vec3("translate").value_or(Vec3(0.0));
             tr.rotate_deg = tx.vec3("rotate_deg").value_or(Vec3(0.0));
             if (tx.has("scale")) {
@@ -231,7 +232,7 @@ struct Loader {
     }
 
     void parse_shape(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("shape", i, t));
+        TableReader r(t, fname, entry_name("shape", i, t), "shape");
         const std::string type = r.string("type").value_or("");
         const std::uint32_t mat = material_ref(r, "material", true);
         const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
@@ -306,7 +307,7 @@ struct Loader {
         }
         const toml::table* g = r.table("grid");
         if (g == nullptr) r.fail("grid", "expected a table { first = [x, y, z], spacing = [dx, dy], count = [nx, ny] }");
-        TableReader gr(*g, fname, r.context() + " grid");
+        TableReader gr(*g, fname, r.context() + " grid", "light.grid");
         const auto first = gr.vec3("first");
         const auto spacing = gr.numbers("spacing", 2);
         const auto count = gr.numbers("count", 2);
@@ -350,7 +351,7 @@ struct Loader {
     }
 
     std::vector<Light> parse_light(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("light", i, t));
+        TableReader r(t, fname, entry_name("light", i, t), "light");
         Light l;
         const std::string type = r.string("type").value_or("");
         l.label = "light " + std::to_string(i + 1) + " (" + type + ")";
@@ -503,7 +504,7 @@ struct Loader {
                 r.fail("task_area", "expected [[detector.task_area]] tables { name, cells = [i0, i1, j0, j1] }");
             std::string context = r.context() + " task_area #" + std::to_string(k + 1);
             if (const auto n = (*t)["name"].value<std::string>()) context += " '" + *n + "'";
-            TableReader ar(*t, fname, context);
+            TableReader ar(*t, fname, context, "detector.task_area");
             const auto name = ar.string("name");
             if (!name || name->empty()) ar.fail_entry("needs a 'name'");
             if (name->find_first_of("/[]:. ") != std::string::npos)
@@ -528,7 +529,7 @@ struct Loader {
     }
 
     void parse_detector(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("detector", i, t));
+        TableReader r(t, fname, entry_name("detector", i, t), "detector");
         Detector d;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -620,7 +621,7 @@ struct Loader {
     void link_horizontal(const toml::table& t, std::size_t i) {
         Detector& d = scene.detectors[i];
         if (d.horizontal.empty()) return;
-        TableReader r(t, fname, entry_name("detector", i, t));
+        TableReader r(t, fname, entry_name("detector", i, t), "detector");
         const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                      [&](const Detector& o) { return o.name == d.horizontal; });
         if (it == scene.detectors.end()) r.fail("horizontal", "no [[detector]] is named '" + d.horizontal + "'");
@@ -644,7 +645,7 @@ struct Loader {
     // [[observer]]: an eye and a line of sight for UGR (glare/observer.hpp), with its eye
     // detector appended to the detectors (after the user's).
     void parse_observer(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("observer", i, t));
+        TableReader r(t, fname, entry_name("observer", i, t), "observer");
         Observer o;
         o.name = r.string("name").value_or("observer_" + std::to_string(i + 1));
         if (o.name.empty()) r.fail("name", "must not be empty");
@@ -696,7 +697,7 @@ struct Loader {
     }
 
     void parse_camera(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("camera", i, t));
+        TableReader r(t, fname, entry_name("camera", i, t), "camera");
         Camera c;
         const auto name = r.string("name");
         if (!name || name->empty()) r.fail_entry("needs a 'name'");
@@ -730,7 +731,7 @@ struct Loader {
         run.output = (fs::path(file.stem().string() + ".h5")).string();
         const toml::table* t = root.table("run");
         if (t == nullptr) return;
-        TableReader r(*t, fname, "[run]");
+        TableReader r(*t, fname, "[run]", "run");
         run.seed = r.count("seed").value_or(run.seed);
         run.photons = r.count("photons").value_or(run.photons);
         if (run.photons == 0) r.fail("photons", "must be positive");
@@ -765,7 +766,7 @@ struct Loader {
     }
 
     Target parse_target(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1));
+        TableReader r(t, fname, "[[run.target]] #" + std::to_string(i + 1), "run.target");
         Target g;
         g.on = r.string("on").value_or("global");
         if (g.on.rfind("observer:", 0) == 0) {
@@ -845,14 +846,11 @@ Scene load_scene(const fs::path& file) {
         throw InputError(L.fname + ":" + std::to_string(e.source().begin.line) +
                          ": TOML syntax error: " + std::string(e.description()));
     }
-    TableReader root(root_table, L.fname, "top level");
-    for (const auto& [key, node] : root_table) {
-        static const char* const known[] = {"scene", "material", "mesh", "shape", "light", "detector", "run", "camera",
-                                           "observer"};
-        if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
+    TableReader root(root_table, L.fname, "top level", "");
+    for (const auto& [key, node] : root_table)  // unknown tables first, before any file is read
+        if (!scene_table_schema("").accepts(key.str()))
             throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
                              ": top level: unknown key '" + std::string(key.str()) + "'");
-    }
     L.scene.name = file.stem().string();
     L.parse_scene_table(root);
     {

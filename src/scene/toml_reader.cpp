@@ -2,14 +2,25 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 
 namespace luxtrace::detail {
 using luxtrace::parse_count;
 
-TableReader::TableReader(const toml::table& table, std::string file, std::string context)
-    : table_(table), file_(std::move(file)), context_(std::move(context)) {}
+TableReader::TableReader(const toml::table& table, std::string file, std::string context, std::string_view schema_path)
+    : table_(table), schema_(scene_table_schema(schema_path)), file_(std::move(file)), context_(std::move(context)) {}
 
-bool TableReader::has(const std::string& key) const { return table_.contains(key); }
+void TableReader::check_schema(const std::string& key) const {
+    // A key the loader reads must be listed, or the reference would not document it.
+    if (!schema_.accepts(key))
+        throw std::logic_error("scene_schema.cpp: table '" + std::string(schema_.path) + "' does not list key '" +
+                               key + "' that the loader reads");
+}
+
+bool TableReader::has(const std::string& key) const {
+    check_schema(key);
+    return table_.contains(key);
+}
 
 int TableReader::line(const std::string& key) const {
     if (const toml::node* n = table_.get(key)) return static_cast<int>(n->source().begin.line);
@@ -30,6 +41,7 @@ void TableReader::fail_entry(const std::string& what) const {
 }
 
 const toml::node* TableReader::get(const std::string& key) {
+    check_schema(key);
     const toml::node* n = table_.get(key);
     if (n != nullptr) used_.insert(key);
     return n;
@@ -154,9 +166,13 @@ const toml::array* TableReader::array(const std::string& key) {
 void TableReader::finish() const {
     for (const auto& [k, v] : table_) {
         const std::string key(k.str());
-        if (used_.count(key) == 0)
-            throw InputError(file_ + ":" + std::to_string(v.source().begin.line) + ": " +
-                             context_ + ": unknown key '" + key + "'");
+        if (used_.count(key) != 0) continue;
+        const std::string where = file_ + ":" + std::to_string(v.source().begin.line) + ": " + context_;
+        if (schema_.accepts(key))
+            throw InputError(where + ": key '" + key + "' does not apply here (with this type or these other keys)");
+        std::string known;
+        for (std::string_view s : schema_.keys) known += (known.empty() ? "" : ", ") + std::string(s);
+        throw InputError(where + ": unknown key '" + key + "' (this table takes " + known + ")");
     }
 }
 

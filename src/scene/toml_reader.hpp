@@ -1,9 +1,11 @@
 #pragma once
 // Internal to the scene loader: reads one TOML table with strict key checking and
-// error messages of the form "FILE:LINE: CONTEXT: key 'K': WHAT".
+// error messages of the form "FILE:LINE: CONTEXT: key 'K': WHAT". Each reader knows its
+// table's schema (scene_schema.hpp): the keys it may read and the user may give.
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/scene/scene_schema.hpp"
 
 #include <toml++/toml.h>
 
@@ -16,7 +18,8 @@ namespace luxtrace::detail {
 
 class TableReader {
 public:
-    TableReader(const toml::table& table, std::string file, std::string context);
+    // schema_path: the table's path in scene_schema(), e.g. "light" or "light.grid".
+    TableReader(const toml::table& table, std::string file, std::string context, std::string_view schema_path);
 
     const std::string& context() const { return context_; }
     void set_context(std::string c) { context_ = std::move(c); }
@@ -41,12 +44,15 @@ public:
     const toml::table* table(const std::string& key);
     const toml::array* array(const std::string& key);
 
-    // Every key of the table must have been read: anything else is an unknown key.
+    // Every key of the table must have been read: a key the schema does not list is an
+    // unknown key, a listed one that was not read does not apply to this entry.
     void finish() const;
 
 private:
     const toml::node* get(const std::string& key);
+    void check_schema(const std::string& key) const;  // std::logic_error: the loader reads an unlisted key
     const toml::table& table_;
+    const SceneTableSchema& schema_;
     std::string file_;
     std::string context_;
     std::set<std::string> used_;

@@ -1,0 +1,52 @@
+#include "luxtrace/scene/scene_schema.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace luxtrace {
+
+bool SceneTableSchema::accepts(std::string_view key) const {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+const std::vector<SceneTableSchema>& scene_schema() {
+    // One place to add a key (docs/REFERENCE.md §2 documents each with its type, default and
+    // unit). Kept as a table, one scene table per entry, not one key per line:
+    // clang-format off
+    static const std::vector<SceneTableSchema> schema = {
+        {"", {"scene", "material", "mesh", "shape", "light", "detector", "camera", "run", "observer"}},
+        {"scene", {"name", "bands", "maintenance_factor"}},
+        {"material",
+         {"name", "type", "reflectance", "specular_reflectance", "ior", "transmittance", "diffuse_reflectance",
+          "diffuse_transmittance", "specular_transmittance"}},
+        {"mesh", {"file", "material", "transform"}},
+        {"mesh.transform", {"translate", "rotate_deg", "scale"}},
+        {"shape", {"type", "name", "material", "center", "normal", "up", "size", "radius", "subdivisions", "inward"}},
+        {"light",
+         {"type", "position", "positions", "grid", "flux_lm", "photometry", "ies", "multiplier", "lamp_factor",
+          "lamp_set", "emission", "aim", "direction", "c0", "rotation_deg", "tilt_deg", "roll_deg", "spin_deg",
+          "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour"}},
+        {"light.grid", {"first", "spacing", "count"}},
+        {"detector",
+         {"name", "type", "center", "normal", "up", "size", "cells", "view_direction", "half_angle_deg", "radius",
+          "height", "facing", "horizontal", "task_area"}},
+        {"detector.task_area", {"name", "cells"}},
+        {"observer", {"name", "position", "view_direction", "eye_detector_size"}},
+        {"camera", {"name", "position", "target", "up", "fov_deg", "size"}},
+        {"run",
+         {"seed", "photons", "time_limit_s", "report_every_s", "report_every_photons", "output", "checkpoint",
+          "checkpoint_every_s", "sampler", "replicates", "max_bounces", "target"}},
+        {"run.target", {"on", "relative_error", "absolute_error", "photons_received", "averaging"}},
+    };
+    // clang-format on
+    return schema;
+}
+
+const SceneTableSchema& scene_table_schema(std::string_view path) {
+    for (const SceneTableSchema& t : scene_schema())
+        if (t.path == path) return t;
+    throw std::logic_error("scene_schema.cpp lists no table '" + std::string(path) + "'");
+}
+
+}  // namespace luxtrace

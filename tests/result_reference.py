@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""Compares the result layout documented in docs/REFERENCE.md section 4 with HDF5 files.
+
+    result_reference.py REFERENCE.md FILE.h5...
+
+Every group, dataset and attribute in the files must be documented, and every documented
+one must occur in at least one of the files (so give a result and a checkpoint of a run
+with a sobol sampler, targets and both detector types). Detector groups are matched as
+/detectors/NAME. Exit 1 listing the differences.
+"""
+import re
+import sys
+
+import h5py
+
+
+def documented(reference):
+    """{(object, name, kind)} from the tables of section 4: headings "### `/path`", rows
+    "| `name` | kind | ..."."""
+    out, in_result, obj = set(), False, None
+    with open(reference, encoding="utf-8") as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if line.startswith("## "):
+                in_result = line.startswith("## 4.")
+            if not in_result:
+                continue
+            m = re.match(r"### `(/[^`]*)`", line)
+            if m:
+                obj = m.group(1)
+                continue
+            m = re.match(r"\| `([^`]+)` \| (attribute|dataset|group) \|", line)
+            if m and obj is not None:
+                out.add((obj, m.group(1), m.group(2)))
+    return out
+
+
+def written(path):
+    out = set()
+
+    def generic(name):
+        parts = name.split("/")
+        if len(parts) >= 3 and parts[1] == "detectors":
+            parts[2] = "NAME"
+        return "/".join(parts) or "/"
+
+    def attrs(obj, where):
+        for a in obj.attrs:
+            out.add((where, a, "attribute"))
+
+    with h5py.File(path, "r") as f:
+        attrs(f, "/")
+
+        def visit(name, item):
+            full = "/" + name
+            parent, _, leaf = full.rpartition("/")
+            parent = generic(parent or "/")
+            if isinstance(item, h5py.Dataset):
+                out.add((parent, leaf, "dataset"))
+            elif parent != "/detectors":  # the NAME groups themselves are not listed
+                out.add((parent, leaf, "group"))
+            attrs(item, generic(full))
+
+        f.visititems(visit)
+    return out
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    doc = documented(sys.argv[1])
+    if len(doc) < 50:
+        sys.exit(f"{sys.argv[1]}: found only {len(doc)} documented result entries")
+    seen = set()
+    for p in sys.argv[2:]:
+        seen |= written(p)
+    missing = sorted(seen - doc)
+    unused = sorted(doc - seen)
+    for o, n, k in missing:
+        print(f"not documented in docs/REFERENCE.md section 4: {k} {n} of {o}")
+    for o, n, k in unused:
+        print(f"documented but not written by these runs: {k} {n} of {o}")
+    print(f"{len(doc)} documented entries, {len(seen)} written")
+    sys.exit(1 if missing or unused else 0)
+
+
+if __name__ == "__main__":
+    main()

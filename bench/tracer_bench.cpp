@@ -31,9 +31,10 @@
 #include "luxtrace/tracer/surface_table.hpp"
 #include "luxtrace/tracer/tracer.hpp"
 
-#include <CLI/CLI.hpp>
 #include <embree3/rtcore.h>
+#include <CLI/CLI.hpp>
 
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -45,7 +46,6 @@
 #include <random>
 #include <sstream>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 using namespace luxtrace;
@@ -101,7 +101,8 @@ std::vector<RecordedRay> make_cosine_rays(const Scene& scene, const EmbreeScene&
     std::vector<RecordedRay> rays(n);
     for (RecordedRay& r : rays) {
         const auto it = std::upper_bound(cdf.begin(), cdf.end(), uni(rng) * sum);
-        const auto t = static_cast<unsigned>(std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1));
+        const auto t = static_cast<unsigned>(
+            std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1));
         const double s = std::sqrt(uni(rng)), u2 = uni(rng);
         const SurfacePoint sp = point_on_triangle(embree.local_vertex(scene.triangles[t].x),
                                                   embree.local_vertex(scene.triangles[t].y),
@@ -109,8 +110,8 @@ std::vector<RecordedRay> make_cosine_rays(const Scene& scene, const EmbreeScene&
                                                   float(s - u2 * s), embree.self_hit_margin(t));
         const Vec3& normal = scene.triangle_normal[t];
         const double d1 = uni(rng), d2 = uni(rng);
-        r = {spawn_origin(sp, Vec3f(normal), embree.self_hit_margin(t)), Vec3f(sample_cosine_hemisphere(normal, d1, d2)),
-             0.0f};
+        r = {spawn_origin(sp, Vec3f(normal), embree.self_hit_margin(t)),
+             Vec3f(sample_cosine_hemisphere(normal, d1, d2)), 0.0f};
     }
     return rays;
 }
@@ -203,7 +204,8 @@ public:
                         // Off the surface by a few margins: not leak-proof like spawn_origin,
                         // and not meant to be; the floor's own rays are what it is timed against.
                         p.o = p.o + p.hit.t * p.d + 4.0f * t.margin * n;
-                        p.d = r * std::cos(phi) * tx + r * std::sin(phi) * ty + std::sqrt(std::max(0.0f, 1.0f - r2)) * n;
+                        p.d = r * std::cos(phi) * tx + r * std::sin(phi) * ty +
+                              std::sqrt(std::max(0.0f, 1.0f - r2)) * n;
                     }
                 }
                 if (!alive) {
@@ -346,7 +348,8 @@ Timed run_floor(const Scene& scene, const EmbreeScene& embree, const SurfaceTabl
 std::uint64_t tally_checksum(const fs::path& result) {
     const ResultReader r(result);
     std::vector<std::string> names;
-    for (const char* n : {"count_odd", "count_even", "direct_odd", "direct_even"}) names.push_back(std::string("/global/") + n);
+    for (const char* n : {"count_odd", "count_even", "direct_odd", "direct_even"})
+        names.push_back(std::string("/global/") + n);
     for (const std::string& d : r.children("/detectors"))
         for (const char* n : {"count", "sumsq"}) names.push_back("/detectors/" + d + "/" + n);
     std::uint64_t h = 0xcbf29ce484222325ull;
@@ -386,7 +389,11 @@ std::vector<int> parse_threads(const std::string& text) {
     std::string item;
     while (std::getline(ss, item, ',')) {
         int v = 0;
-        try { v = std::stoi(item); } catch (const std::exception&) { v = 0; }
+        try {
+            v = std::stoi(item);
+        } catch (const std::exception&) {
+            v = 0;
+        }
         if (v < 1) throw InputError("--threads-list: '" + item + "' is not a thread count >= 1");
         out.push_back(v);
     }
@@ -481,7 +488,8 @@ int run(const Settings& set, const Communicator& comm) {
             const Timed c = replay(embree, cosine, threads);
             if (set.packets) {
                 const Timed p = replay_packets(embree, rays, threads);
-                if (p.hits != r.hits) throw std::runtime_error("rtcIntersect8 and rtcIntersect1 disagree on the replayed rays");
+                if (p.hits != r.hits)
+                    throw std::runtime_error("rtcIntersect8 and rtcIntersect1 disagree on the replayed rays");
                 se.packets.push_back(double(p.rays) / p.seconds / (double(r.rays) / r.seconds));
             }
             if (set.floor) {
@@ -521,8 +529,10 @@ int run(const Settings& set, const Communicator& comm) {
                 static_cast<unsigned long long>(reference), thread_counts.size() * set.repeats);
     // tracer/replay: ratio of the medians; paired: median of the ratios measured back to
     // back. busy: CPU / (wall x threads) of replay and tracer runs.
-    std::printf("threads | replay Mrays/s          | cosine Mrays/s | tracer Mrays/s          | tracer/replay | paired | busy\n");
-    std::printf("--------+-------------------------+----------------+-------------------------+---------------+--------+-----\n");
+    std::printf("threads | replay Mrays/s          | cosine Mrays/s | tracer Mrays/s          | tracer/replay | paired "
+                "| busy\n");
+    std::printf("--------+-------------------------+----------------+-------------------------+---------------+--------"
+                "+-----\n");
     auto lo = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
     auto hi = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
     for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {

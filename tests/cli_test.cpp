@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
@@ -176,7 +176,8 @@ TEST_F(Cli, PhotometryCommandAndMaintainedValues) {
     o = run("photometry " + bad.string());
     EXPECT_EQ(o.code, 2);
     EXPECT_NE(o.out.find("bad.ies:3: photometric type must be 1 (type C), 2 (type B) or 3 (type A), found 7"),
-              std::string::npos) << o.out;
+              std::string::npos)
+        << o.out;
     const std::string scene = std::string(kSmallScene) + "[scene]\nmaintenance_factor = 0.8\n";
     const fs::path f = write("mf.toml", scene);
     o = run("check " + f.string());
@@ -220,26 +221,45 @@ TEST_F(Cli, DamagedSealedResultsAreRefusedBeforeHdf5ReadsThem) {
         std::string bytes;
     };
     std::vector<Damage> damages;
-    auto flipped = [&](std::size_t at) { std::string b = bytes; b[at] = static_cast<char>(b[at] ^ 0x10); return b; };
+    auto flipped = [&](std::size_t at) {
+        std::string b = bytes;
+        b[at] = static_cast<char>(b[at] ^ 0x10);
+        return b;
+    };
     damages.push_back({"cut", "cut short", bytes.substr(0, bytes.size() - 100)});
     damages.push_back({"appended", "appended to", bytes + "x"});
     damages.push_back({"superblock", "checksum mismatch", flipped(512 + 20)});
     for (std::size_t k = 1; k <= 5; ++k)  // spread over the HDF5 body
-        damages.push_back({"body" + std::to_string(k), "checksum mismatch", flipped(512 + k * (bytes.size() - 512) / 6)});
+        damages.push_back(
+            {"body" + std::to_string(k), "checksum mismatch", flipped(512 + k * (bytes.size() - 512) / 6)});
     damages.push_back({"last_byte", "checksum mismatch", flipped(bytes.size() - 1)});
-    damages.push_back({"crc_digit", "checksum mismatch", [&] { std::string b = bytes; b[23] = b[23] == '0' ? '1' : '0'; return b; }()});
-    damages.push_back({"magic", "does not begin with a luxtrace seal", [&] { std::string b = bytes; b[3] = 'X'; return b; }()});
-    damages.push_back({"seal_text", "seal cannot be read", [&] { std::string b = bytes; b.replace(17, 5, "CRC32"); return b; }()});
+    damages.push_back({"crc_digit", "checksum mismatch", [&] {
+                           std::string b = bytes;
+                           b[23] = b[23] == '0' ? '1' : '0';
+                           return b;
+                       }()});
+    damages.push_back({"magic", "does not begin with a luxtrace seal", [&] {
+                           std::string b = bytes;
+                           b[3] = 'X';
+                           return b;
+                       }()});
+    damages.push_back({"seal_text", "seal cannot be read", [&] {
+                           std::string b = bytes;
+                           b.replace(17, 5, "CRC32");
+                           return b;
+                       }()});
     for (const Damage& d : damages) {
         const fs::path f = dir / (d.name + ".h5");
         std::ofstream(f, std::ios::binary) << d.bytes;
-        for (const std::string& cmd : {"info " + f.string(), "render " + f.string() + " --output " + (dir / "pic").string(),
-                                       "run " + scene.string() + " --restart " + f.string() + " --photons 10k --output " +
-                                           (dir / "r2.h5").string()}) {
+        for (const std::string& cmd :
+             {"info " + f.string(), "render " + f.string() + " --output " + (dir / "pic").string(),
+              "run " + scene.string() + " --restart " + f.string() + " --photons 10k --output " +
+                  (dir / "r2.h5").string()}) {
             if (!LUXTRACE_HAS_RENDER && cmd.rfind("render", 0) == 0) continue;  // a lean build has no render
             const Outcome o = run(cmd);
             EXPECT_EQ(o.code, 2) << d.name << ": " << cmd << "\n" << o.out;
-            EXPECT_NE(o.out.find(f.string() + ": damaged file"), std::string::npos) << d.name << ": " << cmd << "\n" << o.out;
+            EXPECT_NE(o.out.find(f.string() + ": damaged file"), std::string::npos) << d.name << ": " << cmd << "\n"
+                                                                                    << o.out;
             EXPECT_NE(o.out.find(d.expect), std::string::npos) << d.name << ": " << cmd << "\n" << o.out;
         }
     }
@@ -286,7 +306,8 @@ TEST_F(Cli, CylindricalDetectorsInCheckRunAndInfo) {
     const Outcome check = run("check " + scene.string());
     EXPECT_EQ(check.code, 0) << check.out;
     EXPECT_NE(check.out.find("cylindrical  2 x 2 points, cylinders r 0.01 m h 0.2 m, modelling ratio over 'h'"),
-              std::string::npos) << check.out;
+              std::string::npos)
+        << check.out;
     EXPECT_NE(check.out.find("semicylindrical  2 x 2 points"), std::string::npos) << check.out;
     EXPECT_EQ(check.out.find("cuts"), std::string::npos) << check.out;
     // Cylinders 20 cm tall standing 5 cm above the floor: the floor cuts every one.
@@ -296,7 +317,8 @@ TEST_F(Cli, CylindricalDetectorsInCheckRunAndInfo) {
     const Outcome low_check = run("check " + low.string());
     EXPECT_EQ(low_check.code, 0) << low_check.out;
     EXPECT_NE(low_check.out.find("detector 'c': a surface cuts 4 of 4 probed cylinders (the first at point [0, 0])"),
-              std::string::npos) << low_check.out;
+              std::string::npos)
+        << low_check.out;
     const fs::path out = dir / "r.h5";
     const Outcome o = run("run " + scene.string() + " --photons 200k --threads 2 --output " + out.string());
     ASSERT_EQ(o.code, 0) << o.out;

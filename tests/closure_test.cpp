@@ -30,9 +30,9 @@ protected:
     // Runs `scene` and checks that every photon ended absorbed inside.
     fs::path run_closed(const fs::path& scene, const std::string& name, const std::string& photons, int seed) {
         const fs::path out = dir / (name + ".h5");
-        const auto o = luxtrace::test_support::run_luxtrace("run " + scene.string() + " --quiet --threads 2 --photons " +
-                                                             photons + " --seed " + std::to_string(seed) +
-                                                             " --output " + out.string());
+        const auto o = luxtrace::test_support::run_luxtrace("run " + scene.string() +
+                                                            " --quiet --threads 2 --photons " + photons + " --seed " +
+                                                            std::to_string(seed) + " --output " + out.string());
         EXPECT_EQ(o.code, 0) << o.out;
         const ResultReader r(out);
         const std::uint64_t n = r.attr_u64("/", "photons");
@@ -78,7 +78,8 @@ name = "desk"
 center = [%.3f, %.3f, 0.75]
 size = [3, 3]
 cells = [12, 12]
-)", 2 + dx, 2 + dy, 2.2 + dx, 2.1 + dy, 2.3 + dx, 1.9 + dy, 2 + dx, 2 + dy);
+)",
+                  2 + dx, 2 + dy, 2.2 + dx, 2.1 + dy, 2.3 + dx, 1.9 + dy, 2 + dx, 2 + dy);
     return buf;
 }
 
@@ -89,9 +90,7 @@ TEST_F(Closure, BoxRoomLosesNoPhoton) {
     run_closed(kBench / "box_room.toml", "box", "3M", 1);
 }
 
-TEST_F(Closure, MillionTriangleRoomLosesNoPhoton) {
-    run_closed(kBench / "million.toml", "million", "1M", 1);
-}
+TEST_F(Closure, MillionTriangleRoomLosesNoPhoton) { run_closed(kBench / "million.toml", "million", "1M", 1); }
 
 TEST_F(Closure, TheSameRoomTenKilometresAwayGivesTheSameAnswer) {
     const fs::path near = dir / "near.toml", far = dir / "far.toml";

@@ -150,7 +150,12 @@ std::vector<int> brute_force(const Detector& det, const Vec3& o, const Vec3& d, 
 // the axis, ending early or escaping; on grids with cells far apart, anisotropic, and
 // with cylinders wider than a cell (a ray then enters several neighbours).
 TEST(CylinderGrid, WalkFindsExactlyThePointsOfAnExhaustiveTest) {
-    struct Case { DetectorType type; Vec3 normal, up; double su, sv, r, h; int nx, ny; };
+    struct Case {
+        DetectorType type;
+        Vec3 normal, up;
+        double su, sv, r, h;
+        int nx, ny;
+    };
     const Case cases[] = {
         {DetectorType::cylindrical, {0, 0, 1}, {0, 1, 0}, 4.0, 3.0, 0.05, 0.1, 8, 6},
         {DetectorType::cylindrical, {0, 0, 1}, {0, 1, 0}, 2.0, 0.5, 0.05, 0.1, 40, 5},
@@ -215,8 +220,8 @@ TEST(ModellingRatio, RatiosAndPropagatedErrorsByHand) {
     EXPECT_DOUBLE_EQ(m.ratio[0], 0.5);
     EXPECT_DOUBLE_EQ(m.sigma_rel[0], 0.05);  // sqrt(0.03^2 + 0.04^2)
     EXPECT_DOUBLE_EQ(m.ratio[1], 0.25);
-    EXPECT_DOUBLE_EQ(m.sigma_rel[1], 0.1);   // sqrt(0.06^2 + 0.08^2)
-    EXPECT_TRUE(std::isnan(m.ratio[2]));     // no horizontal illuminance in that band
+    EXPECT_DOUBLE_EQ(m.sigma_rel[1], 0.1);  // sqrt(0.06^2 + 0.08^2)
+    EXPECT_TRUE(std::isnan(m.ratio[2]));    // no horizontal illuminance in that band
     EXPECT_TRUE(std::isnan(m.sigma_rel[2]));
     EXPECT_DOUBLE_EQ(m.ratio[3], 0.5 / 1.5);
     EXPECT_DOUBLE_EQ(m.mean, 0.5);

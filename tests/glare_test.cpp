@@ -38,7 +38,7 @@ TEST(GuthPositionIndex, IsOneOnTheLineOfSight) {
 // 117:1995 Table 4.1, H/R = 0.0, 0.1, ..., 1.7, as the handbooks reproduce it. The
 // analytic form is CIE's fit to the table: it stays within 3.5 % of every entry.
 TEST(GuthPositionIndex, FitsTheTableAboveTheLineOfSight) {
-    const double table[] = {1.00, 1.26, 1.53, 1.90, 2.35, 2.86, 3.50, 4.20, 5.00,
+    const double table[] = {1.00, 1.26, 1.53, 1.90, 2.35,  2.86,  3.50,  4.20,  5.00,
                             6.00, 7.00, 8.10, 9.25, 10.35, 11.70, 13.15, 14.70, 16.20};
     for (int k = 0; k < 18; ++k) {
         const double h_over_r = 0.1 * k;
@@ -82,8 +82,8 @@ TEST(Ugr, FormulaAndError) {
     EXPECT_NEAR(u.glare_sum, 10250.0, 1e-9);
     EXPECT_NEAR(u.ugr, 8.0 * std::log10(0.25 * 10250.0 / 10.0), 1e-12);
     EXPECT_NEAR(u.ugr_sigma, 8.0 / std::log(10.0) * 0.02, 1e-12);
-    EXPECT_TRUE(std::isnan(estimate_ugr({}, 10.0, 0.02).ugr));   // no luminaire in view
-    EXPECT_TRUE(std::isnan(estimate_ugr({a}, 0.0, 0.0).ugr));    // no background light
+    EXPECT_TRUE(std::isnan(estimate_ugr({}, 10.0, 0.02).ugr));  // no luminaire in view
+    EXPECT_TRUE(std::isnan(estimate_ugr({a}, 0.0, 0.0).ugr));   // no background light
 }
 
 // ---- [[observer]] in the scene file -------------------------------------------------
@@ -171,8 +171,9 @@ TEST_F(ObserverKeys, BadInputIsRefused) {
                "defined twice");
     expect_bad("[[observer]]\n" + pos + view + "eye = 3\n", "eye", "unknown key");
     expect_bad("[[observer]]\nposition = [0.5, 2]\n" + view, "position", "");
-    expect_bad("[[observer]]\nname = \"x\"\n" + pos + view + "[run]\n[[run.target]]\non = \"observer:y\"\n"
-               "relative_error = 0.02\n",
+    expect_bad("[[observer]]\nname = \"x\"\n" + pos + view +
+                   "[run]\n[[run.target]]\non = \"observer:y\"\n"
+                   "relative_error = 0.02\n",
                "on", "no [[observer]] is named 'y'");
     // A target on an observer's E_ind is accepted.
     const Scene s = load_scene(write("[[observer]]\nname = \"x\"\n" + pos + view +
@@ -340,8 +341,8 @@ TEST_F(GlareRun, AnObserverChangesNothingElse) {
     std::ofstream(dir_ / "plain.toml") << text.substr(0, from) + text.substr(to);
     for (const std::string& s : {scene("office").string(), (dir_ / "plain.toml").string()}) {
         const fs::path out = dir_ / (fs::path(s).stem().string() + ".h5");
-        const auto run =
-            run_luxtrace("run " + s + " --output " + out.string() + " --quiet --threads 2 --photons 300000 --seed 4");
+        const auto run = run_luxtrace("run " + s + " --output " + out.string() +
+                                      " --quiet --threads 2 --photons 300000 --seed 4");
         ASSERT_EQ(run.code, 0) << run.out;
     }
     const ResultReader with(dir_ / "office.h5"), without(dir_ / "plain.h5");

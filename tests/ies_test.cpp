@@ -35,13 +35,9 @@ constexpr double kDeg = kPi / 180.0;
 std::filesystem::path data(const std::string& name) {
     return std::filesystem::path(LUXTRACE_TEST_DATA_DIR) / "ies" / name;
 }
-std::filesystem::path office() {
-    return std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies";
-}
+std::filesystem::path office() { return std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies"; }
 
-double I(const Photometry& p, double g_deg, double c_deg) {
-    return p.intensity_cd(g_deg * kDeg, c_deg * kDeg);
-}
+double I(const Photometry& p, double g_deg, double c_deg) { return p.intensity_cd(g_deg * kDeg, c_deg * kDeg); }
 
 TEST(IesLoad, RotationalWithCommasAndMultipliers) {
     const Photometry p = load_ies(data("rotational.ies"));
@@ -105,8 +101,7 @@ TEST(IesLoad, Bilateral90Unfolds) {
     const Photometry p = load_ies(data("bilateral90.ies"));
     EXPECT_EQ(p.symmetry(), CPlaneSymmetry::Bilateral90);
     EXPECT_NEAR(I(p, 45, 0), 250.0, 1e-9);  // plane 0 is plane 180
-    for (double c : {0.0, 30.0, 80.0})
-        EXPECT_NEAR(I(p, 30, c), I(p, 30, 180 - c), 1e-9) << c;
+    for (double c : {0.0, 30.0, 80.0}) EXPECT_NEAR(I(p, 30, c), I(p, 30, 180 - c), 1e-9) << c;
     EXPECT_NEAR(I(p, 30, 300), I(p, 30, 240), 1e-9);
 }
 
@@ -119,7 +114,7 @@ TEST(IesLoad, FullCircleAsymmetric) {
     EXPECT_NEAR(I(p, 45, 270), p.candela_cd[6][3], 1e-9);
     EXPECT_NEAR(I(p, 180, 90), p.candela_cd[2][12], 1e-9);
     EXPECT_NEAR(I(p, 45, 359.9999), I(p, 45, 0), 1e-2);  // continuous across C = 0
-    EXPECT_NEAR(I(p, 45, -90), I(p, 45, 270), 1e-9);    // c is wrapped
+    EXPECT_NEAR(I(p, 45, -90), I(p, 45, 270), 1e-9);     // c is wrapped
     EXPECT_GT(std::abs(I(p, 45, 90) - I(p, 45, 270)), 50.0);
 }
 
@@ -189,8 +184,7 @@ struct ChiSquare {
     long stray = 0;  // samples in bins of zero expected count
 };
 
-ChiSquare chi_square(const PhotometryDistribution& d, const std::vector<double>& prob, long n,
-                     std::uint64_t seed) {
+ChiSquare chi_square(const PhotometryDistribution& d, const std::vector<double>& prob, long n, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<long> observed(prob.size(), 0);
@@ -238,8 +232,8 @@ void expect_passes(const std::filesystem::path& f, std::uint64_t seed) {
     const PhotometryDistribution d(p);
     const ChiSquare r = chi_square(d, bin_probabilities(p), kSamples, seed);
     const double limit = chi2_quantile(r.dof, kZ999);
-    std::printf("  chi-square %s: %.2f with %d dof (0.999 quantile %.2f)\n",
-                f.filename().string().c_str(), r.stat, r.dof, limit);
+    std::printf("  chi-square %s: %.2f with %d dof (0.999 quantile %.2f)\n", f.filename().string().c_str(), r.stat,
+                r.dof, limit);
     EXPECT_EQ(r.stray, 0);
     EXPECT_GT(r.dof, 20);
     EXPECT_LT(r.stat, limit) << f;
@@ -279,8 +273,7 @@ TEST(IesSample, OfficeEmitsOnlyDownward) {
 TEST(IesSample, WiderUniformsAreUnitVectors) {
     const PhotometryDistribution d(load_ies(data("uniform_sphere.ies")), 90, 45);
     for (double u1 : {0.0, 0.25, 0.5, 0.999999})
-        for (double u2 : {0.0, 0.5, 0.999999})
-            EXPECT_NEAR(glm::length(d.sample(u1, u2)), 1.0, 1e-12);
+        for (double u2 : {0.0, 0.5, 0.999999}) EXPECT_NEAR(glm::length(d.sample(u1, u2)), 1.0, 1e-12);
     EXPECT_NEAR(d.sample(0.5, 0.0).z, 0.0, 1e-12);  // median of uniform cos(gamma) is 0
 }
 
@@ -303,27 +296,25 @@ TEST_P(IesBadInput, ThrowsWithFileAndLine) {
         FAIL() << "no InputError for " << b.name;
     } catch (const InputError& e) {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find(std::string(b.name) + ":" + std::to_string(b.line) + ": "),
-                  std::string::npos) << msg;
+        EXPECT_NE(msg.find(std::string(b.name) + ":" + std::to_string(b.line) + ": "), std::string::npos) << msg;
         EXPECT_NE(msg.find(b.what), std::string::npos) << msg;
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Files, IesBadInput,
-    testing::Values(BadFile{"bad_truncated.ies", 6, "unexpected end of file"},
-                    BadFile{"bad_nonnumeric.ies", 9, "found '7O0'"},
-                    BadFile{"bad_count_short.ies", 10, "expected 12 candela values"},
-                    BadFile{"bad_count_extra.ies", 9, "expected 6 candela values"},
-                    BadFile{"bad_decreasing.ies", 7, "vertical angles must increase"},
-                    BadFile{"bad_negative.ies", 8, "negative candela value -4"},
-                    BadFile{"bad_tilt_missing.ies", 3, "TILT file 'no_such_tilt.dat' not found"},
-                    BadFile{"bad_no_tilt.ies", 7, "no TILT= line"},
-                    BadFile{"bad_horizontal_range.ies", 7, "found 0-120"}),
-    [](const testing::TestParamInfo<BadFile>& param_info) {
-        const std::string n = param_info.param.name;
-        return n.substr(4, n.size() - 8);  // "bad_xxx.ies" -> "xxx"
-    });
+INSTANTIATE_TEST_SUITE_P(Files, IesBadInput,
+                         testing::Values(BadFile{"bad_truncated.ies", 6, "unexpected end of file"},
+                                         BadFile{"bad_nonnumeric.ies", 9, "found '7O0'"},
+                                         BadFile{"bad_count_short.ies", 10, "expected 12 candela values"},
+                                         BadFile{"bad_count_extra.ies", 9, "expected 6 candela values"},
+                                         BadFile{"bad_decreasing.ies", 7, "vertical angles must increase"},
+                                         BadFile{"bad_negative.ies", 8, "negative candela value -4"},
+                                         BadFile{"bad_tilt_missing.ies", 3, "TILT file 'no_such_tilt.dat' not found"},
+                                         BadFile{"bad_no_tilt.ies", 7, "no TILT= line"},
+                                         BadFile{"bad_horizontal_range.ies", 7, "found 0-120"}),
+                         [](const testing::TestParamInfo<BadFile>& param_info) {
+                             const std::string n = param_info.param.name;
+                             return n.substr(4, n.size() - 8);  // "bad_xxx.ies" -> "xxx"
+                         });
 
 TEST(IesBadInputMissing, NamesTheFile) {
     try {
@@ -333,7 +324,6 @@ TEST(IesBadInputMissing, NamesTheFile) {
         EXPECT_NE(std::string(e.what()).find("does_not_exist.ies"), std::string::npos);
     }
 }
-
 
 // ---------------------------------------------------------------------------------
 // A real maker's file (tests/data/real/README.md): American Electric Lighting ASA 15M R2,

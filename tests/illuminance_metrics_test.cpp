@@ -2,19 +2,19 @@
 // the expected maximum of normal cells against tables and brute force, the bias of the
 // minimum of noisy cells against brute force, the coverage of U0's error over synthetic
 // draws, and an end-to-end run with analytic references (docs/VALIDATION.md case 6).
+#include "luxtrace/stats/illuminance_metrics.hpp"
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/io/result_file.hpp"
-#include "luxtrace/stats/illuminance_metrics.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -28,8 +28,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // E[max of n standard normals] (tables of order statistics, e.g. Harter 1961; n = 2, 3
 // in closed form: 1/sqrt(pi), 3/(2 sqrt(pi))).
 TEST(ExpectedMaximum, IdenticalNormalsMatchTheTables) {
-    const std::pair<int, double> table[] = {{2, 0.5641896}, {3, 0.8462844}, {5, 1.1629644},
-                                            {10, 1.5387527}, {100, 2.5075937}};
+    const std::pair<int, double> table[] = {{2, 0.5641896},
+                                            {3, 0.8462844},
+                                            {5, 1.1629644},
+                                            {10, 1.5387527},
+                                            {100, 2.5075937}};
     for (const auto& [n, e] : table) {
         EXPECT_NEAR(expected_extreme_bias(std::vector<double>(n, 1.0)), e, 2e-5) << n << " cells";
         EXPECT_NEAR(expected_extreme_bias(std::vector<double>(n, 2.5)), 2.5 * e, 5e-5) << n << " cells";
@@ -130,8 +133,9 @@ TEST(IlluminanceMetrics, CompetingCellsAndTheWarning) {
                                                        TaskArea{"", 0, 10, 0, 1});
     EXPECT_NEAR(ten.min_bias_lx, -1.5 * 1.5387527, 1e-4);
     EXPECT_TRUE(ten.unreliable);
-    EXPECT_TRUE(illuminance_metrics(std::vector<double>{0, 100}, std::vector<double>{kNaN, 1}, 2,
-                                    TaskArea{"", 0, 2, 0, 1}).unreliable);
+    EXPECT_TRUE(
+        illuminance_metrics(std::vector<double>{0, 100}, std::vector<double>{kNaN, 1}, 2, TaskArea{"", 0, 2, 0, 1})
+            .unreliable);
     // 100 identical cells of sigma 1 lx: bias 2.5 lx, 2.5 % of Emin, though each cell is at 1 %.
     const IlluminanceMetrics flat = illuminance_metrics(std::vector<double>(100, 100.0), std::vector<double>(100, 1.0),
                                                         10, TaskArea{"", 0, 10, 0, 10});
@@ -182,9 +186,12 @@ TEST(IlluminanceMetrics, BiasOfTheMinimumAgainstBruteForce) {
         {"flat", field(12, 10, 0.03, [](double, double) { return 100.0; }), 0.9, 1.1},
         // Gradients: the competitors differ, the estimate is conservative (larger).
         {"gradient 20 %", field(12, 10, 0.03, [](double x, double) { return 100.0 * (1.0 + 0.2 * x); }), 1.0, 1.5},
-        {"bowl", field(12, 10, 0.03, [](double x, double y) {
-             return 100.0 * (1.0 + 0.5 * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5)));
-         }), 1.0, 1.5},
+        {"bowl",
+         field(12, 10, 0.03,
+               [](double x, double y) {
+                   return 100.0 * (1.0 + 0.5 * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5)));
+               }),
+         1.0, 1.5},
     };
     std::mt19937_64 rng(23);
     for (const Case& c : cases) {
@@ -201,8 +208,8 @@ TEST(IlluminanceMetrics, BiasOfTheMinimumAgainstBruteForce) {
         }
         const double true_bias = sum_err / n, se = std::sqrt((sum_err2 / n - true_bias * true_bias) / n);
         const double reported = sum_bias / n;
-        std::cout << "[metrics] " << c.name << ": true bias of Emin " << true_bias << " +- " << se
-                  << " lx, reported " << reported << " lx (ratio " << reported / true_bias << ")\n";
+        std::cout << "[metrics] " << c.name << ": true bias of Emin " << true_bias << " +- " << se << " lx, reported "
+                  << reported << " lx (ratio " << reported / true_bias << ")\n";
         ASSERT_LT(true_bias + 5.0 * se, 0.0) << "the case must have a bias to measure";
         EXPECT_GT(reported / true_bias, c.lo * (1.0 - 5.0 * se / -true_bias)) << c.name;
         EXPECT_LT(reported / true_bias, c.hi * (1.0 + 5.0 * se / -true_bias)) << c.name;
@@ -319,8 +326,8 @@ TEST(IlluminanceMetricsEndToEnd, PointSourceOverAFloor) {
         const double z_min = (a("E_min_lx") - a("E_min_bias_lx") - ref.min) / a("E_min_sigma_lx");
         const double z_max = (a("E_max_lx") - a("E_max_bias_lx") - ref.max) / a("E_max_sigma_lx");
         const double z_u0 = (a("U0") - a("U0_bias") - ref.min / ref.avg) / a("U0_sigma");
-        const double z_ratio =
-            (a("E_min_over_max") - a("E_min_over_max_bias") - ref.min / ref.max) / a("E_min_over_max_sigma");
+        const double z_ratio = (a("E_min_over_max") - a("E_min_over_max_bias") - ref.min / ref.max) /
+                               a("E_min_over_max_sigma");
         std::cout << "[metrics] " << what << ": Eavg " << a("E_avg_lx") << " (ref " << ref.avg << ", z " << z_avg
                   << "), Emin " << a("E_min_lx") << " bias " << a("E_min_bias_lx") << " (ref " << ref.min << ", z "
                   << z_min << "), Emax " << a("E_max_lx") << " bias " << a("E_max_bias_lx") << " (ref " << ref.max
@@ -357,8 +364,8 @@ TEST(IlluminanceMetricsEndToEnd, PointSourceOverAFloor) {
     // luxtrace info prints them back from the file.
     const auto info = test_support::run_luxtrace("info " + out.string());
     EXPECT_EQ(info.code, 0);
-    for (const char* s : {"U0 = Emin/Eavg", "Emin/Emax", "task area 'side' cells [6:10,2:5], 12 cells",
-                          "maintained Eavg"})
+    for (const char* s :
+         {"U0 = Emin/Eavg", "Emin/Emax", "task area 'side' cells [6:10,2:5], 12 cells", "maintained Eavg"})
         EXPECT_NE(info.out.find(s), std::string::npos) << s << " not in:\n" << info.out;
     fs::remove_all(dir);
 }
@@ -396,7 +403,8 @@ TEST(IlluminanceMetricsEndToEnd, BadTaskAreaExitsWithTwoAndWritesNothing) {
     const auto run = test_support::run_luxtrace("run " + scene.string() + " --output " + (dir / "out.h5").string());
     EXPECT_EQ(run.code, 2) << run.out;
     EXPECT_NE(run.out.find(scene.string() + ":19: [[detector]] #1 'desk' task_area #1 't': key 'cells'"),
-              std::string::npos) << run.out;
+              std::string::npos)
+        << run.out;
     EXPECT_FALSE(fs::exists(dir / "out.h5"));
     fs::remove_all(dir);
 }

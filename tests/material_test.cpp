@@ -36,14 +36,13 @@ double fresnel_reference(double theta_i, double n1, double n2) {
 }
 
 TEST(Fresnel, MatchesSineTangentFormsOverAngles) {
-    const std::vector<std::pair<double, double>> media = {
-        {1.0, 1.5}, {1.0, 1.333}, {1.0, 2.42}, {1.5, 1.0}, {1.333, 1.0}, {1.5, 1.333}};
+    const std::vector<std::pair<double, double>> media = {{1.0, 1.5}, {1.0, 1.333}, {1.0, 2.42},
+                                                          {1.5, 1.0}, {1.333, 1.0}, {1.5, 1.333}};
     for (const auto& [n1, n2] : media)
         for (int deg = 1; deg < 90; ++deg) {
             const double ti = deg * kDeg;
             if (n1 > n2 && std::sin(ti) >= n2 / n1) continue;  // TIR: its own test
-            EXPECT_NEAR(fresnel_dielectric(std::cos(ti), n1 / n2), fresnel_reference(ti, n1, n2),
-                        1e-12)
+            EXPECT_NEAR(fresnel_dielectric(std::cos(ti), n1 / n2), fresnel_reference(ti, n1, n2), 1e-12)
                 << "n1 " << n1 << " n2 " << n2 << " angle " << deg;
         }
 }
@@ -79,8 +78,7 @@ TEST(Fresnel, ReciprocityAcrossTheInterface) {
     for (const double n : {1.5, 1.333, 2.42})
         for (int deg = 0; deg < 90; ++deg) {
             const double ti = deg * kDeg, tt = std::asin(std::sin(ti) / n);
-            EXPECT_NEAR(fresnel_dielectric(std::cos(ti), 1.0 / n),
-                        fresnel_dielectric(std::cos(tt), n), 1e-12)
+            EXPECT_NEAR(fresnel_dielectric(std::cos(ti), 1.0 / n), fresnel_dielectric(std::cos(tt), n), 1e-12)
                 << n << " " << deg;
         }
 }
@@ -92,8 +90,7 @@ constexpr int kEvents = 6;  // ScatterEvent values
 struct Outcome {
     std::int64_t n = 0;
     std::array<std::int64_t, kEvents> count{};
-    std::int64_t bad_unit = 0, bad_side = 0, bad_side_flag = 0, bad_mirror = 0, bad_snell = 0,
-                 bad_straight = 0;
+    std::int64_t bad_unit = 0, bad_side = 0, bad_side_flag = 0, bad_mirror = 0, bad_snell = 0, bad_straight = 0;
     double cos_sum = 0.0;  // diffuse events: cos to the outgoing side's normal
     std::int64_t cos_n = 0;
 };
@@ -106,12 +103,11 @@ Vec3 incoming(const Vec3& ng, double theta, bool front) {
     return -std::cos(theta) * n_in + std::sin(theta) * t;
 }
 
-Outcome run_scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng,
-                    std::uint64_t seed, int photons) {
+Outcome run_scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng, std::uint64_t seed, int photons) {
     Outcome o;
     PhiloxSampler s(seed);
     const bool front = glm::dot(dir, ng) < 0.0;
-    const Vec3 n_in = front ? ng : -ng;          // normal on the incoming side
+    const Vec3 n_in = front ? ng : -ng;                               // normal on the incoming side
     const double n1 = front ? 1.0 : m.ior, n2 = front ? m.ior : 1.0;  // glass only
     const Vec3 tan_in = dir - glm::dot(dir, n_in) * n_in;
     for (int k = 0; k < photons; ++k) {
@@ -131,33 +127,31 @@ Outcome run_scatter(const Material& m, int band, const Vec3& dir, const Vec3& ng
         const Vec3 tan_out = d - c * n_in;
         switch (r.event) {
         case ScatterEvent::specular_reflection:  // angle out = angle in, same plane
-            o.bad_mirror += std::abs(c + glm::dot(dir, n_in)) > 1e-12 ||
-                            glm::length(tan_out - tan_in) > 1e-12;
+            o.bad_mirror += std::abs(c + glm::dot(dir, n_in)) > 1e-12 || glm::length(tan_out - tan_in) > 1e-12;
             break;
         case ScatterEvent::refraction: {  // n1 sin ti = n2 sin tt, in the plane of incidence
             const double sin_i = glm::length(tan_in), sin_t = glm::length(tan_out);
-            o.bad_snell += std::abs(n1 * sin_i - n2 * sin_t) > 1e-12 ||
-                           glm::length(n2 * tan_out - n1 * tan_in) > 1e-12;
+            o.bad_snell += std::abs(n1 * sin_i - n2 * sin_t) > 1e-12 || glm::length(n2 * tan_out - n1 * tan_in) > 1e-12;
             break;
         }
-        case ScatterEvent::specular_transmission:
-            o.bad_straight += glm::length(d - dir) > 1e-12;
-            break;
+        case ScatterEvent::specular_transmission: o.bad_straight += glm::length(d - dir) > 1e-12; break;
         case ScatterEvent::diffuse_reflection:
         case ScatterEvent::diffuse_transmission:
             o.cos_sum += std::abs(c);
             ++o.cos_n;
             break;
-        case ScatterEvent::absorbed:
-            break;
+        case ScatterEvent::absorbed: break;
         }
     }
     return o;
 }
 
 const char* event_name(int e) {
-    static const char* names[kEvents] = {"absorbed", "diffuse_reflection", "specular_reflection",
-                                         "diffuse_transmission", "specular_transmission",
+    static const char* names[kEvents] = {"absorbed",
+                                         "diffuse_reflection",
+                                         "specular_reflection",
+                                         "diffuse_transmission",
+                                         "specular_transmission",
                                          "refraction"};
     return names[e];
 }
@@ -175,12 +169,18 @@ void expect_outcome(const Outcome& o, const std::vector<std::pair<ScatterEvent, 
     for (int e = 0; e < kEvents; ++e) {
         const std::int64_t c = o.count[e];
         if (e != static_cast<int>(ScatterEvent::absorbed)) returned += c;
-        if (p[e] <= 0.0) { EXPECT_EQ(c, 0) << what << ": " << event_name(e); continue; }
-        if (p[e] >= 1.0) { EXPECT_EQ(c, o.n) << what << ": " << event_name(e); continue; }
+        if (p[e] <= 0.0) {
+            EXPECT_EQ(c, 0) << what << ": " << event_name(e);
+            continue;
+        }
+        if (p[e] >= 1.0) {
+            EXPECT_EQ(c, o.n) << what << ": " << event_name(e);
+            continue;
+        }
         const double np = static_cast<double>(o.n) * p[e];
         const double z = (static_cast<double>(c) - np) / std::sqrt(np * (1.0 - p[e]));
-        EXPECT_LT(std::abs(z), kSigmas) << what << ": " << event_name(e) << " " << c << " of "
-                                        << o.n << ", expected p " << p[e] << ", z " << z;
+        EXPECT_LT(std::abs(z), kSigmas) << what << ": " << event_name(e) << " " << c << " of " << o.n << ", expected p "
+                                        << p[e] << ", z " << z;
     }
     // Energy: the share of photons that leave the surface is 1 - p(absorbed), within
     // sigmas (binomial), or exactly all or none.
@@ -222,10 +222,8 @@ TEST(Scatter, DiffuseReflectsCosineLobeOnIncomingSide) {
     for (const bool front : {true, false})
         for (const int band : {0, 1}) {
             const double rho = m.diffuse_reflectance[band];
-            const Outcome o = run_scatter(m, band, incoming(kNormal, 35 * kDeg, front), kNormal,
-                                          21 + band, kPhotons);
-            expect_outcome(o, {{ScatterEvent::diffuse_reflection, rho},
-                               {ScatterEvent::absorbed, 1.0 - rho}},
+            const Outcome o = run_scatter(m, band, incoming(kNormal, 35 * kDeg, front), kNormal, 21 + band, kPhotons);
+            expect_outcome(o, {{ScatterEvent::diffuse_reflection, rho}, {ScatterEvent::absorbed, 1.0 - rho}},
                            std::string("diffuse ") + (front ? "front" : "back"));
         }
 }
@@ -235,10 +233,8 @@ TEST(Scatter, MirrorReflectsAtTheIncidenceAngle) {
     m.specular_reflectance = {0.9, 0.6};
     for (const bool front : {true, false})
         for (const double deg : {0.0, 35.0, 85.0}) {
-            const Outcome o = run_scatter(m, 1, incoming(kNormal, deg * kDeg, front), kNormal, 22,
-                                          kPhotons);
-            expect_outcome(o, {{ScatterEvent::specular_reflection, 0.6},
-                               {ScatterEvent::absorbed, 0.4}},
+            const Outcome o = run_scatter(m, 1, incoming(kNormal, deg * kDeg, front), kNormal, 22, kPhotons);
+            expect_outcome(o, {{ScatterEvent::specular_reflection, 0.6}, {ScatterEvent::absorbed, 0.4}},
                            "mirror " + std::to_string(deg));
         }
 }
@@ -249,20 +245,23 @@ TEST(Scatter, GlassReflectsByFresnelAndRefractsBySnell) {
     Material tinted = clear;
     tinted.transmittance = {0.9, 0.7};
     // Front: air into glass; back: glass into air below the critical angle (41.8 deg).
-    const std::vector<std::pair<bool, double>> cases = {
-        {true, 0.0}, {true, 35.0}, {true, 80.0}, {false, 20.0}, {false, 40.0}};
+    const std::vector<std::pair<bool, double>> cases = {{true, 0.0},
+                                                        {true, 35.0},
+                                                        {true, 80.0},
+                                                        {false, 20.0},
+                                                        {false, 40.0}};
     for (const auto& [front, deg] : cases)
         for (const Material* m : {&clear, &tinted}) {
             const double n1 = front ? 1.0 : m->ior, n2 = front ? m->ior : 1.0;
             const double r = fresnel_reference(deg * kDeg, n1, n2);
             const double t = m->transmittance.empty() ? 1.0 : m->transmittance[1];
-            const Outcome o =
-                run_scatter(*m, 1, incoming(kNormal, deg * kDeg, front), kNormal, 23, kPhotons);
-            expect_outcome(o, {{ScatterEvent::specular_reflection, r},
-                               {ScatterEvent::refraction, (1.0 - r) * t},
-                               {ScatterEvent::absorbed, (1.0 - r) * (1.0 - t)}},
-                           std::string("glass ") + (front ? "front " : "back ") +
-                               std::to_string(deg) + (m == &clear ? " clear" : " tinted"));
+            const Outcome o = run_scatter(*m, 1, incoming(kNormal, deg * kDeg, front), kNormal, 23, kPhotons);
+            expect_outcome(o,
+                           {{ScatterEvent::specular_reflection, r},
+                            {ScatterEvent::refraction, (1.0 - r) * t},
+                            {ScatterEvent::absorbed, (1.0 - r) * (1.0 - t)}},
+                           std::string("glass ") + (front ? "front " : "back ") + std::to_string(deg) +
+                               (m == &clear ? " clear" : " tinted"));
         }
 }
 
@@ -273,10 +272,8 @@ TEST(Scatter, GlassTotalInternalReflectionAlwaysReflects) {
     tinted.transmittance = {0.5, 0.5};
     for (const double deg : {42.0, 60.0, 89.0})
         for (const Material* m : {&clear, &tinted}) {
-            const Outcome o =
-                run_scatter(*m, 0, incoming(kNormal, deg * kDeg, false), kNormal, 24, 20000);
-            expect_outcome(o, {{ScatterEvent::specular_reflection, 1.0}},
-                           "glass TIR " + std::to_string(deg));
+            const Outcome o = run_scatter(*m, 0, incoming(kNormal, deg * kDeg, false), kNormal, 24, 20000);
+            expect_outcome(o, {{ScatterEvent::specular_reflection, 1.0}}, "glass TIR " + std::to_string(deg));
         }
 }
 
@@ -290,15 +287,14 @@ TEST(Scatter, GeneralSplitsIntoFourEventsAndAbsorption) {
         for (const int band : {0, 1}) {
             const double dr = m.diffuse_reflectance[band], sr = m.specular_reflectance[band],
                          dt = m.diffuse_transmittance[band], st = m.specular_transmittance[band];
-            const Outcome o = run_scatter(m, band, incoming(kNormal, 50 * kDeg, front), kNormal,
-                                          25 + band, kPhotons);
-            expect_outcome(o, {{ScatterEvent::diffuse_reflection, dr},
-                               {ScatterEvent::specular_reflection, sr},
-                               {ScatterEvent::diffuse_transmission, dt},
-                               {ScatterEvent::specular_transmission, st},
-                               {ScatterEvent::absorbed, 1.0 - dr - sr - dt - st}},
-                           std::string("general ") + (front ? "front" : "back") + " band " +
-                               std::to_string(band));
+            const Outcome o = run_scatter(m, band, incoming(kNormal, 50 * kDeg, front), kNormal, 25 + band, kPhotons);
+            expect_outcome(o,
+                           {{ScatterEvent::diffuse_reflection, dr},
+                            {ScatterEvent::specular_reflection, sr},
+                            {ScatterEvent::diffuse_transmission, dt},
+                            {ScatterEvent::specular_transmission, st},
+                            {ScatterEvent::absorbed, 1.0 - dr - sr - dt - st}},
+                           std::string("general ") + (front ? "front" : "back") + " band " + std::to_string(band));
         }
 }
 
@@ -333,8 +329,7 @@ TEST(Scatter, SurvivalAtNormalIncidenceMatchesAlbedoAndNeverExceedsOne) {
         EXPECT_NEAR(a, want[i], 1e-12) << "material " << i;
         EXPECT_LE(a, 1.0);
         const Outcome o = run_scatter(ms[i], 0, -kNormal, kNormal, 27, kPhotons);
-        const double survived =
-            static_cast<double>(o.n - o.count[static_cast<int>(ScatterEvent::absorbed)]);
+        const double survived = static_cast<double>(o.n - o.count[static_cast<int>(ScatterEvent::absorbed)]);
         if (want[i] <= 0.0 || want[i] >= 1.0) {
             EXPECT_EQ(survived, want[i] * static_cast<double>(o.n)) << "material " << i;
         } else {
@@ -366,7 +361,11 @@ std::int64_t slab_transmitted(double ior, double theta, int photons, std::int64_
             // Outside, the photon can only meet the top face; inside, the face ahead.
             const Vec3 ng = (inside && d.z < 0.0) ? Vec3(0, 0, -1) : Vec3(0, 0, 1);
             const Scattered r = scatter(glass, 0, d, ng, u, u1, u2);
-            if (r.event == ScatterEvent::absorbed) { ++lost; done = true; continue; }
+            if (r.event == ScatterEvent::absorbed) {
+                ++lost;
+                done = true;
+                continue;
+            }
             d = r.direction;
             if (r.side < 0) inside = !inside;
             if (!inside) {

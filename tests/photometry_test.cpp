@@ -77,7 +77,8 @@ TEST(RealFiles, EveryIesFileLoadsWithTheFluxOfItsTable) {
         const double flux = p.flux_lm();
         ASSERT_GT(flux, 0.0);
         // (blendluxcore's nadir spike of 1.5e10 cd within 1 degree needs a finer rule.)
-        EXPECT_NEAR(quadrature_flux_lm(p) / flux, 1.0, f.filename() == "blendluxcore_test1_bare_header.ies" ? 2e-2 : 5e-3);
+        EXPECT_NEAR(quadrature_flux_lm(p) / flux, 1.0,
+                    f.filename() == "blendluxcore_test1_bare_header.ies" ? 2e-2 : 5e-3);
         // Relative photometry: no more light than the lamps give. The two files that
         // break this are told so in a note: one with the spike, one whose converter
         // wrote one LED's 102.52 lm as the lamp flux of 60.
@@ -144,9 +145,8 @@ TEST(RealFiles, IesAndEulumdatOfOneLuminaireAgree) {
 class Written : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("luxtrace_photometry_test_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = fs::temp_directory_path() / ("luxtrace_photometry_test_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -180,13 +180,14 @@ std::string ies_text(const std::string& first_line, const std::string& tilt, con
 }
 
 TEST_F(Written, TiltIncludeTableIsReadAndInterpolated) {
-    const Photometry p = load_ies(write("t.ies", ies_text("IESNA:LM-63-2002", "INCLUDE\n1\n4\n0 30 60 90\n1.0 0.9 0.8 0.5",
-                                                          "0 0 0", "1.0 1.0 30")));
+    const Photometry p = load_ies(
+        write("t.ies",
+              ies_text("IESNA:LM-63-2002", "INCLUDE\n1\n4\n0 30 60 90\n1.0 0.9 0.8 0.5", "0 0 0", "1.0 1.0 30")));
     ASSERT_FALSE(p.tilt.empty());
     EXPECT_EQ(p.tilt.lamp_geometry, 1);
     EXPECT_DOUBLE_EQ(p.tilt.at(0.0), 1.0);
     EXPECT_DOUBLE_EQ(p.tilt.at(45.0), 0.85);
-    EXPECT_DOUBLE_EQ(p.tilt.at(120.0), 0.5);  // held beyond the table
+    EXPECT_DOUBLE_EQ(p.tilt.at(120.0), 0.5);                 // held beyond the table
     EXPECT_DOUBLE_EQ(p.intensity_cd(Vec3(0, 0, 1)), 100.0);  // TILT does not change the table
 }
 
@@ -201,16 +202,20 @@ TEST_F(Written, TiltFileNextToTheIesFile) {
         ADD_FAILURE() << "bad tilt file accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(bad.string() + ":1: lamp-to-luminaire geometry must be 1, 2 or 3"),
-                  std::string::npos) << e.what();
+                  std::string::npos)
+            << e.what();
     }
 }
 
 TEST_F(Written, BallastLampFactorMultipliesOnlyBefore1995) {
     // LM-63-1986/1991 multiply by the 12th number; 1995 and 2002 call it "future use",
     // 2019 "file generation type".
-    const double i91 = load_ies(write("a.ies", ies_text("IESNA91", "NONE", "0 0 0", "0.9 0.5 30"))).intensity_cd(Vec3(0, 0, 1));
-    const double i95 = load_ies(write("b.ies", ies_text("IESNA:LM-63-1995", "NONE", "0 0 0", "0.9 0.5 30"))).intensity_cd(Vec3(0, 0, 1));
-    const double i19 = load_ies(write("c.ies", ies_text("IES:LM-63-2019", "NONE", "0 0 0", "0.9 1.10100 30"))).intensity_cd(Vec3(0, 0, 1));
+    const double i91 =
+        load_ies(write("a.ies", ies_text("IESNA91", "NONE", "0 0 0", "0.9 0.5 30"))).intensity_cd(Vec3(0, 0, 1));
+    const double i95 = load_ies(write("b.ies", ies_text("IESNA:LM-63-1995", "NONE", "0 0 0", "0.9 0.5 30")))
+                           .intensity_cd(Vec3(0, 0, 1));
+    const double i19 = load_ies(write("c.ies", ies_text("IES:LM-63-2019", "NONE", "0 0 0", "0.9 1.10100 30")))
+                           .intensity_cd(Vec3(0, 0, 1));
     EXPECT_DOUBLE_EQ(i91, 100.0 * 0.9 * 0.5);
     EXPECT_DOUBLE_EQ(i95, 100.0 * 0.9);
     EXPECT_DOUBLE_EQ(i19, 100.0 * 0.9);
@@ -218,10 +223,12 @@ TEST_F(Written, BallastLampFactorMultipliesOnlyBefore1995) {
 }
 
 TEST_F(Written, DosEndOfFileByteAndEndLineAreTheEnd) {
-    const Photometry p = load_ies(write("eof.ies", ies_text("IESNA:LM-63-2002", "NONE", "0 0 0", "1.0 1.0 30") + "\x1a"));
+    const Photometry p = load_ies(
+        write("eof.ies", ies_text("IESNA:LM-63-2002", "NONE", "0 0 0", "1.0 1.0 30") + "\x1a"));
     EXPECT_DOUBLE_EQ(p.intensity_cd(Vec3(0, 0, 1)), 100.0);
     // Whatever follows the byte is not read.
-    EXPECT_NO_THROW(load_ies(write("eof2.ies", ies_text("IESNA:LM-63-2002", "NONE", "0 0 0", "1.0 1.0 30") + "\x1a junk 7")));
+    EXPECT_NO_THROW(
+        load_ies(write("eof2.ies", ies_text("IESNA:LM-63-2002", "NONE", "0 0 0", "1.0 1.0 30") + "\x1a junk 7")));
     EXPECT_NO_THROW(load_ies(write("end.ies", ies_text("IESNA:LM-63-2002", "NONE", "0 0 0", "1.0 1.0 30") + "END\n")));
     // The real ERCO file of 1987 ends with "END" and the byte.
     EXPECT_NO_THROW(load_ies(photometry_dir() / "ies" / "renderpipeline_erco_defined_diffuse.ies"));
@@ -329,10 +336,11 @@ TEST_F(Written, LuminousShapesFollowTheVersionsTable) {
 // ---- EULUMDAT on written files ----------------------------------------------------------
 
 // A small EULUMDAT file: Mc C planes every 360/Mc, gamma 0/45/90, lamp sets as given.
-std::string ldt_text(int isym, int mc, const std::vector<double>& values, const std::string& sets = "1\n1\nLED\n2000\n3000K\n80\n20\n",
-                     int ng = 3) {
+std::string ldt_text(int isym, int mc, const std::vector<double>& values,
+                     const std::string& sets = "1\n1\nLED\n2000\n3000K\n80\n20\n", int ng = 3) {
     std::string t = "test company\n1\n" + std::to_string(isym) + "\n" + std::to_string(mc) + "\n" +
-                    std::to_string(360.0 / mc) + "\n" + std::to_string(ng) + "\n45\nreport\nname\nnumber\nfile.ldt\ndate\n";
+                    std::to_string(360.0 / mc) + "\n" + std::to_string(ng) +
+                    "\n45\nreport\nname\nnumber\nfile.ldt\ndate\n";
     t += "100\n50\n20\n80\n40\n0\n0\n0\n0\n100\n80\n1\n0\n" + sets;
     for (int k = 0; k < 10; ++k) t += "0.5\n";
     for (int k = 0; k < mc; ++k) t += std::to_string(k * 360.0 / mc) + "\n";
@@ -373,7 +381,8 @@ TEST_F(Written, EulumdatSymmetriesUnfoldToTheSameIntensities) {
     EXPECT_DOUBLE_EQ(p3.horizontal_deg.front(), 90.0);
     EXPECT_DOUBLE_EQ(p3.horizontal_deg.back(), 270.0);
     for (int c = 0; c < 360; c += 45)
-        EXPECT_NEAR(p3.intensity_cd(0.0, c * kDeg), 2.0 * (100.0 + 10.0 * std::sin(c * kDeg)), 1e-5) << c;  // 6 digits in the file
+        EXPECT_NEAR(p3.intensity_cd(0.0, c * kDeg), 2.0 * (100.0 + 10.0 * std::sin(c * kDeg)), 1e-5)
+            << c;  // 6 digits in the file
 }
 
 TEST_F(Written, EulumdatLampSets) {
@@ -463,7 +472,7 @@ TEST(LuminousOpening, CurvedShapesCoverTheirShadowUniformly) {
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     constexpr int kN = 200000;
-    {   // sphere of diameter 0.4: the shadow is a disk; P(r < R/2) = 1/4.
+    {  // sphere of diameter 0.4: the shadow is a disk; P(r < R/2) = 1/4.
         LuminousOpening o;
         o.shape = LuminousOpening::Shape::ellipsoid;
         o.length_m = o.width_m = o.height_m = 0.4;
@@ -479,7 +488,8 @@ TEST(LuminousOpening, CurvedShapesCoverTheirShadowUniformly) {
         }
         EXPECT_LT(std::abs(inner - 0.25 * kN), 5.0 * std::sqrt(kN * 0.25 * 0.75));
     }
-    for (const auto shape : {LuminousOpening::Shape::vertical_cylinder, LuminousOpening::Shape::cylinder_along_length}) {
+    for (const auto shape :
+         {LuminousOpening::Shape::vertical_cylinder, LuminousOpening::Shape::cylinder_along_length}) {
         // Seen exactly from the side, a cylinder's shadow is a rectangle (length x
         // diameter): its projection must be uniform across the diameter.
         LuminousOpening o;
@@ -628,8 +638,10 @@ TEST(Placement, AsymmetricLobeLandsWhereTheTableSays) {
 class SceneLights : public Written {
 protected:
     Scene scene(const std::string& light) const {
-        const std::string t = "[[material]]\nname = \"m\"\nreflectance = 0.5\n[[shape]]\ntype = \"rectangle\"\ncenter = [0, 0, 0]\n"
-                              "normal = [0, 0, 1]\nsize = [10, 10]\nmaterial = \"m\"\n[[light]]\n" + light;
+        const std::string t =
+            "[[material]]\nname = \"m\"\nreflectance = 0.5\n[[shape]]\ntype = \"rectangle\"\ncenter = [0, 0, 0]\n"
+            "normal = [0, 0, 1]\nsize = [10, 10]\nmaterial = \"m\"\n[[light]]\n" +
+            light;
         std::ofstream(dir_ / "scene.toml") << t;
         return load_scene(dir_ / "scene.toml");
     }
@@ -645,7 +657,8 @@ protected:
 
 TEST_F(SceneLights, ArraysShareOnePhotometry) {
     const std::string f = (photometry_dir() / "ldt" / "eulumdatplot_sample_07_isym4.ldt").string();
-    const Scene s = scene("type = \"point\"\nphotometry = \"" + f + "\"\ngrid = { first = [1, 1, 2.8], spacing = [2, 1.5], count = [3, 2] }\n");
+    const Scene s = scene("type = \"point\"\nphotometry = \"" + f +
+                          "\"\ngrid = { first = [1, 1, 2.8], spacing = [2, 1.5], count = [3, 2] }\n");
     ASSERT_EQ(s.lights.lights().size(), 6u);
     EXPECT_EQ(s.lights.lights()[0].photometry.get(), s.lights.lights()[5].photometry.get());
     EXPECT_NEAR(glm::distance(s.lights.lights()[5].position, Vec3(5, 2.5, 2.8)), 0.0, 1e-12);
@@ -666,8 +679,10 @@ TEST_F(SceneLights, FactorsAndTiltMultiplier) {
     EXPECT_NEAR(l.flux_lm, file * 2.0 * 0.5 * 0.9 * 0.8, 1e-9);
     EXPECT_DOUBLE_EQ(l.maintenance_factor, 0.8);
     expect_bad_scene("type = \"point\"\nflux_lm = 100\nposition = [0, 0, 3]\ndimming = 1.5\n", "'dimming'");
-    expect_bad_scene("type = \"point\"\nflux_lm = 100\nposition = [0, 0, 3]\nlamp_set = 2\n", "applies to a light with");
-    expect_bad_scene("type = \"point\"\nies = \"t.ies\"\nposition = [0, 0, 3]\nemission = \"disk\"\n", "\"opening\" or \"point\"");
+    expect_bad_scene("type = \"point\"\nflux_lm = 100\nposition = [0, 0, 3]\nlamp_set = 2\n",
+                     "applies to a light with");
+    expect_bad_scene("type = \"point\"\nies = \"t.ies\"\nposition = [0, 0, 3]\nemission = \"disk\"\n",
+                     "\"opening\" or \"point\"");
 }
 
 TEST_F(SceneLights, EmissionStartsOnTheOpeningUnlessPoint) {

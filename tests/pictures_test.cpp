@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,8 +18,6 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 using luxtrace::ResultReader;
@@ -94,10 +94,12 @@ bool parse_xml(const std::string& s, XmlNode& root, std::string& err) {
         n.tag = body.substr(0, p);
         while (p != std::string::npos && (p = body.find_first_not_of(" \t\r\n", p)) != std::string::npos) {
             const std::size_t eq = body.find('=', p);
-            if (eq == std::string::npos || eq + 1 >= body.size()) return err = "bad attribute in <" + n.tag + ">", false;
+            if (eq == std::string::npos || eq + 1 >= body.size())
+                return err = "bad attribute in <" + n.tag + ">", false;
             const char q = body[eq + 1];
             const std::size_t end = body.find(q, eq + 2);
-            if ((q != '"' && q != '\'') || end == std::string::npos) return err = "unquoted attribute in <" + n.tag + ">", false;
+            if ((q != '"' && q != '\'') || end == std::string::npos)
+                return err = "unquoted attribute in <" + n.tag + ">", false;
             n.attr[trim(body.substr(p, eq - p))] = unescape(body.substr(eq + 2, end - eq - 2));
             p = end + 1;
         }
@@ -266,7 +268,8 @@ protected:
     fs::path simulate(const std::string& name, const std::string& scene_text) {
         std::ofstream(dir / (name + ".toml")) << scene_text;
         const fs::path out = dir / (name + ".h5");
-        const Outcome o = run("run " + (dir / (name + ".toml")).string() + " --threads 2 --quiet --output " + out.string());
+        const Outcome o = run("run " + (dir / (name + ".toml")).string() + " --threads 2 --quiet --output " +
+                              out.string());
         EXPECT_EQ(o.code, 0) << o.out;
         return out;
     }
@@ -349,24 +352,24 @@ TEST_F(Pictures, XdmfOfAnRgbRunEvaluatesToTheSpecMaps) {
     const std::vector<std::string> sides{"_front", "_back"};  // format 2: [T, 2, B]
     double secondary_sum = 0.0;
     for (std::size_t side = 0; side < 2; ++side)
-    for (std::size_t b = 0; b < bands.size(); ++b) {
-        const std::string s = sides[side] + "_" + bands[b] + "_lx";
-        for (const std::string name : {"illuminance", "direct", "secondary"})
-            ASSERT_TRUE(c.attributes.count(name + s)) << name + s;
-        const auto& all = c.attributes.at("illuminance" + s).v;
-        const auto& direct = c.attributes.at("direct" + s).v;
-        const auto& secondary = c.attributes.at("secondary" + s).v;
-        for (std::size_t t = 0; t < c.triangles; ++t) {
-            const std::size_t k = (t * 2 + side) * bands.size() + b;
-            const double want = static_cast<double>(no[k] + ne[k]) * e0 / area[t];
-            const double want_direct = static_cast<double>(dO[k] + dE[k]) * e0 / area[t];
-            EXPECT_NEAR(all[t], want, 1e-12 * want) << bands[b] << " triangle " << t;
-            EXPECT_NEAR(direct[t], want_direct, 1e-12 * want_direct) << bands[b] << " triangle " << t;
-            EXPECT_NEAR(secondary[t], want - want_direct, 1e-9 * want) << bands[b] << " triangle " << t;
-            EXPECT_GE(secondary[t], 0.0) << "first hits are a subset of all arrivals";
-            secondary_sum += secondary[t];
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+            const std::string s = sides[side] + "_" + bands[b] + "_lx";
+            for (const std::string name : {"illuminance", "direct", "secondary"})
+                ASSERT_TRUE(c.attributes.count(name + s)) << name + s;
+            const auto& all = c.attributes.at("illuminance" + s).v;
+            const auto& direct = c.attributes.at("direct" + s).v;
+            const auto& secondary = c.attributes.at("secondary" + s).v;
+            for (std::size_t t = 0; t < c.triangles; ++t) {
+                const std::size_t k = (t * 2 + side) * bands.size() + b;
+                const double want = static_cast<double>(no[k] + ne[k]) * e0 / area[t];
+                const double want_direct = static_cast<double>(dO[k] + dE[k]) * e0 / area[t];
+                EXPECT_NEAR(all[t], want, 1e-12 * want) << bands[b] << " triangle " << t;
+                EXPECT_NEAR(direct[t], want_direct, 1e-12 * want_direct) << bands[b] << " triangle " << t;
+                EXPECT_NEAR(secondary[t], want - want_direct, 1e-9 * want) << bands[b] << " triangle " << t;
+                EXPECT_GE(secondary[t], 0.0) << "first hits are a subset of all arrivals";
+                secondary_sum += secondary[t];
+            }
         }
-    }
     EXPECT_GT(secondary_sum, 0.0) << "grey walls reflect: some light arrives after a bounce";
     double s = 0.0, d2 = 0.0;
     for (std::size_t side = 0; side < 2; ++side) {

@@ -19,14 +19,14 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 using namespace luxtrace;
@@ -46,9 +46,8 @@ struct Fixture {
 };
 
 fs::path temp_dir() {
-    const fs::path d = fs::temp_directory_path() /
-                       ("luxtrace_render_" + std::to_string(::getpid()) + "_" +
-                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    const fs::path d = fs::temp_directory_path() / ("luxtrace_render_" + std::to_string(::getpid()) + "_" +
+                                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
@@ -56,7 +55,8 @@ fs::path temp_dir() {
 
 int run_cli(const std::string& args, std::string* output = nullptr) {
     const fs::path log = fs::temp_directory_path() / ("luxtrace_render_cli_" + std::to_string(::getpid()) + ".log");
-    const int status = std::system((std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
+    const int status = std::system(
+        (std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
     std::stringstream ss;
     ss << std::ifstream(log).rdbuf();
     fs::remove(log);
@@ -69,7 +69,8 @@ fs::path simulate(const fs::path& scene, const fs::path& dir, const std::string&
     const fs::path out = dir / (scene.stem().string() + ".h5");
     std::string log;
     const int code = run_cli("run " + scene.string() + " --output " + out.string() + " --photons " + photons +
-                             " --threads 2 --quiet", &log);
+                                 " --threads 2 --quiet",
+                             &log);
     EXPECT_EQ(code, 0) << log;
     return out;
 }
@@ -149,13 +150,17 @@ TEST(RenderDirect, RenderedPixelsLieWithinTheirFootprintAndSecondaryIsZero) {
 }
 
 TEST(RenderDirect, SpotAndSunExactWithShadow) {
-    const std::string base = [] { std::stringstream s; s << std::ifstream(kData / "lights_plane.toml").rdbuf(); return s.str(); }();
+    const std::string base = [] {
+        std::stringstream s;
+        s << std::ifstream(kData / "lights_plane.toml").rdbuf();
+        return s.str();
+    }();
     const fs::path dir = temp_dir();
     auto with_light = [&](const std::string& light) {
         std::ofstream(dir / "scene.toml") << base << light;
         return load_scene(dir / "scene.toml");
     };
-    {   // Spot: I = F / (2 pi (1 - cos a)) inside the cone, nothing outside.
+    {  // Spot: I = F / (2 pi (1 - cos a)) inside the cone, nothing outside.
         const Fixture f(with_light("[[light]]\ntype = \"spot\"\nposition = [0, 0, 1.5]\n"
                                    "direction = [0.2, 0, -1]\nhalf_angle_deg = 30\nflux_lm = 500\n"));
         const Vec3 pos(0, 0, 1.5), axis = glm::normalize(Vec3(0.2, 0, -1));
@@ -174,7 +179,7 @@ TEST(RenderDirect, SpotAndSunExactWithShadow) {
         EXPECT_GT(inside, 10);
         EXPECT_GT(outside, 10);
     }
-    {   // Sun: E = E_n cos(theta) where unshadowed; the black block shadows the plane.
+    {  // Sun: E = E_n cos(theta) where unshadowed; the black block shadows the plane.
         const Fixture f(with_light("[[light]]\ntype = \"directional\"\ndirection = [0.5, 0, -1]\n"
                                    "illuminance_lx = 10000\n"));
         const double lit = 0.5 / kPi * 10000.0 / std::sqrt(1.25);
@@ -226,7 +231,8 @@ TEST(RenderDirect, AreaLightMatchesConfigurationFactorAndShowsMOverPi) {
         const double se = std::sqrt(var / v.size());
         std::printf("area light at (%.1f, %.1f): %.5g cd/m^2, expected %.5g, z = %.2f\n", p.x, p.y, mean, expected,
                     (mean - expected) / se);
-        EXPECT_LT(std::abs(mean - expected), 4.0 * se + 1e-9 * expected) << p.x << "," << p.y << " expected " << expected;
+        EXPECT_LT(std::abs(mean - expected), 4.0 * se + 1e-9 * expected)
+            << p.x << "," << p.y << " expected " << expected;
         EXPECT_LT(se, 0.01 * expected);  // the test has power
     }
     // The emitter seen from its front (below) shows M / pi; from behind, its black back.
@@ -472,7 +478,10 @@ TEST(RenderFiles, PngAndExrReadableOfTheAskedSize) {
     const fs::path dir = temp_dir();
     const fs::path result = simulate(kData / "point_plane.toml", dir, "20000");
     std::string log;
-    ASSERT_EQ(run_cli("render " + result.string() + " --view oblique --size 96x64 -o " + (dir / "v.png").string(), &log), 0) << log;
+    ASSERT_EQ(run_cli("render " + result.string() + " --view oblique --size 96x64 -o " + (dir / "v.png").string(),
+                      &log),
+              0)
+        << log;
     cairo_surface_t* png = cairo_image_surface_create_from_png((dir / "v.png").c_str());
     ASSERT_EQ(cairo_surface_status(png), CAIRO_STATUS_SUCCESS);
     EXPECT_EQ(cairo_image_surface_get_width(png), 96);
@@ -500,7 +509,10 @@ TEST(RenderFiles, PngAndExrReadableOfTheAskedSize) {
     EXPECT_LT(img.at(48, 0, 0), img.at(48, 63, 0));
     // False colour: the legend panel is added to the right of the picture.
     ASSERT_EQ(run_cli("render " + result.string() + " --view oblique --size 96x64 --tonemap falsecolour -o " +
-                      (dir / "f.png").string(), &log), 0) << log;
+                          (dir / "f.png").string(),
+                      &log),
+              0)
+        << log;
     png = cairo_image_surface_create_from_png((dir / "f.png").c_str());
     ASSERT_EQ(cairo_surface_status(png), CAIRO_STATUS_SUCCESS);
     EXPECT_EQ(cairo_image_surface_get_width(png), 96 + legend_panel_width(64));
@@ -513,7 +525,8 @@ TEST(RenderFiles, ColourExrHasOneChannelPerBand) {
     const fs::path dir = temp_dir();
     const fs::path result = simulate(kData / "rgb_plane.toml", dir, "20000");
     std::string log;
-    ASSERT_EQ(run_cli("render " + result.string() + " --tonemap exposure -o " + (dir / "c.exr").string(), &log), 0) << log;
+    ASSERT_EQ(run_cli("render " + result.string() + " --tonemap exposure -o " + (dir / "c.exr").string(), &log), 0)
+        << log;
     EXPECT_TRUE(fs::is_regular_file(dir / "c.png"));
     Imf::InputFile exr((dir / "c.exr").c_str());
     for (const char* ch : {"R", "G", "B"}) EXPECT_NE(exr.header().channels().findChannel(ch), nullptr) << ch;

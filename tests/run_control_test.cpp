@@ -1,6 +1,7 @@
 // Run control pieces without MPI: the work plan covers every photon exactly once on any
 // number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
@@ -8,19 +9,18 @@
 #include "luxtrace/run/work_plan.hpp"
 #include "luxtrace/run/worker_pool.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/tally/tally.hpp"
-#include "luxtrace/detector/detector.hpp"
 #include "luxtrace/stats/estimates.hpp"
+#include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <random>
 #include <sstream>
 #include <thread>
-#include <unistd.h>
 
 using namespace luxtrace;
 
@@ -167,7 +167,8 @@ TEST(Forecast, FittedExponentRecoversFasterLawsAndNeverGoesBelowMonteCarlo) {
     // On an exact 1/sqrt(N) history both forecasts agree.
     std::vector<HistoryPoint> h;
     for (int i = 1; i <= 10; ++i) h.push_back({1.0 * i, 1e5 * i, 10.0 / std::sqrt(1e5 * i)});
-    EXPECT_NEAR(forecast_error_fitted(h, 1e-3, 1e5).photons_needed / forecast_error(h, 1e-3, 1e5).photons_needed, 1.0, 1e-9);
+    EXPECT_NEAR(forecast_error_fitted(h, 1e-3, 1e5).photons_needed / forecast_error(h, 1e-3, 1e5).photons_needed, 1.0,
+                1e-9);
 }
 
 TEST(Forecast, CountTargetsGrowLinearly) {
@@ -280,7 +281,8 @@ Calibration calibrate_sobol_cells(const std::string& scene_file) {
             EXPECT_GT(n, 0.0);
             // The band-summed cell as the eq. (9) summaries see it: a one-cell range.
             const int i = c % det.nx, j = c / det.nx;
-            const DetectorEstimate one = estimate_detector(det, 0, layout, store.data(), 1.0, N, CellRange{i, i + 1, j, j + 1});
+            const DetectorEstimate one = estimate_detector(det, 0, layout, store.data(), 1.0, N,
+                                                           CellRange{i, i + 1, j, j + 1});
             const double v = one.mean_arithmetic;
             value[c].push_back(v);
             var_est[c].push_back(one.sigma_abs * one.sigma_abs);
@@ -323,8 +325,8 @@ TEST(WorkerPool, SobolCellErrorsMatchTheScatterOverSeeds) {
 // grids: their counts add up to the cells' counts, and `luxtrace info` names both.
 TEST(RunSimulation, SobolResultNamesItsEstimatorAndKeepsTheReplicates) {
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/qmc/spot_on_table.toml");
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("luxtrace_sobol_" + std::to_string(::getpid()));
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("luxtrace_sobol_" + std::to_string(::getpid()));
     scene.run.sampler = "sobol";
     scene.run.photons = 50000;
     const RunSummary s = run_into(scene, dir);
@@ -376,8 +378,8 @@ TEST(WorkerPool, AThreadsExceptionIsKeptAndThePoolStillPausesAndStops) {
 // The same fault in a whole run: exit code 2, the message, and no file written.
 TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("luxtrace_fault_" + std::to_string(::getpid()));
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("luxtrace_fault_" + std::to_string(::getpid()));
     scene.run.sampler = "halton";  // past the loader's check: the tracing threads refuse it
     scene.run.photons = 100000;
     const RunSummary s = run_into(scene, dir);

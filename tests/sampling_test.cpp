@@ -4,18 +4,18 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/ies.hpp"
-#include "luxtrace/light/photometry_distribution.hpp"
 #include "luxtrace/light/light.hpp"
+#include "luxtrace/light/photometry_distribution.hpp"
 #include "luxtrace/material/material.hpp"
-#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
+#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/sampler/sobol.hpp"
 #include "luxtrace/stats/estimates.hpp"
 
 #include "test_support.hpp"
 
-#include <boost/random/sobol.hpp>
 #include <gtest/gtest.h>
+#include <boost/random/sobol.hpp>
 
 #include <algorithm>
 #include <array>
@@ -43,8 +43,8 @@ using luxtrace::test_support::kZ999;
 // Pearson chi-square of observed counts against (unnormalised) bin probabilities.
 // Bins whose expected count is below 5 are pooled into one bin; bins of probability
 // zero must stay empty. Returns the statistic so a caller can print it.
-double expect_chi_square(const std::vector<std::int64_t>& observed,
-                         const std::vector<double>& weight, const std::string& what) {
+double expect_chi_square(const std::vector<std::int64_t>& observed, const std::vector<double>& weight,
+                         const std::string& what) {
     double wsum = 0.0;
     std::int64_t n = 0;
     for (double w : weight) wsum += w;
@@ -74,8 +74,7 @@ double expect_chi_square(const std::vector<std::int64_t>& observed,
     EXPECT_EQ(forbidden, 0) << what << ": samples in bins of zero probability";
     EXPECT_LT(stat, limit) << what << ": chi-square " << stat << " over " << bins - 1
                            << " dof (limit at p = 0.999: " << limit << ")";
-    std::printf("  %-40s chi2 = %8.2f  dof = %4d  limit = %8.2f\n", what.c_str(), stat,
-                bins - 1, limit);
+    std::printf("  %-40s chi2 = %8.2f  dof = %4d  limit = %8.2f\n", what.c_str(), stat, bins - 1, limit);
     return stat;
 }
 
@@ -181,8 +180,8 @@ TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
             off_origin += glm::length(r.origin - l.position) > 0.0;
             const double cz = glm::dot(r.direction, axis.n);
             if (cz < l.cos_half_angle - 1e-12) obs.back()++;
-            else obs[bin_of((1.0 - cz) / (1.0 - l.cos_half_angle), nc) * nphi +
-                     bin_of(axis.phi01(r.direction), nphi)]++;
+            else
+                obs[bin_of((1.0 - cz) / (1.0 - l.cos_half_angle), nc) * nphi + bin_of(axis.phi01(r.direction), nphi)]++;
         }
         EXPECT_EQ(off_origin, 0);
         std::vector<double> w(obs.size(), 1.0);
@@ -192,8 +191,7 @@ TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
 }
 
 TEST(Sampling, IesPointLightFollowsIntensity) {
-    const Photometry p =
-        load_ies(std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies");
+    const Photometry p = load_ies(std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies");
     Light l;
     l.type = LightType::point;
     l.position = Vec3(2.0, 2.0, 2.8);
@@ -247,7 +245,9 @@ TEST(Sampling, IesPointLightFollowsIntensity) {
 
 TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
     // Two triangles of different area and orientation; normal = e1 x e2 as the loader.
-    struct Tri { Vec3 p0, e1, e2; };
+    struct Tri {
+        Vec3 p0, e1, e2;
+    };
     const std::vector<Tri> tris = {{Vec3(0, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0)},
                                    {Vec3(3, 0, 0), Vec3(0, 3, 0), Vec3(0.5, 0, 1)}};
     Light l;
@@ -291,13 +291,16 @@ TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
         const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
         const EmittedRay r = l.emit(a, b, c, d);
         const int t = r.emitter_triangle - 10;
-        if (t < 0 || t > 1) { ++bad_triangle; continue; }
+        if (t < 0 || t > 1) {
+            ++bad_triangle;
+            continue;
+        }
         const Tri& tr = tris[t];
         const Vec3 q = r.origin - tr.p0;
         off_plane += std::abs(glm::dot(q, surf.normal[t])) > 1e-12;
         // Barycentric (alpha, beta) from the 2x2 normal equations.
-        const double g11 = glm::dot(tr.e1, tr.e1), g12 = glm::dot(tr.e1, tr.e2),
-                     g22 = glm::dot(tr.e2, tr.e2), r1 = glm::dot(q, tr.e1), r2 = glm::dot(q, tr.e2);
+        const double g11 = glm::dot(tr.e1, tr.e1), g12 = glm::dot(tr.e1, tr.e2), g22 = glm::dot(tr.e2, tr.e2),
+                     r1 = glm::dot(q, tr.e1), r2 = glm::dot(q, tr.e2);
         const double det = g11 * g22 - g12 * g12;
         const double al = (r1 * g22 - r2 * g12) / det, be = (r2 * g11 - r1 * g12) / det;
         const int i = bin_of(al, m), j = bin_of(be, m);
@@ -318,8 +321,7 @@ TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
 TEST(Sampling, LightSetPicksByFluxAndColourShare) {
     // Colour shares as the loader stores them: not normalised, some bands dark.
     const std::vector<double> flux = {100.0, 300.0, 50.0, 550.0};
-    const std::vector<std::vector<double>> share = {
-        {1, 1, 1}, {2, 1, 0}, {0, 0, 5}, {0.2, 0.3, 0.5}};
+    const std::vector<std::vector<double>> share = {{1, 1, 1}, {2, 1, 0}, {0, 0, 5}, {0.2, 0.3, 0.5}};
     std::vector<Light> lights;
     for (std::size_t i = 0; i < flux.size(); ++i) {
         Light l;
@@ -368,13 +370,11 @@ TEST(Philox, ValuesStrictlyInsideUnitIntervalAndUniform) {
     EXPECT_EQ(outside, 0);
     expect_chi_square(all, std::vector<double>(nb, 1.0), "philox 1D, all dimensions");
     for (int d = 0; d < D; ++d)
-        expect_chi_square(per_dim[d], std::vector<double>(nb_dim, 1.0),
-                          "philox 1D, dimension " + std::to_string(d));
+        expect_chi_square(per_dim[d], std::vector<double>(nb_dim, 1.0), "philox 1D, dimension " + std::to_string(d));
 }
 
 TEST(Philox, ValueDependsOnlyOnSeedPhotonAndDimension) {
-    const std::vector<std::uint64_t> photons = {0, 1, 7, 123456789, (1ull << 32) + 5,
-                                                (1ull << 40) + 3, UINT64_MAX};
+    const std::vector<std::uint64_t> photons = {0, 1, 7, 123456789, (1ull << 32) + 5, (1ull << 40) + 3, UINT64_MAX};
     constexpr std::uint32_t D = 13;  // spans several four-word blocks
     PhiloxSampler ref(99);
     std::vector<std::vector<double>> want;
@@ -460,8 +460,11 @@ double correlation_z(const std::vector<double>& x, const std::vector<double>& y)
     const double n = static_cast<double>(x.size());
     double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        sx += x[i]; sy += y[i];
-        sxx += x[i] * x[i]; syy += y[i] * y[i]; sxy += x[i] * y[i];
+        sx += x[i];
+        sy += y[i];
+        sxx += x[i] * x[i];
+        syy += y[i] * y[i];
+        sxy += x[i] * y[i];
     }
     const double cov = sxy / n - sx / n * sy / n;
     const double r = cov / std::sqrt((sxx / n - sx * sx / n / n) * (syy / n - sy * sy / n / n));
@@ -481,12 +484,11 @@ TEST(Philox, DifferentSeedsGiveDifferentStreams) {
         }
         return v;
     };
-    const auto a = stream(1, 0), b = stream(2, 0), c = stream(1 + (1ull << 32), 0),
-               e = stream(1, 1ull << 32);
+    const auto a = stream(1, 0), b = stream(2, 0), c = stream(1 + (1ull << 32), 0), e = stream(1, 1ull << 32);
     for (const auto* other : {&b, &c, &e}) {
         int equal = 0;
         for (std::size_t i = 0; i < a.size(); ++i) equal += a[i] == (*other)[i];
-        EXPECT_LE(equal, 1);  // each match has probability 2^-32
+        EXPECT_LE(equal, 1);                                 // each match has probability 2^-32
         EXPECT_LT(std::abs(correlation_z(a, *other)), 4.0);  // 4 sigma
     }
 }
@@ -502,8 +504,7 @@ TEST(Philox, PairsOfDimensionsAndPhotonsAreIndependent) {
         s.start_photon(k);
         for (int d = 0; d < 9; ++d) u[d][k] = s.next();
     }
-    auto check = [&](const std::vector<double>& x, const std::vector<double>& y,
-                     const std::string& what) {
+    auto check = [&](const std::vector<double>& x, const std::vector<double>& y, const std::string& what) {
         std::vector<std::int64_t> obs(nb * nb, 0);
         for (std::size_t i = 0; i < x.size(); ++i) obs[bin_of(x[i], nb) * nb + bin_of(y[i], nb)]++;
         expect_chi_square(obs, std::vector<double>(obs.size(), 1.0), what);
@@ -640,8 +641,8 @@ TEST(Sobol, IndependentScramblesGiveUncorrelatedEstimates) {
     for (double v : a) mean += v / kRuns;
     for (double v : a) var += (v - mean) * (v - mean) / (kRuns - 1);
     EXPECT_LT(std::abs(mean - (0.25 + 1.0 / 3.0)), 4.0 * std::sqrt(var / kRuns));
-    std::printf("  correlation z = %.2f; mean %.7f (exact %.7f), sd of one estimate %.2e\n", z, mean,
-                0.25 + 1.0 / 3.0, std::sqrt(var));
+    std::printf("  correlation z = %.2f; mean %.7f (exact %.7f), sd of one estimate %.2e\n", z, mean, 0.25 + 1.0 / 3.0,
+                std::sqrt(var));
 }
 
 TEST(PhotonSampler, SobolBlocksAreScrambledPointsOfTheirStreamInAnyOrder) {
@@ -683,13 +684,16 @@ TEST(PhotonSampler, SobolBlocksAreScrambledPointsOfTheirStreamInAnyOrder) {
     // Past 2^32 points a stream goes on with a fresh scramble (stream number + R per epoch).
     const std::uint64_t far = (std::uint64_t{3} << 32) * R + 13;  // epoch 3, point 1, stream 5
     const std::uint32_t far_stream = 5 + 3 * R;
-    EXPECT_EQ(sampler.block(far, 0), (PhotonSampler::Block{seq.scrambled(1, 0, SobolSequence::scramble_seed(seed, far_stream, 0)),
-                                                           seq.scrambled(1, 1, SobolSequence::scramble_seed(seed, far_stream, 1)),
-                                                           seq.scrambled(1, 4, SobolSequence::scramble_seed(seed, far_stream, 4)),
-                                                           seq.scrambled(1, 5, SobolSequence::scramble_seed(seed, far_stream, 5))}));
-    EXPECT_EQ(sampler.block(12345, 3), (PhotonSampler::Block{seq.scrambled(12345 / R, 9, SobolSequence::scramble_seed(seed, 12345 % R, 9)),
-                                                             seq.scrambled(12345 / R, 10, SobolSequence::scramble_seed(seed, 12345 % R, 10)),
-                                                             seq.scrambled(12345 / R, 11, SobolSequence::scramble_seed(seed, 12345 % R, 11)), 0}));
+    EXPECT_EQ(sampler.block(far, 0),
+              (PhotonSampler::Block{seq.scrambled(1, 0, SobolSequence::scramble_seed(seed, far_stream, 0)),
+                                    seq.scrambled(1, 1, SobolSequence::scramble_seed(seed, far_stream, 1)),
+                                    seq.scrambled(1, 4, SobolSequence::scramble_seed(seed, far_stream, 4)),
+                                    seq.scrambled(1, 5, SobolSequence::scramble_seed(seed, far_stream, 5))}));
+    EXPECT_EQ(sampler.block(12345, 3),
+              (PhotonSampler::Block{seq.scrambled(12345 / R, 9, SobolSequence::scramble_seed(seed, 12345 % R, 9)),
+                                    seq.scrambled(12345 / R, 10, SobolSequence::scramble_seed(seed, 12345 % R, 10)),
+                                    seq.scrambled(12345 / R, 11, SobolSequence::scramble_seed(seed, 12345 % R, 11)),
+                                    0}));
 }
 
 TEST(PhotonSampler, RandomBlocksArePhiloxBlocksAndReplicatesAreChecked) {
@@ -698,7 +702,8 @@ TEST(PhotonSampler, RandomBlocksArePhiloxBlocksAndReplicatesAreChecked) {
     for (std::uint64_t k = 0; k < 100; ++k)
         for (std::uint32_t b = 0; b < 5; ++b) ASSERT_EQ(random.block(k, b), philox.block(k, b));
     // R must be even (odd photons, the odd map, then come from odd streams only).
-    for (const std::uint32_t bad : {0u, 1u, 3u, 7u, 2048u}) EXPECT_THROW(PhotonSampler(SamplerKind::sobol, 1, bad), InputError);
+    for (const std::uint32_t bad : {0u, 1u, 3u, 7u, 2048u})
+        EXPECT_THROW(PhotonSampler(SamplerKind::sobol, 1, bad), InputError);
     EXPECT_NO_THROW(PhotonSampler(SamplerKind::sobol, 1, 6));  // even, not a power of two
     EXPECT_EQ(sampler_kind("sobol"), SamplerKind::sobol);
     EXPECT_THROW(sampler_kind("halton"), InputError);
@@ -723,10 +728,12 @@ TEST(Replicates, SpreadOfReplicateMeansIsAnHonestErrorForQmcAndPerPhotonVariance
         std::vector<double> sums(R, 0.0);
         double sum_f2 = 0.0;
         for (std::uint32_t r = 0; r < R; ++r) {
-            const std::uint32_t s0 = SobolSequence::scramble_seed(run, r, 0), s1 = SobolSequence::scramble_seed(run, r, 1),
+            const std::uint32_t s0 = SobolSequence::scramble_seed(run, r, 0),
+                                s1 = SobolSequence::scramble_seed(run, r, 1),
                                 s4 = SobolSequence::scramble_seed(run, r, 4);
             for (std::uint32_t i = 0; i < n; ++i) {
-                const double f = PhiloxSampler::uniform(seq.scrambled(i, 0, s0)) * PhiloxSampler::uniform(seq.scrambled(i, 1, s1)) +
+                const double f = PhiloxSampler::uniform(seq.scrambled(i, 0, s0)) *
+                                     PhiloxSampler::uniform(seq.scrambled(i, 1, s1)) +
                                  std::pow(PhiloxSampler::uniform(seq.scrambled(i, 4, s4)), 2);
                 sums[r] += f;
                 sum_f2 += f * f;

@@ -60,8 +60,7 @@ Vec3 centroid(const Scene& s, std::size_t t) {
 }
 
 // Front sides face away from `center` (outward) or toward it (inward) for every triangle.
-void expect_facing(const Scene& s, const std::vector<std::size_t>& tris, const Vec3& center,
-                   bool inward) {
+void expect_facing(const Scene& s, const std::vector<std::size_t>& tris, const Vec3& center, bool inward) {
     for (std::size_t t : tris) {
         const double d = glm::dot(s.triangle_normal[t], centroid(s, t) - center);
         EXPECT_TRUE(inward ? d < 0.0 : d > 0.0) << "triangle " << t << " faces the wrong way";
@@ -107,7 +106,7 @@ TEST_F(EveryKey, SceneTableAndMaterials) {
     EXPECT_EQ(m[0].type, MaterialType::diffuse);
     EXPECT_EQ(m[0].diffuse_reflectance, (V{0.5, 0.5, 0.5}));  // a scalar fills every band
     EXPECT_EQ(m[1].diffuse_reflectance, (V{0.7, 0.2, 0.1}));
-    EXPECT_EQ(m[2].type, MaterialType::diffuse);                // the default type
+    EXPECT_EQ(m[2].type, MaterialType::diffuse);  // the default type
     EXPECT_EQ(m[2].diffuse_reflectance, (V{0.8, 0.8, 0.75}));
     EXPECT_EQ(m[3].type, MaterialType::mirror);
     EXPECT_EQ(m[3].specular_reflectance, (V{0.9, 0.85, 0.8}));
@@ -271,8 +270,7 @@ TEST_F(EveryKey, RunTableAndTargets) {
 const std::string kMat = "[[material]]\nname = \"m\"\nreflectance = 0.5\n";
 const std::string kFloor = "[[shape]]\ntype = \"rectangle\"\nsize = [2, 2]\nmaterial = \"m\"\n";
 const std::string kLamp = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 100\n";
-const std::string kDesk =
-    "[[detector]]\nname = \"desk\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n";
+const std::string kDesk = "[[detector]]\nname = \"desk\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n";
 
 std::string cube_obj() { return data("scenes/cube.obj").string(); }
 
@@ -280,8 +278,7 @@ class Loader : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("luxtrace_scene_test_" + std::to_string(::getpid()) + "_" + info->name());
+        dir_ = fs::temp_directory_path() / ("luxtrace_scene_test_" + std::to_string(::getpid()) + "_" + info->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -297,8 +294,7 @@ protected:
 
     // Loading must throw InputError naming scene.toml, at the line holding `at` (when
     // given), and containing every fragment.
-    void expect_bad(const std::string& text, const std::string& at,
-                    const std::vector<std::string>& fragments) const {
+    void expect_bad(const std::string& text, const std::string& at, const std::vector<std::string>& fragments) const {
         const fs::path file = write("scene.toml", text);
         std::string where = file.string();
         if (!at.empty()) {
@@ -329,8 +325,10 @@ TEST_F(Loader, DefaultsOfAMinimalScene) {
 }
 
 TEST_F(Loader, PhotonCountForms) {
-    for (const auto& [text, want] : std::vector<std::pair<std::string, std::uint64_t>>{
-             {"5000", 5000}, {"1e6", 1'000'000}, {"\"100M\"", 100'000'000}, {"\"2.5k\"", 2500}}) {
+    for (const auto& [text, want] : std::vector<std::pair<std::string, std::uint64_t>>{{"5000", 5000},
+                                                                                       {"1e6", 1'000'000},
+                                                                                       {"\"100M\"", 100'000'000},
+                                                                                       {"\"2.5k\"", 2500}}) {
         const Scene s = load(kMat + kFloor + kLamp + "[run]\nphotons = " + text + "\n");
         EXPECT_EQ(s.run.photons, want) << text;
     }
@@ -355,8 +353,7 @@ TEST_F(Loader, MirroringScaleKeepsTheFrontSideOutward) {
     // A mirror image of a closed outward cube is still outward, whatever the scale's signs.
     for (const std::string scale : {"-1.0", "[1, 1, -1]", "[-2, 3, 0.5]", "[-1, -1, 1]", "[-1, -2, -3]"}) {
         const Scene s = load(kMat + kLamp + "[[mesh]]\nfile = \"" + cube_obj() +
-                             "\"\nmaterial = \"m\"\ntransform = { translate = [5, 6, 7], scale = " +
-                             scale + " }\n");
+                             "\"\nmaterial = \"m\"\ntransform = { translate = [5, 6, 7], scale = " + scale + " }\n");
         std::vector<std::size_t> all(s.triangle_count());
         for (std::size_t t = 0; t < all.size(); ++t) all[t] = t;
         SCOPED_TRACE(scale);
@@ -381,7 +378,8 @@ TEST_F(Loader, RectangleAreaNormalAndAxes) {
 
 TEST_F(Loader, BoxAreaAndSides) {
     for (const bool inward : {false, true}) {
-        const Scene s = load(kMat + kLamp + "[[shape]]\ntype = \"box\"\ncenter = [1, 2, 3]\n"
+        const Scene s = load(kMat + kLamp +
+                             "[[shape]]\ntype = \"box\"\ncenter = [1, 2, 3]\n"
                              "size = [1, 2, 3]\nsubdivisions = 2\nmaterial = \"m\"\ninward = " +
                              std::string(inward ? "true" : "false") + "\n");
         const auto tris = triangles_of(s, "m");
@@ -399,8 +397,10 @@ TEST_F(Loader, DiskAndSphereAreasApproachTheCircleFromBelow) {
     double last_disk = 0.0, last_sphere = 0.0;
     for (const int sub : {3, 4, 8, 16, 32}) {  // spheres use at least 3 stacks
         const std::string n = std::to_string(sub);
-        const Scene d = load(kMat + kLamp + "[[shape]]\ntype = \"disk\"\ncenter = [0, 1, 2]\n"
-                             "normal = [0, -1, 1]\nradius = 0.7\nmaterial = \"m\"\nsubdivisions = " + n + "\n");
+        const Scene d = load(kMat + kLamp +
+                             "[[shape]]\ntype = \"disk\"\ncenter = [0, 1, 2]\n"
+                             "normal = [0, -1, 1]\nradius = 0.7\nmaterial = \"m\"\nsubdivisions = " +
+                             n + "\n");
         const double ad = d.total_area_m2();
         EXPECT_LT(ad, kPi * r * r) << sub;
         EXPECT_GT(ad, last_disk) << sub;
@@ -409,7 +409,8 @@ TEST_F(Loader, DiskAndSphereAreasApproachTheCircleFromBelow) {
         for (const Vec3& nt : d.triangle_normal)
             EXPECT_GT(glm::dot(nt, glm::normalize(Vec3(0, -1, 1))), std::cos(0.1 * kPi / 180));
         for (const bool inward : {false, true}) {
-            const Scene s = load(kMat + kLamp + "[[shape]]\ntype = \"sphere\"\ncenter = [0, 1, 2]\n"
+            const Scene s = load(kMat + kLamp +
+                                 "[[shape]]\ntype = \"sphere\"\ncenter = [0, 1, 2]\n"
                                  "radius = 0.7\nmaterial = \"m\"\ninward = " +
                                  (inward ? "true" : "false") + "\nsubdivisions = " + n + "\n");
             const double as = s.total_area_m2();
@@ -430,7 +431,8 @@ TEST_F(Loader, LuminanceViewDirectionOfEitherSign) {
     for (const std::string vd : {"[0.6, 0, 0.8]", "[-0.6, 0, -0.8]"}) {
         const Scene s = load(kMat + kFloor + kLamp +
                              "[[detector]]\nname = \"l\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
-                             "size = [1, 1]\nview_direction = " + vd + "\nhalf_angle_deg = 3\n");
+                             "size = [1, 1]\nview_direction = " +
+                             vd + "\nhalf_angle_deg = 3\n");
         ASSERT_EQ(s.detectors.size(), 1u);
         expect_vec(s.detectors[0].cone_axis, Vec3(0.6, 0, 0.8), 1e-15);
         EXPECT_NEAR(s.detectors[0].cos_half_angle, std::cos(3 * kPi / 180), 1e-15);
@@ -441,8 +443,8 @@ TEST_F(Loader, LuminanceViewDirectionOfEitherSign) {
 // Bad input: one test per class.
 
 TEST_F(Loader, TomlSyntaxError) {
-    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\nsize = [2, 2]\n" + kLamp,
-               "type = \"rectangle", {"TOML syntax error"});
+    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\nsize = [2, 2]\n" + kLamp, "type = \"rectangle",
+               {"TOML syntax error"});
 }
 
 TEST_F(Loader, UnknownKeys) {
@@ -450,33 +452,32 @@ TEST_F(Loader, UnknownKeys) {
     // A misspelt table must not be hidden behind "no lights".
     expect_bad(kMat + kFloor + "[[lights]]\ntype = \"point\"\n", "[[lights]]", {"unknown key 'lights'"});
     expect_bad(kMat + "colour = 0.3\n" + kFloor + kLamp, "colour", {"[[material]] #1 'm'", "unknown key 'colour'"});
-    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"x.obj\"\ntransform = { translate = [0, 0, 0], spin = 3 }\n",
-               "spin", {"transform", "unknown key 'spin'"});
-    expect_bad(kMat + kFloor + kLamp + "[[run.target]]\nrelative_error = 0.1\ntolerance = 2\n",
-               "tolerance", {"[[run.target]] #1", "unknown key 'tolerance'"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"x.obj\"\ntransform = { translate = [0, 0, 0], spin = 3 }\n", "spin",
+               {"transform", "unknown key 'spin'"});
+    expect_bad(kMat + kFloor + kLamp + "[[run.target]]\nrelative_error = 0.1\ntolerance = 2\n", "tolerance",
+               {"[[run.target]] #1", "unknown key 'tolerance'"});
 }
 
 TEST_F(Loader, MissingRequiredKey) {
     expect_bad("[[material]]\nname = \"m\"\ntype = \"mirror\"\n" + kFloor + kLamp, "[[material]]",
                {"needs 'specular_reflectance'"});
-    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\"\nmaterial = \"m\"\n" + kLamp, "[[shape]]",
-               {"needs 'size'"});
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\nflux_lm = 1\n",
-               "[[light]]", {"needs 'half_angle_deg'"});
+    expect_bad(kMat + "[[shape]]\ntype = \"rectangle\"\nmaterial = \"m\"\n" + kLamp, "[[shape]]", {"needs 'size'"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"spot\"\nposition = [0, 0, 1]\nflux_lm = 1\n", "[[light]]",
+               {"needs 'half_angle_deg'"});
 }
 
 TEST_F(Loader, WrongType) {
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = \"bright\"\n",
-               "flux_lm", {"key 'flux_lm'", "expected a finite number"});
-    expect_bad(kMat + "[[shape]]\ntype = \"box\"\nsize = [1, 1, 1]\nmaterial = \"m\"\ninward = 1\n" + kLamp,
-               "inward", {"key 'inward'", "expected true or false"});
-    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0]\nsize = [1, 1]\n",
-               "center", {"key 'center'", "expected an array of 3 numbers"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = \"bright\"\n", "flux_lm",
+               {"key 'flux_lm'", "expected a finite number"});
+    expect_bad(kMat + "[[shape]]\ntype = \"box\"\nsize = [1, 1, 1]\nmaterial = \"m\"\ninward = 1\n" + kLamp, "inward",
+               {"key 'inward'", "expected true or false"});
+    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0]\nsize = [1, 1]\n", "center",
+               {"key 'center'", "expected an array of 3 numbers"});
 }
 
 TEST_F(Loader, NegativeFlux) {
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = -5\n",
-               "flux_lm", {"key 'flux_lm'", "must be positive"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = -5\n", "flux_lm",
+               {"key 'flux_lm'", "must be positive"});
 }
 
 TEST_F(Loader, ZeroFlux) {
@@ -486,34 +487,34 @@ TEST_F(Loader, ZeroFlux) {
 
 TEST_F(Loader, ReflectanceOutsideZeroOne) {
     for (const std::string v : {"1.2", "-0.1"})
-        expect_bad("[[material]]\nname = \"m\"\nreflectance = " + v + "\n" + kFloor + kLamp,
-                   "reflectance", {"key 'reflectance'", "must lie in [0, 1]"});
+        expect_bad("[[material]]\nname = \"m\"\nreflectance = " + v + "\n" + kFloor + kLamp, "reflectance",
+                   {"key 'reflectance'", "must lie in [0, 1]"});
 }
 
 TEST_F(Loader, GeneralMaterialSummingOverOne) {
     expect_bad("[scene]\nbands = [\"R\", \"G\"]\n[[material]]\nname = \"m\"\ntype = \"general\"\n"
-               "diffuse_reflectance = 0.5\nspecular_transmittance = [0.4, 0.6]\n" + kFloor + kLamp,
+               "diffuse_reflectance = 0.5\nspecular_transmittance = [0.4, 0.6]\n" +
+                   kFloor + kLamp,
                "[[material]]", {"sum to", "> 1 in band 'G'"});
 }
 
 TEST_F(Loader, PerBandArrayOfWrongLength) {
     expect_bad("[scene]\nbands = [\"R\", \"G\", \"B\"]\n[[material]]\nname = \"m\"\nreflectance = [0.5, 0.5]\n" +
-               kFloor + kLamp, "reflectance", {"key 'reflectance'", "one value per band (3), got 2"});
+                   kFloor + kLamp,
+               "reflectance", {"key 'reflectance'", "one value per band (3), got 2"});
 }
 
 TEST_F(Loader, UnknownMaterialReference) {
     expect_bad(kMat + "[[shape]]\ntype = \"disk\"\nradius = 1\nmaterial = \"nosuch\"\n" + kLamp,
                "material = \"nosuch\"", {"key 'material'", "no [[material]] is named 'nosuch'"});
     // A mesh without a default whose file material matches nothing.
-    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"" + cube_obj() + "\"\n", "[[mesh]]",
-               {"no default 'material'"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"" + cube_obj() + "\"\n", "[[mesh]]", {"no default 'material'"});
 }
 
 TEST_F(Loader, UnknownTypes) {
     expect_bad("[[material]]\nname = \"m\"\ntype = \"plastic\"\n" + kFloor + kLamp, "plastic",
                {"unknown material type 'plastic'"});
-    expect_bad(kMat + "[[shape]]\ntype = \"cone\"\nmaterial = \"m\"\n" + kLamp, "cone",
-               {"unknown shape type 'cone'"});
+    expect_bad(kMat + "[[shape]]\ntype = \"cone\"\nmaterial = \"m\"\n" + kLamp, "cone", {"unknown shape type 'cone'"});
     expect_bad(kMat + kFloor + "[[light]]\ntype = \"laser\"\n", "laser", {"unknown light type 'laser'"});
     expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ntype = \"radiance\"\n", "radiance",
                {"unknown detector type 'radiance'"});
@@ -535,14 +536,16 @@ TEST_F(Loader, ZeroAreaDetector) {
 }
 
 TEST_F(Loader, DetectorUpParallelToNormal) {
-    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
-               "normal = [0, 0, 1]\nup = [0, 0, -2]\n", "up =", {"key 'up'", "parallel to 'normal'"});
+    expect_bad(kMat + kFloor + kLamp +
+                   "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+                   "normal = [0, 0, 1]\nup = [0, 0, -2]\n",
+               "up =", {"key 'up'", "parallel to 'normal'"});
 }
 
 TEST_F(Loader, DetectorCellLimitIsNamed) {
     const std::string head = kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n";
-    expect_bad(head + "cells = [20000, 20000]\n", "cells =",
-               {"key 'cells'", "20000 x 20000 = 400000000 cells", "at most 100000000"});
+    expect_bad(head + "cells = [20000, 20000]\n",
+               "cells =", {"key 'cells'", "20000 x 20000 = 400000000 cells", "at most 100000000"});
     expect_bad(head + "cells = [2.5, 3]\n", "cells =", {"key 'cells'", "positive whole numbers"});
     // The limit itself is accepted (the grid is only described here, not allocated).
     EXPECT_EQ(load(head + "cells = [10000, 10000]\n").detectors.at(0).cells(), 100'000'000);
@@ -563,18 +566,18 @@ TEST_F(Loader, SamplersAndReplicates) {
 }
 
 TEST_F(Loader, MissingMeshFile) {
-    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"absent.obj\"\nmaterial = \"m\"\n", "file =",
-               {"absent.obj", "does not exist"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"absent.obj\"\nmaterial = \"m\"\n",
+               "file =", {"absent.obj", "does not exist"});
 }
 
 TEST_F(Loader, UnreadableMesh) {
     // Assimp's OBJ reader skips lines it does not know: garbage yields no triangles.
     write("garbage.obj", "this is not\x01\x02 a mesh { f f f\n");
-    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"garbage.obj\"\nmaterial = \"m\"\n", "file =",
-               {"[[mesh]] #1", "garbage.obj", "has no triangles"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"garbage.obj\"\nmaterial = \"m\"\n",
+               "file =", {"[[mesh]] #1", "garbage.obj", "has no triangles"});
     write("broken.stl", "solid x\nfacet normal 0 0 1\n outer loop\n vertex 0 0");
-    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"broken.stl\"\nmaterial = \"m\"\n", "file =",
-               {"[[mesh]] #1", "cannot read mesh", "broken.stl"});
+    expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"broken.stl\"\nmaterial = \"m\"\n",
+               "file =", {"[[mesh]] #1", "cannot read mesh", "broken.stl"});
 }
 
 TEST_F(Loader, MissingIesFile) {
@@ -589,15 +592,14 @@ TEST_F(Loader, BadIesFile) {
 }
 
 TEST_F(Loader, AreaLightNamingAnUnknownShape) {
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"area\"\nflux_lm = 10\nshape = \"panel\"\n", "shape =",
-               {"key 'shape'", "no [[shape]] is named 'panel'"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"area\"\nflux_lm = 10\nshape = \"panel\"\n",
+               "shape =", {"key 'shape'", "no [[shape]] is named 'panel'"});
 }
 
 TEST_F(Loader, BadTargetRange) {
     const std::string head = kMat + kFloor + kLamp + kDesk + "[[run.target]]\nrelative_error = 0.1\non = ";
-    for (const std::string on : {"\"detector:desk[0:2]\"", "\"detector:desk[0:2,0:1\"",
-                                 "\"detector:desk[0-2,0:1]\"", "\"detector:desk[0:2,0:1]x\"",
-                                 "\"detector:[0:2,0:1]\"", "\"detectors:desk\""})
+    for (const std::string on : {"\"detector:desk[0:2]\"", "\"detector:desk[0:2,0:1\"", "\"detector:desk[0-2,0:1]\"",
+                                 "\"detector:desk[0:2,0:1]x\"", "\"detector:[0:2,0:1]\"", "\"detectors:desk\""})
         expect_bad(head + on + "\n", "on = \"", {"key 'on'"});
     expect_bad(head + "\"detector:desk[0:2,0:1]x\"\n", "on = \"", {"cell range must read [i0:i1,j0:j1]"});
     for (const std::string on : {"\"detector:desk[0:5,0:1]\"", "\"detector:desk[0:2,1:4]\"",
@@ -611,14 +613,9 @@ TEST_F(Loader, BadPhotonCounts) {
                {"key 'photons'", "expected a non-negative whole count"});
 }
 
-TEST_F(Loader, SceneWithNoLights) {
-    expect_bad(kMat + kFloor, "", {"no [[light]]"});
-}
+TEST_F(Loader, SceneWithNoLights) { expect_bad(kMat + kFloor, "", {"no [[light]]"}); }
 
-TEST_F(Loader, SceneWithNoSurfaces) {
-    expect_bad(kMat + kLamp, "", {"no surfaces"});
-}
-
+TEST_F(Loader, SceneWithNoSurfaces) { expect_bad(kMat + kLamp, "", {"no surfaces"}); }
 
 // ---------------------------------------------------------------------------------
 // Real meshes (tests/data/real/README.md): two Blender exports from LuxCoreRender's
@@ -682,8 +679,11 @@ TEST_F(Loader, AbsurdSubdivisionsAreRefused) {
     // Past the int range: refused, not wrapped to a small number.
     expect_bad(shape + "type = \"rectangle\"\nsubdivisions = 4294967297\n", "subdivisions", {"must lie in [1, 4096]"});
     // The largest shapes still load (a 1448 x 1448 rectangle is 4,193,408 triangles).
-    EXPECT_EQ(load(kMat + kLamp + "[[shape]]\ntype = \"rectangle\"\nsize = [1, 1]\nmaterial = \"m\"\n"
-                   "subdivisions = 1448\n").triangle_count(), 4193408u);
+    EXPECT_EQ(load(kMat + kLamp +
+                   "[[shape]]\ntype = \"rectangle\"\nsize = [1, 1]\nmaterial = \"m\"\n"
+                   "subdivisions = 1448\n")
+                  .triangle_count(),
+              4193408u);
 }
 
 TEST_F(Loader, MaxBouncesPastTheIntRangeIsRefused) {
@@ -692,7 +692,8 @@ TEST_F(Loader, MaxBouncesPastTheIntRangeIsRefused) {
 }
 
 TEST_F(Loader, VerticesFarAwayAreRefused) {
-    expect_bad(kMat + kLamp + "[[shape]]\ntype = \"rectangle\"\ncenter = [1e300, 0, 0]\nsize = [1, 1]\nmaterial = \"m\"\n",
+    expect_bad(kMat + kLamp +
+                   "[[shape]]\ntype = \"rectangle\"\ncenter = [1e300, 0, 0]\nsize = [1, 1]\nmaterial = \"m\"\n",
                "", {"[[shape]] #1", "lies outside the +-1000000000 m"});
     write("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     expect_bad(kMat + kLamp + "[[mesh]]\nfile = \"far.obj\"\nmaterial = \"m\"\ntransform = { scale = 1e300 }\n", "",
@@ -701,33 +702,38 @@ TEST_F(Loader, VerticesFarAwayAreRefused) {
 
 TEST_F(Loader, AreaLightOnAShapeWithoutArea) {
     // Every triangle of the panel is degenerate (dropped), so it has nothing to emit from.
-    expect_bad(kMat + kFloor + "[[shape]]\nname = \"panel\"\ntype = \"rectangle\"\nsize = [1e-200, 1e-200]\n"
-               "material = \"m\"\n[[light]]\ntype = \"area\"\nshape = \"panel\"\nflux_lm = 10\n",
+    expect_bad(kMat + kFloor +
+                   "[[shape]]\nname = \"panel\"\ntype = \"rectangle\"\nsize = [1e-200, 1e-200]\n"
+                   "material = \"m\"\n[[light]]\ntype = \"area\"\nshape = \"panel\"\nflux_lm = 10\n",
                "shape = \"panel\"", {"key 'shape'", "no area to emit from"});
 }
 
 TEST_F(Loader, FluxesThatOverflowTogetherAreRefused) {
     const std::string big = "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1e308\n";
     expect_bad(kMat + kFloor + big + big, "", {"light 2 (point)", "total flux"});
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nilluminance_lx = 1e308\n", "",
-               {"light 1 (directional)", "total flux"});
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1\ncolour = [1e308, 1e308]\n"
-               "[scene]\nbands = [\"a\", \"b\"]\n", "colour", {"key 'colour'", "too large"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"directional\"\ndirection = [0, 0, -1]\nilluminance_lx = 1e308\n",
+               "", {"light 1 (directional)", "total flux"});
+    expect_bad(kMat + kFloor +
+                   "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1\ncolour = [1e308, 1e308]\n"
+                   "[scene]\nbands = [\"a\", \"b\"]\n",
+               "colour", {"key 'colour'", "too large"});
 }
 
 TEST_F(Loader, DetectorTooSmallToMeasureIsRefused) {
     expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1e-200, 1e-200]\n", "",
                {"[[detector]] #1 'd'", "too small"});
-    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"d\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
-               "size = [1, 1]\nhalf_angle_deg = 1e-300\n", "", {"[[detector]] #1 'd'", "too narrow"});
+    expect_bad(kMat + kFloor + kLamp +
+                   "[[detector]]\nname = \"d\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
+                   "size = [1, 1]\nhalf_angle_deg = 1e-300\n",
+               "", {"[[detector]] #1 'd'", "too narrow"});
 }
 
 TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
     // Light only within 0.1 degree of the nadir, in a file whose angles run to 90: no
     // direction of the 0.5-degree sampling table sees it.
     write("narrow.ies", "TILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 0\n0 0.1 90\n0\n100 0 0\n");
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"narrow.ies\"\n", "ies =",
-               {"key 'ies'", "narrow.ies", "too narrow a beam"});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nies = \"narrow.ies\"\n",
+               "ies =", {"key 'ies'", "narrow.ies", "too narrow a beam"});
     // The same beam in a file that ends at 0.1 degree: the table covers the file's range,
     // and every direction lies within it.
     write("pencil.ies", "TILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 0.1\n0\n100 100\n");
@@ -779,7 +785,8 @@ TEST_F(Loader, BadCylindricalDetectors) {
     expect_bad(semi + "facing = [0, 0, 0]\n", "facing", {"key 'facing'", "non-zero"});
     // Keys of other types are unknown here.
     expect_bad(cyl + "facing = [1, 0, 0]\n", "facing", {"key 'facing' does not apply here"});
-    expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal", {"key 'horizontal' does not apply here"});
+    expect_bad(semi + "facing = [1, 0, 0]\nhorizontal = \"h\"\n", "horizontal",
+               {"key 'horizontal' does not apply here"});
     expect_bad(head + "radius = 0.1\n", "radius", {"key 'radius' does not apply here"});
     expect_bad(cyl + "horizontal = \"\"\n", "horizontal", {"key 'horizontal'", "needs the name"});
     expect_bad(cyl + "horizontal = \"nosuch\"\n", "horizontal",
@@ -795,9 +802,10 @@ TEST_F(Loader, BadCylindricalDetectors) {
 
 TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
     // Both TOML spellings: a [[detector.task_area]] table and an inline array.
-    const Scene s = load(kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\nname = \"left\"\ncells = [0, 2, 0, 3]\n" +
-                         "[[detector]]\nname = \"d2\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n"
-                         "task_area = [{ name = \"a\", cells = [3, 4, 2, 3] }, { name = \"b\", cells = [0, 4, 0, 3] }]\n");
+    const Scene s = load(
+        kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\nname = \"left\"\ncells = [0, 2, 0, 3]\n" +
+        "[[detector]]\nname = \"d2\"\ncenter = [0, 0, 0.5]\nsize = [1, 1]\ncells = [4, 3]\n"
+        "task_area = [{ name = \"a\", cells = [3, 4, 2, 3] }, { name = \"b\", cells = [0, 4, 0, 3] }]\n");
     ASSERT_EQ(s.detectors.size(), 2u);
     ASSERT_EQ(s.detectors[0].task_areas.size(), 1u);
     EXPECT_EQ(s.detectors[0].task_areas[0].name, "left");
@@ -811,7 +819,8 @@ TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
 TEST_F(Loader, BadTaskAreasAreRefused) {
     const std::string head = kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\n";  // a 4 x 3 grid
     expect_bad(head + "name = \"t\"\ncells = [0, 5, 0, 3]\n", "cells = [0, 5",
-               {"[[detector]] #1 'desk' task_area #1 't'", "key 'cells'", "[0, 5, 0, 3] is empty or outside the 4 x 3 cells"});
+               {"[[detector]] #1 'desk' task_area #1 't'", "key 'cells'",
+                "[0, 5, 0, 3] is empty or outside the 4 x 3 cells"});
     expect_bad(head + "name = \"t\"\ncells = [2, 2, 0, 3]\n", "cells = [2", {"key 'cells'", "is empty or outside"});
     expect_bad(head + "name = \"t\"\ncells = [0, 2, 1, 0]\n", "cells = [0, 2", {"key 'cells'", "is empty or outside"});
     expect_bad(head + "name = \"t\"\ncells = [-1, 2, 0, 3]\n", "cells = [-1", {"key 'cells'", "none negative"});
@@ -820,14 +829,19 @@ TEST_F(Loader, BadTaskAreasAreRefused) {
     expect_bad(head + "name = \"t\"\n", "", {"task_area #1 't'", "needs 'cells' = [i0, i1, j0, j1]"});
     expect_bad(head + "cells = [0, 2, 0, 3]\n", "", {"task_area #1", "needs a 'name'"});
     expect_bad(head + "name = \"a/b\"\ncells = [0, 2, 0, 3]\n", "name = \"a/b", {"key 'name'", "may not contain"});
-    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0, 3]\nwidth = 2\n", "width", {"task_area #1 't'", "unknown key 'width'"});
-    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0, 3]\n[[detector.task_area]]\nname = \"t\"\ncells = [0, 1, 0, 1]\n",
+    expect_bad(head + "name = \"t\"\ncells = [0, 2, 0, 3]\nwidth = 2\n", "width",
+               {"task_area #1 't'", "unknown key 'width'"});
+    expect_bad(head +
+                   "name = \"t\"\ncells = [0, 2, 0, 3]\n[[detector.task_area]]\nname = \"t\"\ncells = [0, 1, 0, 1]\n",
                "name = \"t\"\ncells = [0, 1", {"task_area #2 't'", "task area 't' is defined twice"});
-    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = 3\n", "task_area", {"key 'task_area'", "expected an array"});
-    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = [1]\n", "task_area", {"key 'task_area'", "expected [[detector.task_area]]"});
-    expect_bad(kMat + kFloor + kLamp + "[[detector]]\nname = \"v\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
-               "size = [1, 1]\ntask_area = [{ name = \"t\", cells = [0, 1, 0, 1] }]\n", "task_area",
-               {"key 'task_area'", "illuminance detectors", "no uniformity"});
+    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = 3\n", "task_area",
+               {"key 'task_area'", "expected an array"});
+    expect_bad(kMat + kFloor + kLamp + kDesk + "task_area = [1]\n", "task_area",
+               {"key 'task_area'", "expected [[detector.task_area]]"});
+    expect_bad(kMat + kFloor + kLamp +
+                   "[[detector]]\nname = \"v\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\n"
+                   "size = [1, 1]\ntask_area = [{ name = \"t\", cells = [0, 1, 0, 1] }]\n",
+               "task_area", {"key 'task_area'", "illuminance detectors", "no uniformity"});
 }
 
 }  // namespace

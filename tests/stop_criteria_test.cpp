@@ -5,13 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 using luxtrace::ResultReader;
@@ -37,9 +37,11 @@ protected:
     int run(const std::string& targets, const std::string& args) {
         const fs::path scene = dir / "room.toml";
         std::ofstream(scene) << room << "\n" << targets;
-        const std::string schedule = args.find("--report-every") == std::string::npos ? " --report-every-photons 100k" : "";
-        const std::string cmd = std::string(LUXTRACE_BINARY) + " run " + scene.string() + " --quiet --threads 2" + schedule +
-                                " --output " + (dir / "r.h5").string() + " " + args + " > " + (dir / "log").string() + " 2>&1";
+        const std::string schedule = args.find("--report-every") == std::string::npos ? " --report-every-photons 100k"
+                                                                                      : "";
+        const std::string cmd = std::string(LUXTRACE_BINARY) + " run " + scene.string() + " --quiet --threads 2" +
+                                schedule + " --output " + (dir / "r.h5").string() + " " + args + " > " +
+                                (dir / "log").string() + " 2>&1";
         const int status = std::system(cmd.c_str());
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
@@ -107,7 +109,10 @@ TEST_F(Stop, WallTimeLimitWithUnmetErrorTargetCheckpointsAndExitsThree) {
 }
 
 TEST_F(Stop, GlobalRelativeQuadratic) {
-    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 0.008\naveraging = \"quadratic\"\n", "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 0.008\naveraging = \"quadratic\"\n",
+                  "--photons 1e9"),
+              0)
+        << log();
     const ResultReader r(dir / "r.h5");
     EXPECT_EQ(r.attr_str("/", "stop_reason").rfind("target global", 0), 0u) << r.attr_str("/", "stop_reason");
     EXPECT_LE(r.attr_f64("/global", "sigma_rel_quadratic"), 0.008);
@@ -115,7 +120,10 @@ TEST_F(Stop, GlobalRelativeQuadratic) {
 }
 
 TEST_F(Stop, GlobalRelativeArithmeticAndAbsolute) {
-    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 0.009\naveraging = \"arithmetic\"\n", "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 0.009\naveraging = \"arithmetic\"\n",
+                  "--photons 1e9"),
+              0)
+        << log();
     {
         const ResultReader r(dir / "r.h5");
         EXPECT_LE(r.attr_f64("/global", "sigma_rel_arithmetic"), 0.009);
@@ -128,14 +136,18 @@ TEST_F(Stop, GlobalRelativeArithmeticAndAbsolute) {
 }
 
 TEST_F(Stop, DetectorWholeGridAndCellRange) {
-    ASSERT_EQ(run("[[run.target]]\non = \"detector:table\"\nrelative_error = 0.025\naveraging = \"arithmetic\"\n", "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"detector:table\"\nrelative_error = 0.025\naveraging = \"arithmetic\"\n",
+                  "--photons 1e9"),
+              0)
+        << log();
     {
         const ResultReader r(dir / "r.h5");
         EXPECT_LE(r.attr_f64("/detectors/table", "sigma_rel_arithmetic"), 0.025);
         expect_stopped_at_first_met_reduction(r, false);
     }
     // A corner of the grid: its own eq. (9) error, recomputed here from the stored cells.
-    ASSERT_EQ(run("[[run.target]]\non = \"detector:table[0:3,0:2]\"\nrelative_error = 0.025\n", "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"detector:table[0:3,0:2]\"\nrelative_error = 0.025\n", "--photons 1e9"), 0)
+        << log();
     const ResultReader r(dir / "r.h5");
     std::vector<std::size_t> shape;
     const auto value = r.f64("/detectors/table/value", &shape);
@@ -166,7 +178,8 @@ TEST_F(Stop, PhotonsReceivedByDetectorAndCellRange) {
         EXPECT_GE(r.attr_u64("/detectors/table", "photons_received"), 150000u);
         expect_stopped_at_first_met_reduction(r, true);
     }
-    ASSERT_EQ(run("[[run.target]]\non = \"detector:table[4:6,3:5]\"\nphotons_received = 8000\n", "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"detector:table[4:6,3:5]\"\nphotons_received = 8000\n", "--photons 1e9"), 0)
+        << log();
     const ResultReader r(dir / "r.h5");
     std::vector<std::size_t> shape;
     const auto n = r.u64("/detectors/table/count", &shape);
@@ -179,8 +192,11 @@ TEST_F(Stop, PhotonsReceivedByDetectorAndCellRange) {
 
 TEST_F(Stop, FirstTargetMetEndsTheRun) {
     // An easy and an impossible target: the easy one ends the run.
-    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 1e-6\n[[run.target]]\non = \"detector:table\"\nphotons_received = 20000\n",
-                  "--photons 1e9"), 0) << log();
+    ASSERT_EQ(run("[[run.target]]\non = \"global\"\nrelative_error = 1e-6\n[[run.target]]\non = "
+                  "\"detector:table\"\nphotons_received = 20000\n",
+                  "--photons 1e9"),
+              0)
+        << log();
     const ResultReader r(dir / "r.h5");
     EXPECT_NE(r.attr_str("/", "stop_reason").find("detector:table"), std::string::npos);
 }
@@ -190,7 +206,9 @@ TEST_F(Stop, ForecastIsSaneAndErrorsFallAsInverseSquareRoot) {
     // determined early (the global odd/even error of this 530-triangle room fluctuates by
     // several percent between reductions: docs/RUN_CONTROL.md).
     ASSERT_EQ(run("[[run.target]]\non = \"detector:table\"\nrelative_error = 0.022\naveraging = \"arithmetic\"\n",
-                  "--photons 1e9"), 0) << log();
+                  "--photons 1e9"),
+              0)
+        << log();
     const ResultReader r(dir / "r.h5");
     const auto t = r.f64("/history/time_s");
     const auto n = r.u64("/history/photons");

@@ -43,7 +43,8 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
                     EXPECT_EQ(L.detector_n(d, c, b), plain.detector_n(d, c, b));
                     for (std::size_t r = 0; r < R; ++r) {
                         take(L.detector_replicate_n(d, r, c, b));
-                        EXPECT_EQ(L.detector_replicate_of(d, L.detector_n(d, c, b), r), L.detector_replicate_n(d, r, c, b));
+                        EXPECT_EQ(L.detector_replicate_of(d, L.detector_n(d, c, b), r),
+                                  L.detector_replicate_n(d, r, c, b));
                     }
                 }
             take(L.detector_received(d));
@@ -64,9 +65,7 @@ TEST(TallyBuffer, ThreadedBuffersGiveExactSerialSums) {
     std::vector<std::uint64_t> expected(L.size(), 0);
     constexpr int kThreads = 4;
     constexpr int kAdds = 200000;
-    auto index_of = [&](std::mt19937_64& g) {
-        return (g() % 4 == 0) ? g() % 8 : g() % L.size();
-    };
+    auto index_of = [&](std::mt19937_64& g) { return (g() % 4 == 0) ? g() % 8 : g() % L.size(); };
     for (int t = 0; t < kThreads; ++t) {
         std::mt19937_64 g(t);
         for (int i = 0; i < kAdds; ++i) {

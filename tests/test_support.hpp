@@ -1,26 +1,27 @@
 #pragma once
 // Helpers shared by the tests: running the luxtrace binary, chi-square limits.
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace luxtrace::test_support {
 
 struct CommandOutcome {
-    int code;          // exit code, -1 if the process did not exit normally
-    std::string out;   // stdout and stderr together
+    int code;         // exit code, -1 if the process did not exit normally
+    std::string out;  // stdout and stderr together
 };
 
 // Runs `LUXTRACE_BINARY args` and captures what it prints.
 inline CommandOutcome run_luxtrace(const std::string& args) {
     static int serial = 0;
     const std::filesystem::path log = std::filesystem::temp_directory_path() /
-        ("luxtrace_test_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) + ".log");
+                                      ("luxtrace_test_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) +
+                                       ".log");
     const std::string cmd = std::string(LUXTRACE_BINARY) + " " + args + " > " + log.string() + " 2>&1";
     const int status = std::system(cmd.c_str());
     std::stringstream ss;

@@ -75,8 +75,8 @@ int run_luxtrace(const std::string& scene, const fs::path& out, std::uint64_t ph
 
 // A horizontal detector (normal +z, up +y), so cell i runs along +x and row j along +y.
 struct Grid {
-    double cx, cy;      // centre
-    double w, h;        // size along x, y
+    double cx, cy;  // centre
+    double w, h;    // size along x, y
     int nx, ny;
     double x0() const { return cx - 0.5 * w; }
     double y0() const { return cy - 0.5 * h; }
@@ -105,7 +105,7 @@ struct Agreement {
     int cells = 0;
     double max_abs_z = 0.0;
     double mean_z2 = 0.0;
-    double mean_value = 0.0;     // whole-grid mean from the file (mean_value attribute)
+    double mean_value = 0.0;  // whole-grid mean from the file (mean_value attribute)
     double mean_ref = 0.0;
     double mean_sigma_rel = 0.0;
     double z_mean = 0.0;
@@ -125,8 +125,8 @@ Agreement compare_detector(const ResultReader& r, const std::string& name, const
     double sum_z2 = 0.0, sum_ref = 0.0;
     for (std::size_t c = 0; c < value.size(); ++c) {
         const double z = (value[c] - ref[c]) / (sigma_rel[c] * value[c]);
-        EXPECT_LT(std::abs(z), kZMax) << name << " cell " << c << ": value " << value[c] << ", reference "
-                                      << ref[c] << ", sigma_rel " << sigma_rel[c];
+        EXPECT_LT(std::abs(z), kZMax) << name << " cell " << c << ": value " << value[c] << ", reference " << ref[c]
+                                      << ", sigma_rel " << sigma_rel[c];
         a.max_abs_z = std::max(a.max_abs_z, std::isfinite(z) ? std::abs(z) : 1e300);
         sum_z2 += z * z;
         sum_ref += ref[c];
@@ -142,12 +142,12 @@ Agreement compare_detector(const ResultReader& r, const std::string& name, const
 void expect_agreement(const Agreement& a) {
     const double band = kZMax * std::sqrt(2.0 / a.cells);
     EXPECT_NEAR(a.mean_z2, 1.0, band) << a.what << ": mean z^2 over " << a.cells << " cells";
-    EXPECT_LT(std::abs(a.z_mean), kZMax) << a.what << ": grid mean " << a.mean_value << " vs reference "
-                                         << a.mean_ref << " (sigma_rel " << a.mean_sigma_rel << ")";
+    EXPECT_LT(std::abs(a.z_mean), kZMax) << a.what << ": grid mean " << a.mean_value << " vs reference " << a.mean_ref
+                                         << " (sigma_rel " << a.mean_sigma_rel << ")";
     // The figures docs/VALIDATION.md quotes.
-    std::cout << "[validation] " << a.what << ": K=" << a.cells << " mean " << a.mean_value << " (ref "
-              << a.mean_ref << ", z " << a.z_mean << ", sigma_rel " << a.mean_sigma_rel << "), worst |z| "
-              << a.max_abs_z << ", mean z^2 " << a.mean_z2 << " (allowed 1 +- " << band << ")\n";
+    std::cout << "[validation] " << a.what << ": K=" << a.cells << " mean " << a.mean_value << " (ref " << a.mean_ref
+              << ", z " << a.z_mean << ", sigma_rel " << a.mean_sigma_rel << "), worst |z| " << a.max_abs_z
+              << ", mean z^2 " << a.mean_z2 << " (allowed 1 +- " << band << ")\n";
 }
 
 // Illuminance on a horizontal plane from an isotropic point source of intensity I at
@@ -281,9 +281,9 @@ TEST(Validation, ClosedDiffuseRoom) {
               << "); sigma_lx " << r.attr_f64("/global", "moment_sigma_lx") << " (second moment) vs "
               << r.attr_f64("/global", "sigma_lx") << " (odd/even)\n";
     std::cout << "[validation] closed room: mean " << mean << " lx (ref " << ref << ", sigma " << sigma << ", z " << z
-              << "), odd/even z " << z_oe << ", rho_hat " << rho_hat << "; direct map K=" << k << " worst |z| "
-              << max_z << ", mean z^2 " << sum_z2 / static_cast<double>(k) << " (allowed 1 +- " << band
-              << "); file sigma_lx " << r.attr_f64("/global", "sigma_lx") << '\n';
+              << "), odd/even z " << z_oe << ", rho_hat " << rho_hat << "; direct map K=" << k << " worst |z| " << max_z
+              << ", mean z^2 " << sum_z2 / static_cast<double>(k) << " (allowed 1 +- " << band << "); file sigma_lx "
+              << r.attr_f64("/global", "sigma_lx") << '\n';
 }
 
 // ---------------------------------------------------------------------------------------
@@ -364,8 +364,8 @@ TEST(Validation, SheetBetweenTwoLampsGivesEachSideItsOwnIlluminance) {
             const Vec3 lamp = side == 0 ? top : bottom;
             const double share = (side == 0 ? kFluxTop : kFluxBottom) / (kFluxTop + kFluxBottom);
             auto vertex = [&](std::uint64_t i) { return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]) - lamp; };
-            const double omega =
-                std::abs(triangle_solid_angle(vertex(tri[3 * t]), vertex(tri[3 * t + 1]), vertex(tri[3 * t + 2])));
+            const double omega = std::abs(
+                triangle_solid_angle(vertex(tri[3 * t]), vertex(tri[3 * t + 1]), vertex(tri[3 * t + 2])));
             const double p = share * omega / (4.0 * kPi);
             const double count = static_cast<double>(odd[2 * t + side] + even[2 * t + side]);
             const double z = (count - n * p) / std::sqrt(n * p * (1.0 - p));
@@ -461,13 +461,17 @@ TEST(Validation, LuminousOpeningNearField) {
     ASSERT_EQ(0, run_luxtrace("near_field_point", point_out, kPhotons, 62));
     const ResultReader area(area_out), point(point_out);
     for (const double h : heights) {
-        const std::string name = "below_" + (h < 1.0 ? "0p" + std::to_string(static_cast<int>(std::lround(h * 10))) : std::to_string(static_cast<int>(h))) + "m";
+        const std::string name = "below_" +
+                                 (h < 1.0 ? "0p" + std::to_string(static_cast<int>(std::lround(h * 10)))
+                                          : std::to_string(static_cast<int>(h))) +
+                                 "m";
         const double w = 0.3 * std::max(1.0, h);
         const Grid g{0.0, 0.0, w, w, 3, 3};
         auto near = [&](double x, double y) {
             const double x1 = (-0.5 * kSize - x) / h, x2 = (0.5 * kSize - x) / h;
             const double y1 = (-0.5 * kSize - y) / h, y2 = (0.5 * kSize - y) / h;
-            const double f = corner_factor(x2, y2) - corner_factor(x1, y2) - corner_factor(x2, y1) + corner_factor(x1, y1);
+            const double f = corner_factor(x2, y2) - corner_factor(x1, y2) - corner_factor(x2, y1) +
+                             corner_factor(x1, y1);
             return kPi * kI0 / (kSize * kSize) * f;
         };
         auto far = [&](double x, double y) {  // a point of intensity I0 cos(gamma): I0 h^2 / r^4
@@ -534,7 +538,9 @@ TEST(Validation, GlassSlabTransmission) {
 // cylinder sees D and l change over its surface; the reference integrates the exact
 // lateral mean by the midpoint rule (720 angles x 24 heights), and the test also reports
 // how far that lies from the point formulas.
-struct CylinderPoint { double x, y, z; };
+struct CylinderPoint {
+    double x, y, z;
+};
 
 double cylinder_lateral_mean(double intensity, const Vec3& source, const Vec3& p, double radius, double height,
                              const Vec3* facing) {
@@ -587,10 +593,12 @@ TEST(Validation, CylindricalIlluminanceOfAPointSource) {
     for (std::size_t c = 0; c < cyl.size(); ++c) {
         const int i = static_cast<int>(c) % grid.nx, j = static_cast<int>(c) / grid.nx;
         const Vec3 p(grid.x0() + (i + 0.5) * grid.w / grid.nx, grid.y0() + (j + 0.5) * grid.h / grid.ny, kZ);
-        tiny_c = std::max(tiny_c, std::abs(cylinder_lateral_mean(intensity, source, p, 1e-4, 2e-4, nullptr) /
-                                           cyl_point[c] - 1.0));
-        tiny_sc = std::max(tiny_sc, std::abs(cylinder_lateral_mean(intensity, source, p, 1e-4, 2e-4, &facing) /
-                                             semi_point[c] - 1.0));
+        tiny_c = std::max(tiny_c,
+                          std::abs(cylinder_lateral_mean(intensity, source, p, 1e-4, 2e-4, nullptr) / cyl_point[c] -
+                                   1.0));
+        tiny_sc = std::max(tiny_sc,
+                           std::abs(cylinder_lateral_mean(intensity, source, p, 1e-4, 2e-4, &facing) / semi_point[c] -
+                                    1.0));
         bias_c = std::max(bias_c, std::abs(cyl[c] / cyl_point[c] - 1.0));
         bias_sc = std::max(bias_sc, std::abs(semi[c] / semi_point[c] - 1.0));
     }

@@ -7,17 +7,17 @@
 namespace luxtrace {
 
 struct RenderArgs {
-    std::string result;           // result file (.h5)
-    std::string camera;           // "px,py,pz,tx,ty,tz[,ux,uy,uz]" or empty
-    std::string camera_name;      // a [[camera]] of the scene file
+    std::string result;       // result file (.h5)
+    std::string camera;       // "px,py,pz,tx,ty,tz[,ux,uy,uz]" or empty
+    std::string camera_name;  // a [[camera]] of the scene file
     std::optional<double> fov_deg;
-    std::string size;             // "WxH"
-    std::string output;           // -o: view.png (an .exr/.pfm beside it holds luminance)
-    std::string tonemap = "auto"; // auto | exposure | falsecolour
+    std::string size;                // "WxH"
+    std::string output;              // -o: view.png (an .exr/.pfm beside it holds luminance)
+    std::string tonemap = "auto";    // auto | exposure | falsecolour
     std::optional<double> exposure;  // exposure mapping: cd/m^2 shown as white
     double gamma = 2.2;
     std::optional<double> falsecolour_max;  // cd/m^2 at the top of the scale
-    int samples = 4;              // rays per pixel (anti-aliasing)
+    int samples = 4;                        // rays per pixel (anti-aliasing)
     int threads = 0;
 };
 

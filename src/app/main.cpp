@@ -1,5 +1,7 @@
 // luxtrace command line (docs/REFERENCE.md §1). Thin: parse, call the library, map errors
 // to exit codes.
+#include "cli_reference.hpp"
+#include "commands.hpp"
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
@@ -10,8 +12,6 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
-#include "cli_reference.hpp"
-#include "commands.hpp"
 #include "scene_summary.hpp"
 
 #include <CLI/CLI.hpp>
@@ -100,7 +100,8 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
     }
     const fs::path out(run.output);
     const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    if (!fs::is_directory(dir)) throw InputError(run.output + ": output directory '" + dir.string() + "' does not exist");
+    if (!fs::is_directory(dir))
+        throw InputError(run.output + ": output directory '" + dir.string() + "' does not exist");
     if (fs::is_directory(out)) throw InputError(run.output + ": output path is a directory");
 }
 
@@ -123,9 +124,9 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     std::signal(SIGUSR1, on_stop_signal);
     if (comm.is_root() && !a.quiet)
         std::cout << "luxtrace: " << scene.file.string() << ": " << scene.triangle_count() << " triangles, "
-                  << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on "
-                  << comm.size() << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores())
-                  << " thread(s)\n" << std::flush;
+                  << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on " << comm.size()
+                  << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores()) << " thread(s)\n"
+                  << std::flush;
     const RunSummary s = run_simulation(scene, comm, opt, std::cout);
     if (s.failed) {
         // Raised after parsing, inside a tracing thread: the rank that saw it says what.
@@ -213,7 +214,8 @@ int main(int argc, char** argv) {
     info->add_option("result", info_path, "result file (.h5)")->required();
 
     RenderArgs rd;
-    auto* render = app.add_subcommand("render", "rendered views of a result (detector pictures: python3 -m luxtrace.plot)");
+    auto* render = app.add_subcommand("render",
+                                      "rendered views of a result (detector pictures: python3 -m luxtrace.plot)");
     render->add_option("result", rd.result, "result file (.h5)")->required();
     render->add_option("--camera", rd.camera, "position,target[,up] as 6 or 9 comma-separated numbers");
     render->add_option("--view", rd.camera_name, "name of a [[camera]] in the scene file");
@@ -228,7 +230,8 @@ int main(int argc, char** argv) {
     render->add_option("--threads", rd.threads, "threads (default: all cores)");
     std::vector<std::string> photometry_files;
     int lamp_set = 1;
-    auto* photometry = app.add_subcommand("photometry", "read IES or EULUMDAT files and print what luxtrace makes of them");
+    auto* photometry = app.add_subcommand("photometry",
+                                          "read IES or EULUMDAT files and print what luxtrace makes of them");
     photometry->add_option("files", photometry_files, "IES LM-63 or EULUMDAT files")->required();
     photometry->add_option("--lamp-set", lamp_set, "EULUMDAT: the lamp set to scale by (default 1)");
     std::string xdmf_result, xdmf_output;

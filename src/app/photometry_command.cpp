@@ -46,8 +46,7 @@ int cmd_photometry(const std::vector<std::string>& files, int lamp_set) {
         out << "flux        " << p.flux_lm() << " lm from the table";
         if (p.stated_flux_lm > 0.0)
             out << ", " << p.stated_flux_lm << " lm stated (lamps x LORL), ratio " << p.flux_lm() / p.stated_flux_lm;
-        else if (p.lamp_flux_lm > 0.0)
-            out << ", light output ratio " << p.flux_lm() / p.lamp_flux_lm;
+        else if (p.lamp_flux_lm > 0.0) out << ", light output ratio " << p.flux_lm() / p.lamp_flux_lm;
         out << "; sampled " << dist.flux_lm() << " lm\n";
         // The brightest tabulated direction, in the file's own angles.
         double peak = -1.0, peak_h = 0.0, peak_v = 0.0;

@@ -12,10 +12,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <cstdio>
 #include <tuple>
 
 namespace luxtrace {
@@ -80,8 +80,8 @@ std::vector<ViewJob> plan_views(const RenderArgs& a, const Scene& scene) {
         if (it == scene.cameras.end()) {
             std::string have;
             for (const Camera& c : scene.cameras) have += (have.empty() ? "" : ", ") + c.name;
-            throw InputError("--view: the scene " + scene.file.string() + " has no [[camera]] named '" +
-                             a.camera_name + "'" + (have.empty() ? " (it defines none)" : " (it has: " + have + ")"));
+            throw InputError("--view: the scene " + scene.file.string() + " has no [[camera]] named '" + a.camera_name +
+                             "'" + (have.empty() ? " (it defines none)" : " (it has: " + have + ")"));
         }
         cams.push_back(*it);
     } else {
@@ -90,8 +90,8 @@ std::vector<ViewJob> plan_views(const RenderArgs& a, const Scene& scene) {
             throw InputError(a.result + ": nothing to render: give --camera or --view (the scene " +
                              scene.file.string() + " defines no [[camera]])");
     }
-    const std::optional<std::pair<int, int>> size =
-        a.size.empty() ? std::nullopt : std::optional(parse_size_option(a.size));
+    const std::optional<std::pair<int, int>> size = a.size.empty() ? std::nullopt
+                                                                   : std::optional(parse_size_option(a.size));
     std::vector<ViewJob> jobs;
     for (Camera& c : cams) {
         if (a.fov_deg) c.fov_deg = *a.fov_deg;
@@ -145,8 +145,8 @@ int cmd_render(const RenderArgs& args) {
             how = "false colour " + fmt(scale.min_cd_m2) + " .. " + fmt(scale.max_cd_m2) + " cd/m^2 (log)";
         }
         write_exr(job.exr, image);
-        std::cout << "view '" << job.camera.name << "': " << image.width << "x" << image.height << ", "
-                  << opt.samples << " rays/pixel, rendered in " << fmt(seconds) << " s; " << how << '\n'
+        std::cout << "view '" << job.camera.name << "': " << image.width << "x" << image.height << ", " << opt.samples
+                  << " rays/pixel, rendered in " << fmt(seconds) << " s; " << how << '\n'
                   << "  " << fs::absolute(job.png).string() << "\n  " << fs::absolute(job.exr).string()
                   << " (luminance, cd/m^2)\n";
     }

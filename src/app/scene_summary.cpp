@@ -25,9 +25,9 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
     out << "bands      ";
     for (const std::string& b : s.bands) out << b << ' ';
     out << "\ngeometry   " << s.triangle_count() << " triangles, " << s.vertices.size() << " vertices, "
-        << std::setprecision(6) << s.total_area_m2() << " m^2; bounds [" << s.bounds_min.x << ", "
-        << s.bounds_min.y << ", " << s.bounds_min.z << "] - [" << s.bounds_max.x << ", " << s.bounds_max.y
-        << ", " << s.bounds_max.z << "]\n";
+        << std::setprecision(6) << s.total_area_m2() << " m^2; bounds [" << s.bounds_min.x << ", " << s.bounds_min.y
+        << ", " << s.bounds_min.z << "] - [" << s.bounds_max.x << ", " << s.bounds_max.y << ", " << s.bounds_max.z
+        << "]\n";
     std::vector<std::size_t> count(s.materials.size(), 0);
     std::vector<double> area(s.materials.size(), 0.0);
     for (std::size_t t = 0; t < s.triangle_count(); ++t) {
@@ -37,10 +37,10 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
     out << "materials  " << s.materials.size() << '\n';
     for (std::size_t m = 0; m < s.materials.size(); ++m)
         out << "  " << std::left << std::setw(16) << s.materials[m].name << std::right << std::setw(8)
-            << type_name(s.materials[m].type) << "  albedo " << std::setprecision(3)
-            << albedo(s.materials[m], 0) << "  " << count[m] << " triangles, " << area[m] << " m^2\n";
-    out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6)
-        << s.lights.total_flux_lm() << " lm\n";
+            << type_name(s.materials[m].type) << "  albedo " << std::setprecision(3) << albedo(s.materials[m], 0)
+            << "  " << count[m] << " triangles, " << area[m] << " m^2\n";
+    out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6) << s.lights.total_flux_lm()
+        << " lm\n";
     for (const Light& l : s.lights.lights()) {
         out << "  " << std::left << std::setw(24) << l.label << std::right << "  " << l.flux_lm << " lm";
         if (l.photometry) {
@@ -87,8 +87,8 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
             out << "    " << g.label << ": L " << g.luminance_cd_m2 << " cd/m^2, omega " << g.solid_angle_sr
                 << " sr, p " << g.position_index << ", L^2 omega / p^2 " << g.term() << '\n';
     }
-    out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output
-        << ", " << s.run.targets.size() << " target(s)\n";
+    out << "run        " << s.run.photons << " photons, seed " << s.run.seed << ", output " << s.run.output << ", "
+        << s.run.targets.size() << " target(s)\n";
     out << "warnings   " << warnings.size() << '\n';
     for (const std::string& w : warnings) out << "  warning: " << w << '\n';
 }

@@ -26,8 +26,7 @@ std::optional<std::uint64_t> parse_count(const std::string& text) {
     else if (suffix == "T") mult = 1e12;
     else if (!suffix.empty()) return std::nullopt;
     const double total = v * mult;
-    if (!std::isfinite(total) || total < 0.0 || total > 1.8e19 || total != std::floor(total))
-        return std::nullopt;
+    if (!std::isfinite(total) || total < 0.0 || total > 1.8e19 || total != std::floor(total)) return std::nullopt;
     return static_cast<std::uint64_t>(total);
 }
 

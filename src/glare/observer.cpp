@@ -71,8 +71,8 @@ bool luminous_terms(const Light& l, const Vec3& eye, GlareSource& s, std::string
     }
     // A photometric file's luminous opening; also when photons start from the point
     // (emission = "point"): the file still says how large the luminaire looks.
-    const LuminousOpening& opening =
-        l.opening.shape != LuminousOpening::Shape::point ? l.opening : l.photometry->opening;
+    const LuminousOpening& opening = l.opening.shape != LuminousOpening::Shape::point ? l.opening
+                                                                                      : l.photometry->opening;
     if (opening.shape == LuminousOpening::Shape::point) {
         why = "its photometric file gives no luminous opening";
         return false;

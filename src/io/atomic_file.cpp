@@ -2,12 +2,12 @@
 
 #include "luxtrace/core/error.hpp"
 
-#include <cerrno>
-#include <csignal>
-#include <cstring>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 
 namespace luxtrace {
 
@@ -17,9 +17,7 @@ namespace {
 
 std::string reason(int err) { return std::strerror(err); }
 
-fs::path directory_of(const fs::path& path) {
-    return path.parent_path().empty() ? fs::path(".") : path.parent_path();
-}
+fs::path directory_of(const fs::path& path) { return path.parent_path().empty() ? fs::path(".") : path.parent_path(); }
 
 // ".NAME.tmp." (appended to, not built with "." + name: GCC 12 warns falsely on that,
 // -Wrestrict, its bug 105329).
@@ -81,7 +79,8 @@ void check_writable(const fs::path& path, const std::string& what) {
     remove_stale_temporaries(path);
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && (st.st_mode & 0222) == 0)
-        throw IoError(path.string() + ": the " + what + " exists and is read-only; make it writable or choose another path");
+        throw IoError(path.string() + ": the " + what +
+                      " exists and is read-only; make it writable or choose another path");
     const fs::path probe = temporary_for(path, ::getpid());
     const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0)

@@ -23,8 +23,8 @@ std::uint32_t crc_update(std::uint32_t crc, const char* data, std::size_t n) {
 
 void seal_image(std::vector<char>& image) {
     const std::size_t body = image.size() - kSealBytes;
-    const std::uint32_t crc = crc_update(static_cast<std::uint32_t>(crc32_z(0, nullptr, 0)),
-                                         image.data() + kSealBytes, body);
+    const std::uint32_t crc = crc_update(static_cast<std::uint32_t>(crc32_z(0, nullptr, 0)), image.data() + kSealBytes,
+                                         body);
     char line[kSealBytes] = {};
     std::snprintf(line, sizeof line, "%scrc32 %08" PRIx32 " length %zu\n", kMagic, crc, body);
     std::memcpy(image.data(), line, kSealBytes);
@@ -39,9 +39,9 @@ bool check_seal(const std::filesystem::path& path) {
         // luxtrace 0.1 wrote unsealed files, whose HDF5 signature is at byte 0. Anything else
         // without a seal is a sealed file whose seal line was damaged (HDF5 would still find
         // the superblock at byte 512 and trust the unchecked rest), or not a result at all.
-        if (in.gcount() >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0)
-            return false;
-        throw InputError(path.string() + ": damaged file: it does not begin with a luxtrace seal "
+        if (in.gcount() >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0) return false;
+        throw InputError(path.string() +
+                         ": damaged file: it does not begin with a luxtrace seal "
                          "(a result or checkpoint whose first bytes were changed, or not a luxtrace file)");
     }
     std::uint32_t want_crc = 0;
@@ -58,11 +58,12 @@ bool check_seal(const std::filesystem::path& path) {
         length += n;
     }
     if (length != want_length)
-        throw InputError(path.string() + ": damaged file: it has " + std::to_string(length) + " bytes after its seal, " +
-                         std::to_string(want_length) + " when luxtrace wrote it (cut short, or appended to)");
+        throw InputError(path.string() + ": damaged file: it has " + std::to_string(length) +
+                         " bytes after its seal, " + std::to_string(want_length) +
+                         " when luxtrace wrote it (cut short, or appended to)");
     if (crc != want_crc)
         throw InputError(path.string() + ": damaged file: its content differs from what luxtrace wrote (checksum "
-                         "mismatch: a bad disk or copy, or changed by another program since)");
+                                         "mismatch: a bad disk or copy, or changed by another program since)");
     return true;
 }
 

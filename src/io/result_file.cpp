@@ -9,10 +9,10 @@
 
 #include <hdf5.h>
 
-#include <stdexcept>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <cmath>
+#include <stdexcept>
 
 namespace luxtrace {
 
@@ -99,7 +99,8 @@ std::size_t file_length(const std::vector<char>& image) {
         throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
     std::uint64_t eof = 0;
     for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(sb[28 + i]);
-    if (eof < 48 || eof > image.size() - kSealBytes) throw std::runtime_error("HDF5: the in-memory file image is incomplete");
+    if (eof < 48 || eof > image.size() - kSealBytes)
+        throw std::runtime_error("HDF5: the in-memory file image is incomplete");
     return kSealBytes + static_cast<std::size_t>(eof);
 }
 
@@ -113,15 +114,33 @@ hid_t group(hid_t parent, const std::string& name) {
 
 template <class T>
 hid_t native_type();
-template <> hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
-template <> hid_t native_type<std::uint64_t>() { return H5T_NATIVE_UINT64; }
-template <> hid_t native_type<std::uint32_t>() { return H5T_NATIVE_UINT32; }
+template <>
+hid_t native_type<double>() {
+    return H5T_NATIVE_DOUBLE;
+}
+template <>
+hid_t native_type<std::uint64_t>() {
+    return H5T_NATIVE_UINT64;
+}
+template <>
+hid_t native_type<std::uint32_t>() {
+    return H5T_NATIVE_UINT32;
+}
 
 template <class T>
 hid_t file_type();
-template <> hid_t file_type<double>() { return H5T_IEEE_F64LE; }
-template <> hid_t file_type<std::uint64_t>() { return H5T_STD_U64LE; }
-template <> hid_t file_type<std::uint32_t>() { return H5T_STD_U32LE; }
+template <>
+hid_t file_type<double>() {
+    return H5T_IEEE_F64LE;
+}
+template <>
+hid_t file_type<std::uint64_t>() {
+    return H5T_STD_U64LE;
+}
+template <>
+hid_t file_type<std::uint32_t>() {
+    return H5T_STD_U32LE;
+}
 
 template <class T>
 void dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, const T* data) {
@@ -138,8 +157,8 @@ void dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& 
         check(H5Pset_deflate(plist, 1), "deflate");
         check(H5Pset_fletcher32(plist), "checksum");  // a damaged chunk fails to read
     }
-    H5Id ds(H5Dcreate2(parent, name.c_str(), file_type<T>(), space, H5P_DEFAULT, plist, H5P_DEFAULT),
-            H5Dclose, "create dataset " + name);
+    H5Id ds(H5Dcreate2(parent, name.c_str(), file_type<T>(), space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
+            "create dataset " + name);
     check(H5Dwrite(ds, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
 }
 
@@ -151,7 +170,9 @@ void attr(hid_t obj, const std::string& name, const std::vector<T>& values) {
     check(H5Awrite(a, native_type<T>(), values.data()), "write attr " + name);
 }
 template <class T>
-void attr(hid_t obj, const std::string& name, T value) { attr(obj, name, std::vector<T>{value}); }
+void attr(hid_t obj, const std::string& name, T value) {
+    attr(obj, name, std::vector<T>{value});
+}
 
 // Variable-length UTF-8 strings: h5py reads them as str.
 void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values, bool scalar) {
@@ -165,9 +186,7 @@ void attr_strings(hid_t obj, const std::string& name, const std::vector<std::str
     for (const std::string& s : values) ptrs.push_back(s.c_str());
     check(H5Awrite(a, type, ptrs.data()), "write attr " + name);
 }
-void attr(hid_t obj, const std::string& name, const std::string& value) {
-    attr_strings(obj, name, {value}, true);
-}
+void attr(hid_t obj, const std::string& name, const std::string& value) { attr_strings(obj, name, {value}, true); }
 void attr(hid_t obj, const std::string& name, const char* value) { attr(obj, name, std::string(value)); }
 
 void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
@@ -192,7 +211,8 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
         check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
         const hsize_t n = names.size();
         H5Id space(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
-        H5Id ds(H5Dcreate2(mesh, "material_names", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose, "material_names");
+        H5Id ds(H5Dcreate2(mesh, "material_names", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+                "material_names");
         std::vector<const char*> ptrs;
         for (const std::string& s : names) ptrs.push_back(s.c_str());
         check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "material_names");
@@ -204,9 +224,10 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
     auto slot_of = [&](std::size_t t, std::size_t side, std::size_t b, TallyLayout::SurfaceSlot s) {
         return data[L.surface(t, side, b, s)];
     };
-    const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {
-        {"count_odd", TallyLayout::kCountOdd}, {"count_even", TallyLayout::kCountEven},
-        {"direct_odd", TallyLayout::kDirectOdd}, {"direct_even", TallyLayout::kDirectEven}};
+    const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {{"count_odd", TallyLayout::kCountOdd},
+                                                                      {"count_even", TallyLayout::kCountEven},
+                                                                      {"direct_odd", TallyLayout::kDirectOdd},
+                                                                      {"direct_even", TallyLayout::kDirectEven}};
     std::vector<std::uint64_t> buf(T * kS * B);
     for (const auto& [name, slot] : slots) {
         for (std::size_t t = 0; t < T; ++t)
@@ -247,7 +268,8 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
             odd_even[t * kS + side] = 2.0 * d * info.flux_per_photon_lm / scene.triangle_area_m2[t];
         }
     dataset(glob, "odd_even_difference_lx", {T, kS}, odd_even.data());
-    const std::vector<double> sigma = side_sigma_lx(L, data, scene.triangle_area_m2, info.flux_per_photon_lm, info.photons);
+    const std::vector<double> sigma = side_sigma_lx(L, data, scene.triangle_area_m2, info.flux_per_photon_lm,
+                                                    info.photons);
     dataset(glob, "sigma_lx", {T, kS}, sigma.data());
     attr(glob, "sigma_lx", g.sigma_lx);
     attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
@@ -304,10 +326,12 @@ void write_metrics(hid_t g, const IlluminanceMetrics& initial, double mf) {
         attr(g, "E_max" + suffix + "_sigma_lx", m.max_sigma_lx);
         attr(g, "E_max" + suffix + "_bias_lx", m.max_bias_lx);
     }
-    attr(g, "E_min_cell", std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.min_i),
-                                                     static_cast<std::uint64_t>(initial.min_j)});
-    attr(g, "E_max_cell", std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.max_i),
-                                                     static_cast<std::uint64_t>(initial.max_j)});
+    attr(g, "E_min_cell",
+         std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.min_i),
+                                    static_cast<std::uint64_t>(initial.min_j)});
+    attr(g, "E_max_cell",
+         std::vector<std::uint64_t>{static_cast<std::uint64_t>(initial.max_i),
+                                    static_cast<std::uint64_t>(initial.max_j)});
     attr(g, "E_min_competitors", initial.min_competitors);
     attr(g, "E_max_competitors", initial.max_competitors);
     attr(g, "U0", initial.u0);
@@ -345,7 +369,8 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         attr(g, "normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
         attr(g, "up", std::vector<double>{d.v_axis.x, d.v_axis.y, d.v_axis.z});
         attr(g, "size", std::vector<double>{d.size_u, d.size_v});
-        attr(g, "cells", std::vector<std::uint64_t>{static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny)});
+        attr(g, "cells",
+             std::vector<std::uint64_t>{static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny)});
         attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
         attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
         attr(g, "mean_arithmetic", e.mean_arithmetic);
@@ -376,10 +401,10 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
                 for (std::size_t k = 1; k < e.metrics.size(); ++k) {
                     const IlluminanceMetrics& m = e.metrics[k];
                     H5Id a(group(areas, m.area), H5Gclose, "group task_areas/" + m.area);
-                    attr(a, "cell_range", std::vector<std::uint64_t>{static_cast<std::uint64_t>(m.i0),
-                                                                     static_cast<std::uint64_t>(m.i1),
-                                                                     static_cast<std::uint64_t>(m.j0),
-                                                                     static_cast<std::uint64_t>(m.j1)});
+                    attr(a, "cell_range",
+                         std::vector<std::uint64_t>{static_cast<std::uint64_t>(m.i0), static_cast<std::uint64_t>(m.i1),
+                                                    static_cast<std::uint64_t>(m.j0),
+                                                    static_cast<std::uint64_t>(m.j1)});
                     write_metrics(a, m, mf);
                 }
             }
@@ -502,9 +527,9 @@ void write_history(hid_t file, const std::vector<HistoryRow>& history, const Run
 }  // namespace
 
 void write_result(const fs::path& path, const Scene& scene, const TallyLayout& layout,
-                  const std::vector<std::uint64_t>& tallies, const RunInfo& info,
-                  const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
-                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint) {
+                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const GlobalEstimate& global,
+                  const std::vector<DetectorEstimate>& detectors, const std::vector<HistoryRow>& history,
+                  const CheckpointData* checkpoint) {
     std::vector<char> image;
     // HDF5 builds the file in memory (core driver, no backing store) and never touches
     // the disk: writing it is then plain POSIX I/O whose errors name the OS's reason, and

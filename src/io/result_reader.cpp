@@ -17,7 +17,9 @@ namespace {
 struct Closer {
     hid_t id;
     herr_t (*fn)(hid_t);
-    ~Closer() { if (id >= 0) fn(id); }
+    ~Closer() {
+        if (id >= 0) fn(id);
+    }
 };
 
 // Every error of a reader names the file: a missing or damaged object is bad input.
@@ -185,7 +187,8 @@ std::vector<std::string> ResultReader::attr_strs(const std::string& object, cons
             H5E_END_TRY;
         }
         if (ok >= 0)
-            for (std::size_t i = 0; i < n; ++i) out.emplace_back(buf.data() + i * len, strnlen(buf.data() + i * len, len));
+            for (std::size_t i = 0; i < n; ++i)
+                out.emplace_back(buf.data() + i * len, strnlen(buf.data() + i * len, len));
     }
     if (ok < 0) fail(path_, "attribute " + what + " cannot be read (damaged)");
     return out;
@@ -204,7 +207,9 @@ std::vector<std::string> ResultReader::children(const std::string& group) const 
         return 0;
     };
     herr_t ok = 0;
-    H5E_BEGIN_TRY { ok = H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, cb, &names, H5P_DEFAULT); }
+    H5E_BEGIN_TRY {
+        ok = H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, cb, &names, H5P_DEFAULT);
+    }
     H5E_END_TRY;
     if (ok < 0) fail(path_, "cannot list group " + group + " (damaged)");
     return names;
@@ -221,8 +226,9 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         throw InputError(where + "not a luxtrace checkpoint (it is a result file; restart needs a checkpoint)");
     // Unsealed checkpoints come from luxtrace 0.1, whose photons drew other random numbers.
     if (!r.sealed())
-        throw InputError(where + "this checkpoint has no luxtrace seal: it was written by luxtrace 0.1 (photon layout 1); "
-                                 "continue it with that version or start anew");
+        throw InputError(where +
+                         "this checkpoint has no luxtrace seal: it was written by luxtrace 0.1 (photon layout 1); "
+                         "continue it with that version or start anew");
     CheckpointState s;
     try {
         s.tallies = r.u64("/checkpoint/tallies");

@@ -11,9 +11,9 @@
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/result_file.hpp"
 
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace luxtrace {
 
@@ -65,24 +65,22 @@ public:
             hdf(indent, path, dims(T_, 1), "Float", 8);
             return;
         }
-        out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims(T_, 1)
-             << "\" Type=\"HyperSlab\">\n"
-             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << band
-             << " 1 1 " << T_ << " 1</DataItem>\n";
+        out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims(T_, 1) << "\" Type=\"HyperSlab\">\n"
+             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << band << " 1 1 "
+             << T_ << " 1</DataItem>\n";
         hdf(indent + "  ", path, dims(T_, B_), "Float", 8);
         out_ << indent << "</DataItem>\n";
     }
     // Side `side` of a float64 [T,2] map as a [T,1] item.
     void side_column(const std::string& indent, const std::string& path, std::size_t side) {
         out_ << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << dims(T_, 1) << "\" Type=\"HyperSlab\">\n"
-             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << side << " 1 1 " << T_
-             << " 1</DataItem>\n";
+             << indent << "  <DataItem Dimensions=\"3 2\" NumberType=\"UInt\" Format=\"XML\">0 " << side << " 1 1 "
+             << T_ << " 1</DataItem>\n";
         hdf(indent + "  ", path, dims(T_, 2), "Float", 8);
         out_ << indent << "</DataItem>\n";
     }
     void open_attribute(const std::string& name) {
-        out_ << "      <Attribute Name=\"" << xml_escape(name)
-             << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+        out_ << "      <Attribute Name=\"" << xml_escape(name) << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
     }
     void close_attribute() { out_ << "      </Attribute>\n"; }
 
@@ -161,8 +159,8 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
             w.close_attribute();
             // Secondary (interreflected) light: all arrivals minus first hits.
             w.open_attribute("secondary" + suffix + "_lx");
-            out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\""
-                << XdmfWriter::dims(T, 1) << (two_sided ? " 1" : "") << "\">\n";
+            out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\"" << XdmfWriter::dims(T, 1)
+                << (two_sided ? " 1" : "") << "\">\n";
             w.band_column(in + "  ", "/global/illuminance", side, b);
             w.band_column(in + "  ", "/global/illuminance_direct", side, b);
             out << in << "</DataItem>\n";

@@ -34,10 +34,11 @@ class LineReader {
 public:
     LineReader(std::string file, const std::vector<std::string>& lines) : file_(std::move(file)), lines_(lines) {}
     [[noreturn]] void fail(int line, const std::string& what) const { fail_at(file_, line, what); }
-    int line() const { return static_cast<int>(pos_) + 1; }      // the next line's number
-    int prev_line() const { return static_cast<int>(pos_); }     // the last one read
+    int line() const { return static_cast<int>(pos_) + 1; }   // the next line's number
+    int prev_line() const { return static_cast<int>(pos_); }  // the last one read
     std::string text(const std::string& what) {
-        if (pos_ >= lines_.size()) fail(std::max(1, static_cast<int>(lines_.size())), "unexpected end of file, expected " + what);
+        if (pos_ >= lines_.size())
+            fail(std::max(1, static_cast<int>(lines_.size())), "unexpected end of file, expected " + what);
         return std::string(trim(lines_[pos_++]));
     }
     double number(const std::string& what) {
@@ -48,7 +49,8 @@ public:
     }
     int integer(const std::string& what) {
         const double v = number(what);
-        if (v != std::floor(v) || std::abs(v) > 1e6) fail(prev_line(), "expected an integer for " + what + ", found " + fmt(v));
+        if (v != std::floor(v) || std::abs(v) > 1e6)
+            fail(prev_line(), "expected an integer for " + what + ", found " + fmt(v));
         return static_cast<int>(v);
     }
     // The remaining numbers, whitespace separated, with their lines.
@@ -92,7 +94,8 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
         rd.fail(rd.prev_line(), "Isym 4 needs a number of C planes divisible by 4, found " + fmt(mc));
     rd.number("C plane distance Dc (line 5)");
     const int ng = rd.integer("number of intensities per C plane Ng (line 6)");
-    if (ng < 2 || ng > 3600) rd.fail(rd.prev_line(), "number of gamma angles Ng must lie in [2, 3600], found " + fmt(ng));
+    if (ng < 2 || ng > 3600)
+        rd.fail(rd.prev_line(), "number of gamma angles Ng must lie in [2, 3600], found " + fmt(ng));
     rd.number("gamma angle distance Dg (line 7)");
     rd.text("measurement report number (line 8)");
     p.luminaire = rd.text("luminaire name (line 9)");
@@ -130,7 +133,8 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
         rd.text("colour rendering of set " + std::to_string(s));
         const double watts = rd.number("wattage of set " + std::to_string(s));
         if (s != lamp_set) continue;
-        if (!(flux > 0.0)) rd.fail(flux_line, "total lamp flux of set " + std::to_string(s) + " must be > 0, found " + fmt(flux));
+        if (!(flux > 0.0))
+            rd.fail(flux_line, "total lamp flux of set " + std::to_string(s) + " must be > 0, found " + fmt(flux));
         set_flux = flux;
         p.num_lamps = std::abs(lamps);
         p.input_watts = watts;
@@ -170,9 +174,12 @@ Photometry load_eulumdat(const std::filesystem::path& file, int lamp_set) {
     int first = 0, count = mc;
     if (isym == 1) count = 1;
     else if (isym == 2) count = mc / 2 + 1;
-    else if (isym == 3) { first = 3 * mc / 4; count = mc / 2 + 1; }
-    else if (isym == 4) count = mc / 4 + 1;
-    if (isym == 3 && mc % 4 != 0) rd.fail(angles_line, "Isym 3 needs a number of C planes divisible by 4, found " + fmt(mc));
+    else if (isym == 3) {
+        first = 3 * mc / 4;
+        count = mc / 2 + 1;
+    } else if (isym == 4) count = mc / 4 + 1;
+    if (isym == 3 && mc % 4 != 0)
+        rd.fail(angles_line, "Isym 3 needs a number of C planes divisible by 4, found " + fmt(mc));
     p.vertical_deg = g_angles;
     const double scale = set_flux / 1000.0 * conversion;
     bool any_light = false;

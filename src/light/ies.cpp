@@ -103,8 +103,8 @@ std::vector<double> read_angles(Reader& rd, int n, const char* kind, double lo, 
     for (int i = 0; i < n; ++i) {
         const double v = rd.number(std::string(kind) + " angle " + std::to_string(i + 1) + " of " + std::to_string(n));
         if (v < lo - kAngleTol || v > hi + kAngleTol)
-            rd.fail(rd.prev_line(), std::string(kind) + " angle " + fmt(v) + " is outside [" + fmt(lo) + "," +
-                                        fmt(hi) + "] for " + type_name + " photometry");
+            rd.fail(rd.prev_line(), std::string(kind) + " angle " + fmt(v) + " is outside [" + fmt(lo) + "," + fmt(hi) +
+                                        "] for " + type_name + " photometry");
         if (!a.empty() && v <= a.back())
             rd.fail(rd.prev_line(), std::string(kind) + " angles must increase, found " + fmt(v) + " after " +
                                         fmt(a.back()) + " (are the angle counts on line " +
@@ -179,7 +179,8 @@ LuminousOpening opening_of(double w, double l, double h, double unit_m, const st
     }
     if (!shape) {
         notes.push_back(name + ": luminous dimensions width " + fmt(w) + ", length " + fmt(l) + ", height " + fmt(h) +
-                        " match no LM-63-" + version + " luminous shape; the luminaire emits from its photometric centre");
+                        " match no LM-63-" + version +
+                        " luminous shape; the luminaire emits from its photometric centre");
         return LuminousOpening{};
     }
     o.shape = *shape;
@@ -207,7 +208,8 @@ Photometry load_ies(const std::filesystem::path& file) {
         const std::string_view l = trim(lines[tilt]);
         if ((tilt_val = tilt_value(l))) break;
         if (tilt == 0) {
-            if (l.starts_with("IESNA:LM-63-") || l.starts_with("IES:LM-63-")) version = std::string(l.substr(l.rfind('-') + 1));
+            if (l.starts_with("IESNA:LM-63-") || l.starts_with("IES:LM-63-"))
+                version = std::string(l.substr(l.rfind('-') + 1));
             else if (l.starts_with("IESNA91")) version = "1991";
             else if (l.starts_with("IESNA95")) version = "1995";
         }
@@ -247,7 +249,8 @@ Photometry load_ies(const std::filesystem::path& file) {
     p.num_lamps = rd.integer("number of lamps");
     const double lumens_per_lamp = rd.number("lumens per lamp");
     if (!(lumens_per_lamp > 0.0 || lumens_per_lamp == -1.0))
-        rd.fail(rd.prev_line(), "lumens per lamp must be > 0, or -1 for absolute photometry, found " + fmt(lumens_per_lamp));
+        rd.fail(rd.prev_line(),
+                "lumens per lamp must be > 0, or -1 for absolute photometry, found " + fmt(lumens_per_lamp));
     p.lamp_flux_lm = lumens_per_lamp > 0.0 ? lumens_per_lamp * std::max(p.num_lamps, 1) : -1.0;
     const double multiplier = rd.number("candela multiplier");
     if (multiplier <= 0.0) rd.fail(rd.prev_line(), "candela multiplier must be > 0, found " + fmt(multiplier));
@@ -262,7 +265,8 @@ Photometry load_ies(const std::filesystem::path& file) {
     p.type = static_cast<PhotometricType>(type);
     const char* type_name = type == 1 ? "type C" : type == 2 ? "type B" : "type A";
     const int units = rd.integer("units type");
-    if (units != 1 && units != 2) rd.fail(rd.prev_line(), "units type must be 1 (feet) or 2 (meters), found " + fmt(units));
+    if (units != 1 && units != 2)
+        rd.fail(rd.prev_line(), "units type must be 1 (feet) or 2 (meters), found " + fmt(units));
     const double w = rd.number("luminous width");
     const double l = rd.number("luminous length");
     const double h = rd.number("luminous height");
@@ -284,7 +288,8 @@ Photometry load_ies(const std::filesystem::path& file) {
     } else {
         p.vertical_deg = read_angles(rd, n_v, "vertical", -90.0, 90.0, counts_line, type_name);
         p.horizontal_deg = read_angles(rd, n_h, "horizontal", -90.0, 90.0, counts_line, type_name);
-        if (n_h < 2) rd.fail(rd.prev_line(), std::string("need at least 2 horizontal angles for ") + type_name + " photometry");
+        if (n_h < 2)
+            rd.fail(rd.prev_line(), std::string("need at least 2 horizontal angles for ") + type_name + " photometry");
     }
     const int angles_line = rd.prev_line();
     // A 0..X table with 180 < X < 360 covers the circle with no symmetry: C360 = C0.
@@ -293,7 +298,8 @@ Photometry load_ies(const std::filesystem::path& file) {
                        hz.back() > 180.0 + kAngleTol && hz.back() < 360.0 - kAngleTol;
     if (p.type == PhotometricType::C && !wraps && !c_plane_symmetry(hz))
         rd.fail(angles_line, "horizontal angles must run 0, 0-90, 0-180, 90-270 or 0-360 (or from 0 to above 180) "
-                             "for type C photometry, found " + fmt(hz.front()) + "-" + fmt(hz.back()));
+                             "for type C photometry, found " +
+                                 fmt(hz.front()) + "-" + fmt(hz.back()));
     if (p.type != PhotometricType::C && !(near(hz.front(), 0.0) || near(hz.front(), -90.0)))
         rd.fail(angles_line, std::string("horizontal angles must start at -90, or at 0 (lateral symmetry) for ") +
                                  type_name + " photometry, found " + fmt(hz.front()));
@@ -313,7 +319,8 @@ Photometry load_ies(const std::filesystem::path& file) {
             if (cd < 0.0) rd.fail(rd.prev_line(), "negative candela value " + fmt(cd));
             any_light = any_light || cd > 0.0;
             if (!std::isfinite(cd * scale))
-                rd.fail(rd.prev_line(), "candela value " + fmt(cd) + " times the multipliers (" + fmt(scale) + ") is too large");
+                rd.fail(rd.prev_line(),
+                        "candela value " + fmt(cd) + " times the multipliers (" + fmt(scale) + ") is too large");
             p.candela_cd[j].push_back(cd * scale);
         }
     }
@@ -356,13 +363,16 @@ Photometry load_ies(const std::filesystem::path& file) {
     }
     const double flux = p.flux_lm();
     if (!(flux > 0.0 && std::isfinite(flux)))
-        fail_at(name, last_line, "the photometry's flux (" + fmt(flux) + " lm) is not a positive number; "
-                                 "are the angles or the candela values right?");
+        fail_at(name, last_line,
+                "the photometry's flux (" + fmt(flux) +
+                    " lm) is not a positive number; "
+                    "are the angles or the candela values right?");
     // Relative photometry cannot give out more light than its lamps (a few per cent for
     // measurement and interpolation aside).
     if (p.lamp_flux_lm > 0.0 && flux > 1.1 * p.lamp_flux_lm)
         p.notes.push_back(name + ": the table carries " + fmt(flux) + " lm, " + fmt(flux / p.lamp_flux_lm) +
-                          " times the " + fmt(p.lamp_flux_lm) + " lm of its lamps; check the file's multiplier and values");
+                          " times the " + fmt(p.lamp_flux_lm) +
+                          " lm of its lamps; check the file's multiplier and values");
     return p;
 }
 

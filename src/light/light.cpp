@@ -35,8 +35,7 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
             return {origin, frame.to_world(d)};
         }
         return {position, sample_uniform_sphere(ud1, ud2)};
-    case LightType::spot:
-        return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
+    case LightType::spot: return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
     case LightType::area: {
         // Pick a triangle by area, then a uniform point in it (folded square sampling),
         // then a Lambertian direction from its front side.
@@ -45,7 +44,10 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         const double width = surface.cdf[i] - lo;
         double a = width > 0.0 ? std::clamp((up1 - lo) / width, 0.0, 1.0) : 0.5;
         double b = up2;
-        if (a + b > 1.0) { a = 1.0 - a; b = 1.0 - b; }
+        if (a + b > 1.0) {
+            a = 1.0 - a;
+            b = 1.0 - b;
+        }
         const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
         return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2), surface.scene_triangle[i], a, b};
     }

@@ -119,8 +119,7 @@ double Photometry::intensity_cd(double gamma_rad, double c_rad) const {
         if (c < 90.0) c = 180.0 - c;
         else if (c > 270.0) c = 540.0 - c;
         break;
-    default:
-        break;
+    default: break;
     }
     return table_cd(c, g);
 }
@@ -175,7 +174,8 @@ double Photometry::flux_lm() const {
         }
         if (plane.size() == 1) return type == PhotometricType::C ? 2.0 * kPi * plane[0] : 0.0;
         double sum = 0.0;
-        for (std::size_t k = 0; k + 1 < h.size(); ++k) sum += 0.5 * (plane[k] + plane[k + 1]) * (h[k + 1] - h[k]) * kDeg;
+        for (std::size_t k = 0; k + 1 < h.size(); ++k)
+            sum += 0.5 * (plane[k] + plane[k + 1]) * (h[k + 1] - h[k]) * kDeg;
         // Type C: the symmetry repeats the file's span of planes 360/span times around.
         return type == PhotometricType::C ? sum * 360.0 / (h.back() - h.front()) : sum;
     }

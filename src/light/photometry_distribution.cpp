@@ -14,10 +14,8 @@ PhotometryDistribution::PhotometryDistribution(const Photometry& p, int n_lat, i
     if (n_lat < 1 || n_lon < 1) throw std::invalid_argument("PhotometryDistribution: grid size < 1");
     const bool type_c = type_ == PhotometricType::C;
     // Rows: gamma for type C, else the latitude (H for B, V for A), over the table's range.
-    const std::vector<double>& lat_angles =
-        type_c || type_ == PhotometricType::A ? p.vertical_deg : p.horizontal_deg;
-    const std::vector<double>& lon_angles =
-        type_c || type_ == PhotometricType::A ? p.horizontal_deg : p.vertical_deg;
+    const std::vector<double>& lat_angles = type_c || type_ == PhotometricType::A ? p.vertical_deg : p.horizontal_deg;
+    const std::vector<double>& lon_angles = type_c || type_ == PhotometricType::A ? p.horizontal_deg : p.vertical_deg;
     const double lat_lo = type_c ? 0.0 : -90.0, lat_hi = type_c ? 180.0 : 90.0;
     const double lat0 = std::clamp(lat_angles.front(), lat_lo, lat_hi) * kDeg;
     const double lat1 = std::clamp(lat_angles.back(), lat_lo, lat_hi) * kDeg;
@@ -26,11 +24,31 @@ PhotometryDistribution::PhotometryDistribution(const Photometry& p, int n_lat, i
     if (type_c) {
         symmetry_ = p.symmetry();
         switch (symmetry_) {
-        case CPlaneSymmetry::Rotational: copies_ = 1; lon0_ = 0.0; lon_span_ = 2.0 * kPi; break;
-        case CPlaneSymmetry::Quadrant: copies_ = 4; lon0_ = 0.0; lon_span_ = 0.5 * kPi; break;
-        case CPlaneSymmetry::Bilateral: copies_ = 2; lon0_ = 0.0; lon_span_ = kPi; break;
-        case CPlaneSymmetry::Bilateral90: copies_ = 2; lon0_ = 0.5 * kPi; lon_span_ = kPi; break;
-        case CPlaneSymmetry::Full: copies_ = 1; lon0_ = 0.0; lon_span_ = 2.0 * kPi; break;
+        case CPlaneSymmetry::Rotational:
+            copies_ = 1;
+            lon0_ = 0.0;
+            lon_span_ = 2.0 * kPi;
+            break;
+        case CPlaneSymmetry::Quadrant:
+            copies_ = 4;
+            lon0_ = 0.0;
+            lon_span_ = 0.5 * kPi;
+            break;
+        case CPlaneSymmetry::Bilateral:
+            copies_ = 2;
+            lon0_ = 0.0;
+            lon_span_ = kPi;
+            break;
+        case CPlaneSymmetry::Bilateral90:
+            copies_ = 2;
+            lon0_ = 0.5 * kPi;
+            lon_span_ = kPi;
+            break;
+        case CPlaneSymmetry::Full:
+            copies_ = 1;
+            lon0_ = 0.0;
+            lon_span_ = 2.0 * kPi;
+            break;
         }
     } else {
         copies_ = 1;
@@ -69,8 +87,7 @@ PhotometryDistribution::PhotometryDistribution(const Photometry& p, int n_lat, i
     double total = 0.0;
     for (double f : row_flux) total += f;
     flux_lm_ = total * copies_;
-    if (!(flux_lm_ > 0.0) || !std::isfinite(flux_lm_))
-        throw std::invalid_argument("PhotometryDistribution: zero flux");
+    if (!(flux_lm_ > 0.0) || !std::isfinite(flux_lm_)) throw std::invalid_argument("PhotometryDistribution: zero flux");
     marginal_ = AliasTable(row_flux);
 }
 
@@ -104,8 +121,7 @@ Vec3 PhotometryDistribution::sample(double u1, double u2) const {
         case CPlaneSymmetry::Bilateral90:
             if (copy == 1) lon = kPi - lon;  // mirrored about the 90-270 plane
             break;
-        default:
-            break;
+        default: break;
         }
     }
     // The angle in float (good to 1e-7, as Embree takes directions), renormalised.

@@ -24,9 +24,7 @@ namespace {
 
 Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2.0 * glm::dot(d, n) * n; }
 
-double at(const std::vector<double>& v, int band) {
-    return v.empty() ? 0.0 : v[static_cast<size_t>(band)];
-}
+double at(const std::vector<double>& v, int band) { return v.empty() ? 0.0 : v[static_cast<size_t>(band)]; }
 
 }  // namespace
 
@@ -34,14 +32,9 @@ ScatterModel scatter_model(const Material& m, int band) {
     ScatterModel s;
     s.type = m.type;
     switch (m.type) {
-    case MaterialType::black:
-        break;
-    case MaterialType::diffuse:
-        s.diffuse_reflection = at(m.diffuse_reflectance, band);
-        break;
-    case MaterialType::mirror:
-        s.specular_reflection = at(m.specular_reflectance, band);
-        break;
+    case MaterialType::black: break;
+    case MaterialType::diffuse: s.diffuse_reflection = at(m.diffuse_reflectance, band); break;
+    case MaterialType::mirror: s.specular_reflection = at(m.specular_reflectance, band); break;
     case MaterialType::general:
         s.diffuse_reflection = at(m.diffuse_reflectance, band);
         s.specular_reflection = s.diffuse_reflection + at(m.specular_reflectance, band);
@@ -62,8 +55,7 @@ Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double
     const Vec3 n = from_front ? ng : -ng;
     Scattered s;
     switch (m.type) {
-    case MaterialType::black:
-        return s;
+    case MaterialType::black: return s;
     case MaterialType::diffuse:
         if (u < m.diffuse_reflection) s = {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
         return s;
@@ -99,11 +91,12 @@ double albedo(const Material& m, int band) {
     case MaterialType::diffuse: return at(m.diffuse_reflectance, band);
     case MaterialType::mirror: return at(m.specular_reflectance, band);
     case MaterialType::general:
-        return at(m.diffuse_reflectance, band) + at(m.specular_reflectance, band) +
-               at(m.diffuse_transmittance, band) + at(m.specular_transmittance, band);
+        return at(m.diffuse_reflectance, band) + at(m.specular_reflectance, band) + at(m.diffuse_transmittance, band) +
+               at(m.specular_transmittance, band);
     case MaterialType::glass:
-        return m.transmittance.empty() ? 1.0 : std::max(fresnel_dielectric(1.0, 1.0 / m.ior), 0.0) +
-               (1.0 - fresnel_dielectric(1.0, 1.0 / m.ior)) * at(m.transmittance, band);
+        return m.transmittance.empty() ? 1.0
+                                       : std::max(fresnel_dielectric(1.0, 1.0 / m.ior), 0.0) +
+                                             (1.0 - fresnel_dielectric(1.0, 1.0 / m.ior)) * at(m.transmittance, band);
     }
     return 0.0;
 }

@@ -34,8 +34,8 @@ std::vector<std::string> split(const std::string& text, char sep) {
 
 }  // namespace
 
-PinholeCamera::PinholeCamera(const Vec3& position, const Vec3& target, const Vec3& up, double fov_deg,
-                             int width, int height, const std::string& what)
+PinholeCamera::PinholeCamera(const Vec3& position, const Vec3& target, const Vec3& up, double fov_deg, int width,
+                             int height, const std::string& what)
     : position_(position), width_(width), height_(height) {
     const Vec3 view = target - position;
     if (!(glm::length(view) > 1e-9)) throw InputError(what + ": target must differ from position");
@@ -65,8 +65,10 @@ Vec3 PinholeCamera::direction(double x, double y) const {
 Camera parse_camera_option(const std::string& text) {
     const std::vector<std::string> fields = split(text, ',');
     if (fields.size() != 6 && fields.size() != 9)
-        throw InputError("--camera: '" + text + "' must be 6 or 9 comma-separated numbers "
-                         "(position, target[, up]), got " + std::to_string(fields.size()));
+        throw InputError("--camera: '" + text +
+                         "' must be 6 or 9 comma-separated numbers "
+                         "(position, target[, up]), got " +
+                         std::to_string(fields.size()));
     double v[9] = {0, 0, 0, 0, 0, 0, 0, 0, 1};
     for (std::size_t i = 0; i < fields.size(); ++i)
         if (!parse_number(fields[i], v[i]))

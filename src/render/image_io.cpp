@@ -9,19 +9,18 @@
 #include <ImfStringAttribute.h>
 #include <cairo.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace luxtrace {
 
 namespace fs = std::filesystem;
 
 LuminanceImage::LuminanceImage(int w, int h, std::vector<std::string> band_names)
-    : width(w), height(h), bands(std::move(band_names)),
-      values(static_cast<std::size_t>(w) * h * bands.size(), 0.0f) {}
+    : width(w), height(h), bands(std::move(band_names)), values(static_cast<std::size_t>(w) * h * bands.size(), 0.0f) {}
 
 double LuminanceImage::luminance(int x, int y) const {
     double s = 0.0;
@@ -128,7 +127,8 @@ void write_exr(const fs::path& path, const LuminanceImage& image) {
             header.channels().insert(image.bands[b], Imf::Channel(Imf::FLOAT));
             // Slice base pointer is for pixel (0, 0): the data window starts at the origin.
             frame.insert(image.bands[b],
-                         Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.values.data() + b)),
+                         Imf::Slice(Imf::FLOAT,
+                                    const_cast<char*>(reinterpret_cast<const char*>(image.values.data() + b)),
                                     sizeof(float) * nb, sizeof(float) * nb * image.width));
         }
         Imf::OutputFile file(tmp.c_str(), header);

@@ -90,8 +90,8 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
                 const std::size_t v = scene.triangles[t][k];
                 area[v] += scene.triangle_area_m2[t];
                 for (std::size_t i = 0; i < kS * B; ++i)
-                    vertex_secondary_[v * kS * B + i] +=
-                        scene.triangle_area_m2[t] * std::max(0.0, secondary_lx[t * kS * B + i]);
+                    vertex_secondary_[v * kS * B + i] += scene.triangle_area_m2[t] *
+                                                         std::max(0.0, secondary_lx[t * kS * B + i]);
             }
         for (std::size_t v = 0; v < area.size(); ++v)
             if (area[v] > 0.0)
@@ -110,7 +110,8 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
 }
 
 bool Renderer::occluded(const Vec3& o, const Vec3& d, double t_far) const {
-    return embree_.occluded(o, d, std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
+    return embree_.occluded(o, d,
+                            std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
 }
 
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
@@ -135,7 +136,8 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
         case LightType::directional: {
             const double cos_s = -glm::dot(n, l.aim);
             if (cos_s <= 0.0 || occluded(o, -l.aim, std::numeric_limits<double>::infinity())) break;
-            for (int b = 0; b < bands_; ++b) e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
+            for (int b = 0; b < bands_; ++b)
+                e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
             break;
         }
         case LightType::area: {
@@ -151,7 +153,10 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
                 const double width = s.cdf[i] - lo;
                 double a = width > 0.0 ? std::clamp((u - lo) / width, 0.0, 1.0) : 0.5;
                 double c = rng.next();
-                if (a + c > 1.0) { a = 1.0 - a; c = 1.0 - c; }
+                if (a + c > 1.0) {
+                    a = 1.0 - a;
+                    c = 1.0 - c;
+                }
                 const Vec3 q = s.p0[i] + a * s.e1[i] + c * s.e2[i];
                 const Vec3 v = q - p;
                 const double d2 = glm::dot(v, v);
@@ -196,8 +201,8 @@ void Renderer::add_secondary(std::size_t tri, std::size_t side, const Vec3& p, d
                 gamma * vertex_secondary_[t.z * stride + at + k];
 }
 
-void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng,
-                     const RenderOptions& opt, double* out) const {
+void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng, const RenderOptions& opt,
+                     double* out) const {
     const Hit hit = embree_.intersect(o, d);
     if (!hit.found) return;  // leaves the scene: black
     const std::size_t tri = hit.triangle;
@@ -235,11 +240,8 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
     };
 
     switch (m.type) {
-    case MaterialType::black:
-        break;
-    case MaterialType::diffuse:
-        lambertian(m.diffuse_reflectance, n, viewer_side);
-        break;
+    case MaterialType::black: break;
+    case MaterialType::diffuse: lambertian(m.diffuse_reflectance, n, viewer_side); break;
     case MaterialType::general:
         lambertian(m.diffuse_reflectance, n, viewer_side);
         // Light through a thin diffuser: what arrives on the far side.
@@ -247,9 +249,7 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         if (any_positive(m.specular_reflectance)) follow(&m.specular_reflectance, 1.0, reflect(d, n));
         if (any_positive(m.specular_transmittance)) follow(&m.specular_transmittance, 1.0, d);
         break;
-    case MaterialType::mirror:
-        follow(&m.specular_reflectance, 1.0, reflect(d, n));
-        break;
+    case MaterialType::mirror: follow(&m.specular_reflectance, 1.0, reflect(d, n)); break;
     case MaterialType::glass: {
         const double eta = front ? 1.0 / m.ior : m.ior;  // entering through the front side
         const double cos_i = -glm::dot(d, n);
@@ -298,7 +298,8 @@ LuminanceImage Renderer::render(const PinholeCamera& camera, const RenderOptions
                 for (int b = 0; b < bands_; ++b) image.at(x, y, b) = static_cast<float>(sum[b] / samples);
             }
     };
-    const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = opt.threads > 0 ? opt.threads
+                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     {
         std::vector<std::jthread> pool;
         for (int i = 1; i < threads; ++i) pool.emplace_back(worker);

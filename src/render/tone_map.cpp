@@ -47,8 +47,7 @@ DisplayImage map_image(const LuminanceImage& image, double gamma, Map&& map) {
             std::uint8_t* p = out.pixel(x, y);
             if (rgb && l > 0.0) {
                 // White light has equal band shares, so 3 L_b / L = 1 for a grey surface.
-                for (int b = 0; b < 3; ++b)
-                    p[b] = to_byte(encode_gamma(v * 3.0 * image.at(x, y, b) / l, gamma));
+                for (int b = 0; b < 3; ++b) p[b] = to_byte(encode_gamma(v * 3.0 * image.at(x, y, b) / l, gamma));
             } else {
                 p[0] = p[1] = p[2] = to_byte(encode_gamma(v, gamma));
             }
@@ -132,12 +131,12 @@ double exposure_map(double l, double white, double gamma) {
 
 std::array<double, 3> colour_map(double t) {
     // viridis (van der Walt and Smith, matplotlib 2.0) at 17 even steps.
-    static constexpr double kViridis[17][3] = {
-        {0.267, 0.005, 0.329}, {0.282, 0.095, 0.417}, {0.279, 0.175, 0.483}, {0.259, 0.252, 0.525},
-        {0.230, 0.322, 0.546}, {0.199, 0.388, 0.555}, {0.173, 0.449, 0.558}, {0.149, 0.508, 0.557},
-        {0.128, 0.567, 0.551}, {0.121, 0.626, 0.533}, {0.158, 0.684, 0.502}, {0.246, 0.739, 0.452},
-        {0.369, 0.789, 0.383}, {0.516, 0.831, 0.294}, {0.678, 0.864, 0.190}, {0.846, 0.887, 0.100},
-        {0.993, 0.906, 0.144}};
+    static constexpr double kViridis[17][3] = {{0.267, 0.005, 0.329}, {0.282, 0.095, 0.417}, {0.279, 0.175, 0.483},
+                                               {0.259, 0.252, 0.525}, {0.230, 0.322, 0.546}, {0.199, 0.388, 0.555},
+                                               {0.173, 0.449, 0.558}, {0.149, 0.508, 0.557}, {0.128, 0.567, 0.551},
+                                               {0.121, 0.626, 0.533}, {0.158, 0.684, 0.502}, {0.246, 0.739, 0.452},
+                                               {0.369, 0.789, 0.383}, {0.516, 0.831, 0.294}, {0.678, 0.864, 0.190},
+                                               {0.846, 0.887, 0.100}, {0.993, 0.906, 0.144}};
     if (!(t > 0.0)) t = 0.0;
     t = std::min(t, 1.0) * 16.0;
     const int i = std::min(static_cast<int>(t), 15);
@@ -170,7 +169,9 @@ std::vector<double> FalseColourScale::ticks() const {
     const double lo = min_cd_m2, hi = max_cd_m2;
     std::vector<double> best;
     auto better = [&](const std::vector<double>& c) {
-        auto score = [](std::size_t n) { return n >= 5 && n <= 7 ? 0 : (n < 5 ? 5 - static_cast<int>(n) : static_cast<int>(n) - 7); };
+        auto score = [](std::size_t n) {
+            return n >= 5 && n <= 7 ? 0 : (n < 5 ? 5 - static_cast<int>(n) : static_cast<int>(n) - 7);
+        };
         return best.empty() || score(c.size()) < score(best.size());
     };
     const double tol = 1e-9 * (hi - lo);
@@ -179,7 +180,8 @@ std::vector<double> FalseColourScale::ticks() const {
         static const std::vector<std::vector<double>> sets = {{1}, {1, 3}, {1, 2, 5}, {1, 1.5, 2, 3, 5, 7}};
         for (const auto& set : sets) {
             std::vector<double> c;
-            for (int k = static_cast<int>(std::floor(std::log10(lo))) - 1; k <= static_cast<int>(std::ceil(std::log10(hi))); ++k)
+            for (int k = static_cast<int>(std::floor(std::log10(lo))) - 1;
+                 k <= static_cast<int>(std::ceil(std::log10(hi))); ++k)
                 for (double m : set) {
                     const double v = m * std::pow(10.0, k);
                     if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) c.push_back(v);
@@ -211,7 +213,8 @@ DisplayImage tone_map_auto(const LuminanceImage& image, double gamma, AutoTonePa
 }
 
 DisplayImage tone_map_exposure(const LuminanceImage& image, double white, double gamma) {
-    return map_image(image, gamma, [white](double l) { return white > 0.0 ? std::min(std::max(l / white, 0.0), 1.0) : 0.0; });
+    return map_image(image, gamma,
+                     [white](double l) { return white > 0.0 ? std::min(std::max(l / white, 0.0), 1.0) : 0.0; });
 }
 
 DisplayImage tone_map_false_colour(const LuminanceImage& image, const FalseColourScale& scale) {

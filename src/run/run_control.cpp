@@ -28,7 +28,8 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     forecast_.clear();
     rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
     rate_ = photon_rate(rate_points_);
-    HistoryRow row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
+    HistoryRow
+        row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
         status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
         const TargetStatus& s = status_.back();
@@ -63,8 +64,8 @@ Decision RunController::after_reduction(const ReductionInput& in) {
     if (scene_.run.report_every_photons == 0)
         for (const Forecast& f : forecast_)
             if (f.valid && f.time_s > in.elapsed_s)
-                d.next_period_s = std::min(d.next_period_s, std::max({kMinPeriod_s, min_period_s,
-                                                                       1.02 * (f.time_s - in.elapsed_s)}));
+                d.next_period_s = std::min(d.next_period_s,
+                                           std::max({kMinPeriod_s, min_period_s, 1.02 * (f.time_s - in.elapsed_s)}));
     bool error_targets_unmet = false;
     for (const TargetStatus& s : status_) {
         if (s.met) {
@@ -129,8 +130,7 @@ std::string RunController::progress_line() const {
             std::snprintf(buf, sizeof buf, " | %s %.4g -> %.4g", s.label.c_str(), s.value, s.goal);
         else if (s.kind == TargetKind::relative_error)
             std::snprintf(buf, sizeof buf, " | %s %.3f%% -> %.3f%%", s.label.c_str(), 100.0 * s.value, 100.0 * s.goal);
-        else
-            std::snprintf(buf, sizeof buf, " | %s %.4g -> %.4g", s.label.c_str(), s.value, s.goal);
+        else std::snprintf(buf, sizeof buf, " | %s %.4g -> %.4g", s.label.c_str(), s.value, s.goal);
         line += buf;
         const Forecast& f = forecast_[i];
         if (s.met) line += " met";

@@ -16,12 +16,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <optional>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <ostream>
 #include <thread>
 
@@ -62,7 +62,6 @@ int available_cores() {
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
-
 RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out) {
     const RunConfig& run = scene.run;
     const int threads = opt.threads > 0 ? opt.threads : available_cores();
@@ -91,9 +90,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
                              " bands; this scene has " + std::to_string(layout.triangles()) + " and " +
                              std::to_string(layout.bands()) + ")");
         if (ck.photon_layout != kPhotonLayout)
-            throw InputError(opt.restart + ": the checkpoint was made by a luxtrace whose photons draw their random "
-                             "numbers differently (photon layout " + std::to_string(ck.photon_layout) + ", this one " +
-                             std::to_string(kPhotonLayout) + "); continue it with that version or start anew");
+            throw InputError(opt.restart +
+                             ": the checkpoint was made by a luxtrace whose photons draw their random "
+                             "numbers differently (photon layout " +
+                             std::to_string(ck.photon_layout) + ", this one " + std::to_string(kPhotonLayout) +
+                             "); continue it with that version or start anew");
         if (ck.seed != run.seed || ck.sampler != run.sampler)
             throw InputError(opt.restart + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " +
                              ck.sampler + "; restart with the same (drop --seed/--sampler)");
@@ -132,8 +133,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     std::optional<RunController> control;
     if (comm.is_root()) control.emplace(scene, layout, history_before, elapsed_before, photons_before);
     const bool show = comm.is_root() && !opt.quiet;
-    const std::string checkpoint_path =
-        run.checkpoint.empty() ? run.output + ".checkpoint.h5" : run.checkpoint;
+    const std::string checkpoint_path = run.checkpoint.empty() ? run.output + ".checkpoint.h5" : run.checkpoint;
 
     RunSummary summary;
     summary.output = run.output;
@@ -219,8 +219,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
 
     // Reductions at photon counts: each rank stops handing out photons at its share of
     // the next count, and the snapshot is taken when all its threads have parked there.
-    const std::uint64_t fence_step =
-        run.report_every_photons > 0 ? std::max<std::uint64_t>(1, (run.report_every_photons + R - 1) / R) : 0;
+    const std::uint64_t fence_step = run.report_every_photons > 0
+                                         ? std::max<std::uint64_t>(1, (run.report_every_photons + R - 1) / R)
+                                         : 0;
     std::uint64_t fence = fence_step;
     if (fence_step > 0) work.set_fence(fence);
     const double trace0 = comm.wtime();
@@ -302,7 +303,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             if (show) {
                 out << (tty ? "\r" : "") << control->progress_line() << (tty ? "\033[K" : "\n") << std::flush;
             }
-            decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code), d.next_period_s};
+            decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code),
+                        d.next_period_s};
             summary.stop_reason = d.reason;
             // A periodic checkpoint comes from this exact snapshot; a final one (exit 3)
             // from the final reduction below, which holds more photons.
@@ -312,7 +314,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
                 if (const std::string err = attempt_write(checkpoint_path, reduced, in.elapsed_s, "checkpoint", true);
                     !err.empty())
                     std::cerr << "luxtrace: warning: checkpoint not written: " << err << "; "
-                              << latest_checkpoint_note() << "; the run goes on\n" << std::flush;
+                              << latest_checkpoint_note() << "; the run goes on\n"
+                              << std::flush;
                 write_s = comm.wtime() - w0;
             }
         }
@@ -346,8 +349,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         summary.rays = reduced[layout.counter(TallyLayout::kEscaped)];
         for (std::size_t i = 0; i < layout.sides(); ++i)
             for (std::size_t b = 0; b < layout.bands(); ++b)
-                summary.rays += reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountOdd] +
-                                reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountEven];
+                summary.rays +=
+                    reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountOdd] +
+                    reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountEven];
         const std::string result_err = attempt_write(run.output, reduced, elapsed, summary.stop_reason, false);
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         std::string ck_err;
@@ -367,11 +371,12 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
                                      "; write the result from it with: " + restart + checkpoint_path +
                                      " [--output OTHER.h5]";
                 else
-                    summary.error += "luxtrace: the checkpoint was not written either: " + ck_err + "\nluxtrace: " +
-                                     latest_checkpoint_note();
+                    summary.error += "luxtrace: the checkpoint was not written either: " + ck_err +
+                                     "\nluxtrace: " + latest_checkpoint_note();
             } else {
-                summary.error = "the result " + run.output + " was written, but the checkpoint to continue from was not: " +
-                                ck_err + "\nluxtrace: " + latest_checkpoint_note();
+                summary.error = "the result " + run.output +
+                                " was written, but the checkpoint to continue from was not: " + ck_err +
+                                "\nluxtrace: " + latest_checkpoint_note();
             }
         }
         final_code[0] = summary.exit_code;
@@ -393,8 +398,8 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
         return c.size() == 2 ? std::to_string(static_cast<long>(c[0])) + "," + std::to_string(static_cast<long>(c[1]))
                              : std::string("?");
     };
-    out << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(13) << label << std::right
-        << "Eavg " << f("E_avg_lx") << " +- " << f("E_avg_sigma_lx") << " lx, Emin " << f("E_min_lx") << " +- "
+    out << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(13) << label << std::right << "Eavg "
+        << f("E_avg_lx") << " +- " << f("E_avg_sigma_lx") << " lx, Emin " << f("E_min_lx") << " +- "
         << f("E_min_sigma_lx") << " lx (cell " << cell("E_min_cell") << std::defaultfloat << std::setprecision(3)
         << "; ";
     if (f("E_min_bias_lx") < 0.0)
@@ -403,16 +408,18 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
     else out << "no other cell within 3 sigma)";
     out << std::fixed << std::setprecision(2) << ", Emax " << f("E_max_lx") << " +- " << f("E_max_sigma_lx")
         << " lx (cell " << cell("E_max_cell") << ")\n";
-    out << std::setprecision(3) << "  " << std::setw(13) << "" << "U0 = Emin/Eavg " << f("U0") << " +- "
-        << f("U0_sigma") << ", Emin/Emax " << f("E_min_over_max") << " +- " << f("E_min_over_max_sigma");
+    out << std::setprecision(3) << "  " << std::setw(13) << ""
+        << "U0 = Emin/Eavg " << f("U0") << " +- " << f("U0_sigma") << ", Emin/Emax " << f("E_min_over_max") << " +- "
+        << f("E_min_over_max_sigma");
     if (r.attr_u64(g, "U0_unreliable") != 0)
         out << "  WARNING: Emin too noisy or biased (error or bias above 2 % of Emin, or a cell without photons): "
                "U0 not meaningful; run longer or use coarser cells";
     out << '\n';
     if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0)
-        out << std::setprecision(2) << "  " << std::setw(13) << "" << "maintained Eavg " << f("E_avg_maintained_lx")
-            << " +- " << f("E_avg_maintained_sigma_lx") << " lx, Emin " << f("E_min_maintained_lx") << " +- "
-            << f("E_min_maintained_sigma_lx") << " lx, Emax " << f("E_max_maintained_lx") << " lx\n";
+        out << std::setprecision(2) << "  " << std::setw(13) << ""
+            << "maintained Eavg " << f("E_avg_maintained_lx") << " +- " << f("E_avg_maintained_sigma_lx")
+            << " lx, Emin " << f("E_min_maintained_lx") << " +- " << f("E_min_maintained_sigma_lx") << " lx, Emax "
+            << f("E_max_maintained_lx") << " lx\n";
 }
 
 }  // namespace
@@ -422,8 +429,7 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
     const std::uint64_t photons = r.attr_u64("/", "photons");
     const double elapsed = r.attr_f64("/", "elapsed_s");
     out << "scene          " << r.attr_str("/", "scene_file") << '\n'
-        << "luxtrace       " << r.attr_str("/", "luxtrace_version") << ", sampler "
-        << r.attr_str("/", "sampler")
+        << "luxtrace       " << r.attr_str("/", "luxtrace_version") << ", sampler " << r.attr_str("/", "sampler")
         << (r.has_attr("/", "replicates") && r.attr_u64("/", "replicates") > 0
                 ? " (" + std::to_string(r.attr_u64("/", "replicates")) + " replicates)"
                 : std::string())
@@ -434,14 +440,14 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         << std::scientific << std::setprecision(3) << (elapsed > 0 ? photons / elapsed : 0.0) << " photons/s)\n";
     if (r.has_attr("/", "reductions"))
         out << "reductions     " << r.attr_u64("/", "reductions") << ", tracing stalled " << std::fixed
-            << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s ("
-            << std::setprecision(2) << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0)
-            << " % of the run)\n";
+            << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s (" << std::setprecision(2)
+            << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0) << " % of the run)\n";
     if (r.has("/checkpoint/done_ranges")) {
         const std::vector<std::uint64_t> done = r.u64("/checkpoint/done_ranges");
         std::uint64_t n = 0, highest = 0;
         for (std::size_t i = 0; i + 1 < done.size(); i += 2) {
-            if (done[i + 1] < done[i]) throw InputError(r.path().string() + ": damaged checkpoint: a done range ends before it begins");
+            if (done[i + 1] < done[i])
+                throw InputError(r.path().string() + ": damaged checkpoint: a done range ends before it begins");
             n += done[i + 1] - done[i];
             highest = std::max(highest, done[i + 1]);
         }
@@ -454,7 +460,8 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
     out << std::fixed << std::setprecision(2);
     // Format 2 (issue 13) adds the second-moment estimate and says which one targets use.
     const bool moment = r.has_attr("/global", "moment_sigma_lx");
-    const std::string used = r.has_attr("/global", "error_estimator") ? r.attr_str("/global", "error_estimator") : "odd_even";
+    const std::string used = r.has_attr("/global", "error_estimator") ? r.attr_str("/global", "error_estimator")
+                                                                      : "odd_even";
     auto global_line = [&](const char* label, const std::string& prefix, const std::string& estimator) {
         out << label << r.attr_f64("/global", prefix + "sigma_lx") << " lx, relative "
             << 100.0 * r.attr_f64("/global", prefix + "sigma_rel_arithmetic") << " % (arithmetic), "
@@ -463,8 +470,8 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
     };
     out << "global map     mean " << r.attr_f64("/global", "mean_arithmetic_lx") << " lx";
     if (r.has_attr("/global", "lit_sides") && r.has_attr("/global", "lit_area_m2"))
-        out << " over " << r.attr_u64("/global", "lit_sides") << " lit triangle sides, " << r.attr_f64("/global", "lit_area_m2")
-            << " m^2";
+        out << " over " << r.attr_u64("/global", "lit_sides") << " lit triangle sides, "
+            << r.attr_f64("/global", "lit_area_m2") << " m^2";
     out << '\n';
     global_line("  odd/even     RMS error ", "", "odd_even");
     if (moment) global_line("  2nd moment   RMS error ", "moment_", "second_moment");
@@ -474,24 +481,25 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         out << "detector " << std::left << std::setw(14) << name << std::right << " " << r.attr_str(g, "type")
             << ", mean " << std::setprecision(2) << r.attr_f64(g, "mean_value") << " " << units << " +- "
             << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
-            << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " % (eq. 9), "
-            << r.attr_u64(g, "photons_received") << " photons received";
+            << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " % (eq. 9), " << r.attr_u64(g, "photons_received")
+            << " photons received";
         if (r.has_attr(g, "error_estimator") && r.attr_str(g, "error_estimator") == "replicate_spread")
             out << "; errors from the replicate spread, " << r.attr_u64(g, "error_dof") << " dof";
         out << '\n';
         if (r.has_attr(g, "modelling_ratio_mean"))
             out << "  modelling    E_c/E_h of the means " << std::setprecision(3)
-                << r.attr_f64(g, "modelling_ratio_mean")
-                << " +- " << std::setprecision(2) << 100.0 * r.attr_f64(g, "modelling_ratio_mean_sigma_rel")
-                << " %, points " << std::setprecision(3) << r.attr_f64(g, "modelling_ratio_min") << " to "
-                << r.attr_f64(g, "modelling_ratio_max") << " (horizontal: " << r.attr_str(g, "horizontal") << ")\n"
+                << r.attr_f64(g, "modelling_ratio_mean") << " +- " << std::setprecision(2)
+                << 100.0 * r.attr_f64(g, "modelling_ratio_mean_sigma_rel") << " %, points " << std::setprecision(3)
+                << r.attr_f64(g, "modelling_ratio_min") << " to " << r.attr_f64(g, "modelling_ratio_max")
+                << " (horizontal: " << r.attr_str(g, "horizontal") << ")\n"
                 << std::setprecision(2);
         if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0) {
             const double mf = r.attr_f64("/", "maintenance_factor");
             out << "  maintained   mean " << mf * r.attr_f64(g, "mean_value") << " " << units << " (initial x MF "
                 << std::defaultfloat << std::setprecision(3) << mf
                 << (r.attr_u64("/", "maintenance_factor_uniform") ? "" : ", flux-weighted over lights that differ")
-                << ")\n" << std::fixed << std::setprecision(2);
+                << ")\n"
+                << std::fixed << std::setprecision(2);
         }
         if (r.has_attr(g, "U0")) {
             print_metrics(r, g, "whole grid", out);
@@ -513,8 +521,7 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
         out << "observer " << std::left << std::setw(14) << name << std::right << " UGR ";
         if (std::isfinite(ugr))
             out << std::setprecision(1) << ugr << " +- " << std::setprecision(2) << r.attr_f64(g, "ugr_sigma");
-        else
-            out << "undefined";
+        else out << "undefined";
         out << " (" << r.attr_u64(g, "luminaires_in_view") << " luminaire(s) in view), Lb " << std::setprecision(2)
             << r.attr_f64(g, "background_luminance_cd_m2") << " cd/m^2 from E_ind "
             << r.attr_f64(g, "indirect_vertical_illuminance_lx") << " lx +- "

@@ -21,9 +21,18 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
     const bool arith = t.averaging == Averaging::arithmetic;
     s.label = t.on;
     switch (s.kind) {
-    case TargetKind::relative_error: s.goal = t.relative_error; s.label += arith ? " rel(arith)" : " rel(quad)"; break;
-    case TargetKind::absolute_error: s.goal = t.absolute_error; s.label += " abs"; break;
-    case TargetKind::photons_received: s.goal = t.photons_received; s.label += " received"; break;
+    case TargetKind::relative_error:
+        s.goal = t.relative_error;
+        s.label += arith ? " rel(arith)" : " rel(quad)";
+        break;
+    case TargetKind::absolute_error:
+        s.goal = t.absolute_error;
+        s.label += " abs";
+        break;
+    case TargetKind::photons_received:
+        s.goal = t.photons_received;
+        s.label += " received";
+        break;
     }
     if (t.detector.empty()) {
         s.value = s.kind == TargetKind::absolute_error ? g.target_sigma_lx() : g.target_sigma_rel(arith);

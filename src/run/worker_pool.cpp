@@ -49,8 +49,7 @@ void WorkerPool::trace_until_stopped() {
                 cv_main_.notify_all();
                 const std::uint64_t resumes = resumes_;
                 cv_workers_.wait(lock, [&] {
-                    return stop_requested_ ||
-                           (!pause_requested_ && !out_of_work && (!at_fence || resumes_ != resumes));
+                    return stop_requested_ || (!pause_requested_ && !out_of_work && (!at_fence || resumes_ != resumes));
                 });
                 --parked_;
                 at_fence = false;

@@ -2,7 +2,6 @@
 
 #include "luxtrace/core/error.hpp"
 
-
 namespace luxtrace {
 
 PhotonSampler::PhotonSampler(SamplerKind kind, std::uint64_t seed, std::uint32_t replicates)
@@ -18,10 +17,11 @@ PhotonSampler::PhotonSampler(SamplerKind kind, std::uint64_t seed, std::uint32_t
         for (int w = 0; w < 4; ++w) {
             if (dims[w] == kNoDimension) continue;
             for (std::uint32_t j = 0; j < 32; ++j)
-                reversed_directions_[static_cast<std::size_t>(b) * 32u + j][w] =
-                    SobolSequence::reverse_bits(sobol.point(1u << j, dims[w]));
+                reversed_directions_[static_cast<std::size_t>(b) * 32u + j][w] = SobolSequence::reverse_bits(
+                    sobol.point(1u << j, dims[w]));
             for (std::uint32_t r = 0; r < replicates_; ++r)
-                scrambles_[static_cast<std::size_t>(r) * kSobolBlocks + b][w] = SobolSequence::scramble_seed(seed_, r, dims[w]);
+                scrambles_[static_cast<std::size_t>(r) * kSobolBlocks + b][w] = SobolSequence::scramble_seed(seed_, r,
+                                                                                                             dims[w]);
         }
     }
     cached_.assign(kSobolBlocks, Cached{});

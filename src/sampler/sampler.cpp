@@ -15,17 +15,15 @@ namespace {
 // A round: (lo0, hi0) = M0 * c0, (lo1, hi1) = M1 * c2, c = (hi1^c1^k0, lo1, hi0^c3^k1, lo0);
 // the key is bumped by the Weyl constants before rounds 2-10. _mm256_mul_epu32 multiplies
 // the even 32-bit lanes into 64-bit products, so the odd lanes go through a shifted copy.
-__attribute__((target("avx2"), always_inline)) inline void mulhilo(__m256i a, __m256i m, __m256i& lo,
-                                                                   __m256i& hi) {
+__attribute__((target("avx2"), always_inline)) inline void mulhilo(__m256i a, __m256i m, __m256i& lo, __m256i& hi) {
     const __m256i even = _mm256_mul_epu32(a, m);
     const __m256i odd = _mm256_mul_epu32(_mm256_srli_epi64(a, 32), m);
     lo = _mm256_blend_epi32(even, _mm256_slli_epi64(odd, 32), 0xAA);
     hi = _mm256_blend_epi32(_mm256_srli_epi64(even, 32), odd, 0xAA);
 }
 
-__attribute__((target("avx2"))) void philox_x8(const std::uint32_t (&in)[4][PhiloxSampler::kBatch],
-                                               std::uint32_t key0, std::uint32_t key1,
-                                               std::uint32_t (&out)[4][PhiloxSampler::kBatch]) {
+__attribute__((target("avx2"))) void philox_x8(const std::uint32_t (&in)[4][PhiloxSampler::kBatch], std::uint32_t key0,
+                                               std::uint32_t key1, std::uint32_t (&out)[4][PhiloxSampler::kBatch]) {
     __m256i c0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in[0]));
     __m256i c1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in[1]));
     __m256i c2 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in[2]));

@@ -21,7 +21,7 @@ namespace {
 // (vpshufb), then the byte order of each lane. The tables are bytes packed little-endian
 // into 32-bit words, both 128-bit halves alike, as vpshufb looks up within each half.
 __attribute__((target("avx2"), always_inline)) inline __m256i table(std::uint32_t w0, std::uint32_t w1,
-                                                                   std::uint32_t w2, std::uint32_t w3) {
+                                                                    std::uint32_t w2, std::uint32_t w3) {
     return _mm256_setr_epi32(static_cast<int>(w0), static_cast<int>(w1), static_cast<int>(w2), static_cast<int>(w3),
                              static_cast<int>(w0), static_cast<int>(w1), static_cast<int>(w2), static_cast<int>(w3));
 }
@@ -73,7 +73,8 @@ SobolSequence::SobolSequence(std::uint32_t dimensions) {
 
 std::uint32_t SobolSequence::scramble_seed(std::uint64_t run_seed, std::uint32_t stream, std::uint32_t dim) {
     const r123::Philox4x32::ctr_type ctr = {{stream, dim, 0x736f626cu /* "sobl" */, 0u}};
-    const r123::Philox4x32::key_type key = {{static_cast<std::uint32_t>(run_seed), static_cast<std::uint32_t>(run_seed >> 32)}};
+    const r123::Philox4x32::key_type key = {
+        {static_cast<std::uint32_t>(run_seed), static_cast<std::uint32_t>(run_seed >> 32)}};
     return r123::Philox4x32()(ctr, key).v[0];
 }
 

@@ -2,9 +2,9 @@
 
 #include "luxtrace/core/error.hpp"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <cctype>
 #include <cmath>
@@ -62,8 +62,7 @@ Vec3 Transform::apply(const Vec3& p) const {
     return q + translate;
 }
 
-TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& transform,
-                       const std::string& context) {
+TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& transform, const std::string& context) {
     if (!std::filesystem::is_regular_file(file))
         throw InputError(context + ": mesh file '" + file.string() + "' does not exist");
     {
@@ -74,20 +73,19 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
             in.read(head.data(), static_cast<std::streamsize>(head.size()));
             head.resize(static_cast<std::size_t>(in.gcount()));
             if (!ply_header_ends(head))
-                throw InputError(context + ": cannot read mesh '" + file.string() +
-                                 "': its PLY header has no 'end_header' line (in its first MiB); is the file cut short?");
+                throw InputError(
+                    context + ": cannot read mesh '" + file.string() +
+                    "': its PLY header has no 'end_header' line (in its first MiB); is the file cut short?");
         }
     }
     Assimp::Importer importer;
     // Keep the file's winding and vertices; only triangulate polygons and bake node
     // transforms. Lines and points are dropped.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const aiScene* sc = importer.ReadFile(
-        file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                           aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    const aiScene* sc = importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                                             aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
     if (sc == nullptr || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
-        throw InputError(context + ": cannot read mesh '" + file.string() +
-                         "': " + importer.GetErrorString());
+        throw InputError(context + ": cannot read mesh '" + file.string() + "': " + importer.GetErrorString());
     TriangleMesh out;
     for (unsigned mi = 0; mi < sc->mNumMeshes; ++mi) {
         const aiMesh* mesh = sc->mMeshes[mi];
@@ -113,13 +111,11 @@ TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& trans
                     throw InputError(context + ": mesh '" + file.string() + "': face " + std::to_string(f + 1) +
                                      " names vertex " + std::to_string(face.mIndices[k] + 1) + " of " +
                                      std::to_string(mesh->mNumVertices));
-            out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1],
-                                     base + face.mIndices[2]});
+            out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
             out.material_names.push_back(material_name);
         }
     }
-    if (out.triangles.empty())
-        throw InputError(context + ": mesh '" + file.string() + "' has no triangles");
+    if (out.triangles.empty()) throw InputError(context + ": mesh '" + file.string() + "' has no triangles");
     return out;
 }
 

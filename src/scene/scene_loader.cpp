@@ -146,17 +146,16 @@ struct Loader {
             m.diffuse_transmittance = r.per_band("diffuse_transmittance", nb).value_or(zero);
             m.specular_transmittance = r.per_band("specular_transmittance", nb).value_or(zero);
             for (std::size_t b = 0; b < nb; ++b) {
-                const double sum = m.diffuse_reflectance[b] + m.specular_reflectance[b] +
-                                   m.diffuse_transmittance[b] + m.specular_transmittance[b];
+                const double sum = m.diffuse_reflectance[b] + m.specular_reflectance[b] + m.diffuse_transmittance[b] +
+                                   m.specular_transmittance[b];
                 if (sum > 1.0 + 1e-12)
-                    r.fail_entry("reflectances and transmittances sum to " + std::to_string(sum) +
-                                 " > 1 in band '" + scene.bands[b] + "'");
+                    r.fail_entry("reflectances and transmittances sum to " + std::to_string(sum) + " > 1 in band '" +
+                                 scene.bands[b] + "'");
             }
         } else if (type == "black") {
             m.type = MaterialType::black;
         } else {
-            r.fail("type", "unknown material type '" + type +
-                               "' (expected diffuse, mirror, glass, general or black)");
+            r.fail("type", "unknown material type '" + type + "' (expected diffuse, mirror, glass, general or black)");
         }
         r.finish();
         material_index[m.name] = static_cast<std::uint32_t>(scene.materials.size());
@@ -179,7 +178,8 @@ struct Loader {
             r.fail_entry("the scene would have " + std::to_string(scene.triangles.size() + mesh.triangles.size()) +
                          " triangles; a scene may have at most " + std::to_string(kMaxSceneTriangles));
         for (const Vec3& v : mesh.vertices)
-            if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate))
+            if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
+                  std::abs(v.z) <= kMaxCoordinate))
                 r.fail_entry("a vertex at (" + fmt_count(v.x) + ", " + fmt_count(v.y) + ", " + fmt_count(v.z) +
                              ") lies outside the +-" + fmt_count(kMaxCoordinate) + " m that luxtrace can place");
         const auto base = static_cast<unsigned>(scene.vertices.size());
@@ -225,7 +225,8 @@ struct Loader {
             tx.finish();
         }
         r.finish();
-        TriangleMesh mesh = load_mesh(resolve(*f), tr, fname + ":" + std::to_string(r.line("file")) + ": " + r.context());
+        TriangleMesh mesh = load_mesh(resolve(*f), tr,
+                                      fname + ":" + std::to_string(r.line("file")) + ": " + r.context());
         if (tr.scale.x * tr.scale.y * tr.scale.z < 0.0)  // a mirroring scale flips the winding
             for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
         add_triangles(mesh, mat, r);
@@ -294,9 +295,8 @@ struct Loader {
         if (const toml::array* a = r.array("positions")) {
             for (const toml::node& n : *a) {
                 const toml::array* v = n.as_array();
-                if (v == nullptr || v->size() != 3 || !std::all_of(v->begin(), v->end(), [](const toml::node& x) {
-                        return x.is_number();
-                    }))
+                if (v == nullptr || v->size() != 3 ||
+                    !std::all_of(v->begin(), v->end(), [](const toml::node& x) { return x.is_number(); }))
                     r.fail("positions", "expected a list of [x, y, z] positions");
                 out.emplace_back(v->get(0)->value<double>().value(), v->get(1)->value<double>().value(),
                                  v->get(2)->value<double>().value());
@@ -306,14 +306,17 @@ struct Loader {
             return out;
         }
         const toml::table* g = r.table("grid");
-        if (g == nullptr) r.fail("grid", "expected a table { first = [x, y, z], spacing = [dx, dy], count = [nx, ny] }");
+        if (g == nullptr)
+            r.fail("grid", "expected a table { first = [x, y, z], spacing = [dx, dy], count = [nx, ny] }");
         TableReader gr(*g, fname, r.context() + " grid", "light.grid");
         const auto first = gr.vec3("first");
         const auto spacing = gr.numbers("spacing", 2);
         const auto count = gr.numbers("count", 2);
-        if (!first || !spacing || !count) gr.fail_entry("needs 'first' = [x, y, z], 'spacing' = [dx, dy] and 'count' = [nx, ny]");
+        if (!first || !spacing || !count)
+            gr.fail_entry("needs 'first' = [x, y, z], 'spacing' = [dx, dy] and 'count' = [nx, ny]");
         for (double c : *count)
-            if (!(c >= 1.0 && c == std::floor(c) && c <= double(kMaxCopies))) gr.fail("count", "must be whole numbers >= 1");
+            if (!(c >= 1.0 && c == std::floor(c) && c <= double(kMaxCopies)))
+                gr.fail("count", "must be whole numbers >= 1");
         if ((*count)[0] * (*count)[1] > double(kMaxCopies))
             gr.fail("count", "at most " + std::to_string(kMaxCopies) + " lights in a grid");
         gr.finish();
@@ -389,7 +392,8 @@ struct Loader {
                         photometry = load_photometry(resolve(*file), static_cast<int>(set));
                     } catch (const InputError& e) {  // say which scene entry named the file
                         r.fail(r.has("lamp_set") && std::string(e.what()).find("lamp set") != std::string::npos
-                                   ? "lamp_set" : file_key,
+                                   ? "lamp_set"
+                                   : file_key,
                                e.what());
                     }
                     std::shared_ptr<const PhotometryDistribution> dist;
@@ -409,16 +413,19 @@ struct Loader {
                 l.distribution = cached->second.second;
                 const std::string emission = r.string("emission").value_or("opening");
                 if (emission == "opening") l.opening = l.photometry->opening;
-                else if (emission != "point") r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
+                else if (emission != "point")
+                    r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
                 // The file's own flux (exact for its interpolant), not the sampling table's,
                 // with the lamp's output at this tilt (LM-63 TILT data).
                 if (!l.photometry->tilt.empty()) l.tilt_factor = l.photometry->tilt.at(tilt_from_nadir_deg(l.frame));
                 l.flux_lm = l.photometry->flux_lm() * l.multiplier * l.lamp_factor * l.dimming * l.tilt_factor;
                 if (!(l.flux_lm > 0.0))
-                    r.fail(file_key, l.tilt_factor > 0.0 ? "the photometry carries no flux"
-                                                         : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
-                                                               fmt_count(tilt_from_nadir_deg(l.frame)) + " degrees");
-                if (!std::isfinite(l.flux_lm)) r.fail("multiplier", "the flux of the file times the multiplier is too large");
+                    r.fail(file_key, l.tilt_factor > 0.0
+                                         ? "the photometry carries no flux"
+                                         : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
+                                               fmt_count(tilt_from_nadir_deg(l.frame)) + " degrees");
+                if (!std::isfinite(l.flux_lm))
+                    r.fail("multiplier", "the flux of the file times the multiplier is too large");
             } else {
                 for (const char* k : {"emission", "lamp_set", "lamp_factor", "multiplier"})
                     if (r.has(k)) r.fail(k, "applies to a light with 'photometry' (or 'ies') only");
@@ -543,8 +550,9 @@ struct Loader {
         else if (type == "luminance") d.type = DetectorType::luminance;
         else if (type == "cylindrical") d.type = DetectorType::cylindrical;
         else if (type == "semicylindrical") d.type = DetectorType::semicylindrical;
-        else r.fail("type", "unknown detector type '" + type +
-                                "' (expected illuminance, luminance, cylindrical or semicylindrical)");
+        else
+            r.fail("type", "unknown detector type '" + type +
+                               "' (expected illuminance, luminance, cylindrical or semicylindrical)");
         const auto c = r.vec3("center");
         if (!c) r.fail_entry("needs 'center'");
         d.center = *c;
@@ -553,8 +561,7 @@ struct Loader {
         if (glm::length(glm::cross(d.up, d.normal)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
         const auto size = r.numbers("size", 2);
         if (!size) r.fail_entry("needs 'size' = [w, h]");
-        if (!((*size)[0] > 0.0 && (*size)[1] > 0.0))
-            r.fail("size", "the detector has zero or negative area");
+        if (!((*size)[0] > 0.0 && (*size)[1] > 0.0)) r.fail("size", "the detector has zero or negative area");
         d.size_u = (*size)[0];
         d.size_v = (*size)[1];
         if (const auto cells = r.numbers("cells", 2)) {
@@ -574,8 +581,7 @@ struct Loader {
         if (d.type == DetectorType::luminance) {
             d.view_direction = unit(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
             d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);
-            if (!(d.half_angle_deg > 0.0 && d.half_angle_deg <= 90.0))
-                r.fail("half_angle_deg", "must lie in (0, 90]");
+            if (!(d.half_angle_deg > 0.0 && d.half_angle_deg <= 90.0)) r.fail("half_angle_deg", "must lie in (0, 90]");
             if (std::abs(glm::dot(d.view_direction, d.normal)) < 1e-3)
                 r.fail("view_direction", "must not lie in the detector plane");
         }
@@ -637,8 +643,10 @@ struct Loader {
             differs = "size";
         else if (it->nx != d.nx || it->ny != d.ny) differs = "cells";
         if (!differs.empty())
-            r.fail("horizontal", "detector '" + d.horizontal + "' must lie on the same grid as this one (center, "
-                                 "normal, up, size, cells), but its '" + differs + "' differs");
+            r.fail("horizontal", "detector '" + d.horizontal +
+                                     "' must lie on the same grid as this one (center, "
+                                     "normal, up, size, cells), but its '" +
+                                     differs + "' differs");
         d.horizontal_index = static_cast<int>(it - scene.detectors.begin());
     }
 
@@ -791,11 +799,10 @@ struct Loader {
                 char close = 0;
                 std::istringstream in(rest.substr(br + 1));
                 char c1 = 0, c2 = 0, c3 = 0, extra = 0;
-                if (!(in >> g.i0 >> c1 >> g.i1 >> c2 >> g.j0 >> c3 >> g.j1 >> close) || c1 != ':' ||
-                    c2 != ',' || c3 != ':' || close != ']' || (in >> extra))
+                if (!(in >> g.i0 >> c1 >> g.i1 >> c2 >> g.j0 >> c3 >> g.j1 >> close) || c1 != ':' || c2 != ',' ||
+                    c3 != ':' || close != ']' || (in >> extra))
                     r.fail("on", "cell range must read [i0:i1,j0:j1]");
-                if (!(0 <= g.i0 && g.i0 < g.i1 && g.i1 <= det->nx && 0 <= g.j0 && g.j0 < g.j1 &&
-                      g.j1 <= det->ny))
+                if (!(0 <= g.i0 && g.i0 < g.i1 && g.i1 <= det->nx && 0 <= g.j0 && g.j0 < g.j1 && g.j1 <= det->ny))
                     r.fail("on", "cell range lies outside the " + std::to_string(det->nx) + " x " +
                                      std::to_string(det->ny) + " grid or is empty");
             } else {
@@ -804,10 +811,19 @@ struct Loader {
             }
         }
         int kinds = 0;
-        if (auto v = r.number("relative_error")) { g.relative_error = *v; ++kinds; if (!(*v > 0)) r.fail("relative_error", "must be positive"); }
-        if (auto v = r.number("absolute_error")) { g.absolute_error = *v; ++kinds; if (!(*v > 0)) r.fail("absolute_error", "must be positive"); }
+        if (auto v = r.number("relative_error")) {
+            g.relative_error = *v;
+            ++kinds;
+            if (!(*v > 0)) r.fail("relative_error", "must be positive");
+        }
+        if (auto v = r.number("absolute_error")) {
+            g.absolute_error = *v;
+            ++kinds;
+            if (!(*v > 0)) r.fail("absolute_error", "must be positive");
+        }
         if (auto v = r.count("photons_received")) {
-            g.photons_received = static_cast<double>(*v); ++kinds;
+            g.photons_received = static_cast<double>(*v);
+            ++kinds;
             if (g.detector.empty()) r.fail("photons_received", "applies to a detector target only");
         }
         if (kinds != 1) r.fail_entry("needs exactly one of relative_error, absolute_error, photons_received");
@@ -849,8 +865,8 @@ Scene load_scene(const fs::path& file) {
     TableReader root(root_table, L.fname, "top level", "");
     for (const auto& [key, node] : root_table)  // unknown tables first, before any file is read
         if (!scene_table_schema("").accepts(key.str()))
-            throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) +
-                             ": top level: unknown key '" + std::string(key.str()) + "'");
+            throw InputError(L.fname + ":" + std::to_string(node.source().begin.line) + ": top level: unknown key '" +
+                             std::string(key.str()) + "'");
     L.scene.name = file.stem().string();
     L.parse_scene_table(root);
     {

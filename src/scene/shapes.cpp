@@ -9,8 +9,7 @@ void TriangleMesh::append(const TriangleMesh& other) {
     const auto base = static_cast<unsigned>(vertices.size());
     vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
     for (const glm::uvec3& t : other.triangles) triangles.push_back(t + glm::uvec3(base));
-    material_names.insert(material_names.end(), other.material_names.begin(),
-                          other.material_names.end());
+    material_names.insert(material_names.end(), other.material_names.begin(), other.material_names.end());
     material_names.resize(triangles.size());
 }
 
@@ -19,8 +18,8 @@ Vec3 default_up(const Vec3& normal) {
     return std::abs(n.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(0, 1, 0);
 }
 
-TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& up,
-                            double size_u, double size_v, int subdivisions) {
+TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& up, double size_u, double size_v,
+                            int subdivisions) {
     const Vec3 n = glm::normalize(normal);
     const Vec3 u = glm::normalize(glm::cross(up, n));
     const Vec3 v = glm::cross(n, u);
@@ -28,8 +27,7 @@ TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& 
     TriangleMesh m;
     for (int j = 0; j <= s; ++j)
         for (int i = 0; i <= s; ++i)
-            m.vertices.push_back(center + (double(i) / s - 0.5) * size_u * u +
-                                 (double(j) / s - 0.5) * size_v * v);
+            m.vertices.push_back(center + (double(i) / s - 0.5) * size_u * u + (double(j) / s - 0.5) * size_v * v);
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
             const unsigned a = j * (s + 1) + i, b = a + 1, c = a + s + 2, d = a + s + 1;
@@ -88,8 +86,7 @@ TriangleMesh make_sphere(const Vec3& center, double radius, int subdivisions, bo
         for (int i = 0; i < slices; ++i) {
             const double phi = 2.0 * kPi * i / slices;
             m.vertices.push_back(center + radius * Vec3(std::sin(theta) * std::cos(phi),
-                                                        std::sin(theta) * std::sin(phi),
-                                                        std::cos(theta)));
+                                                        std::sin(theta) * std::sin(phi), std::cos(theta)));
         }
     }
     auto idx = [&](int j, int i) { return static_cast<unsigned>(j * slices + (i % slices)); };
@@ -116,12 +113,9 @@ TriangleMesh make_disk(const Vec3& center, const Vec3& normal, double radius, in
     for (int r = 1; r <= rings; ++r)
         for (int i = 0; i < slices; ++i) {
             const double phi = 2.0 * kPi * i / slices;
-            m.vertices.push_back(center + radius * r / rings *
-                                              f.to_world(Vec3(std::cos(phi), std::sin(phi), 0)));
+            m.vertices.push_back(center + radius * r / rings * f.to_world(Vec3(std::cos(phi), std::sin(phi), 0)));
         }
-    auto idx = [&](int r, int i) {
-        return r == 0 ? 0u : static_cast<unsigned>(1 + (r - 1) * slices + (i % slices));
-    };
+    auto idx = [&](int r, int i) { return r == 0 ? 0u : static_cast<unsigned>(1 + (r - 1) * slices + (i % slices)); };
     for (int i = 0; i < slices; ++i) m.triangles.push_back({idx(0, 0), idx(1, i), idx(1, i + 1)});
     for (int r = 1; r < rings; ++r)
         for (int i = 0; i < slices; ++i) {

@@ -13,8 +13,8 @@ TableReader::TableReader(const toml::table& table, std::string file, std::string
 void TableReader::check_schema(const std::string& key) const {
     // A key the loader reads must be listed, or the reference would not document it.
     if (!schema_.accepts(key))
-        throw std::logic_error("scene_schema.cpp: table '" + std::string(schema_.path) + "' does not list key '" +
-                               key + "' that the loader reads");
+        throw std::logic_error("scene_schema.cpp: table '" + std::string(schema_.path) + "' does not list key '" + key +
+                               "' that the loader reads");
 }
 
 bool TableReader::has(const std::string& key) const {
@@ -32,13 +32,10 @@ std::string TableReader::where() const {
 }
 
 void TableReader::fail(const std::string& key, const std::string& what) const {
-    throw InputError(file_ + ":" + std::to_string(line(key)) + ": " + context_ + ": key '" +
-                     key + "': " + what);
+    throw InputError(file_ + ":" + std::to_string(line(key)) + ": " + context_ + ": key '" + key + "': " + what);
 }
 
-void TableReader::fail_entry(const std::string& what) const {
-    throw InputError(where() + ": " + what);
-}
+void TableReader::fail_entry(const std::string& what) const { throw InputError(where() + ": " + what); }
 
 const toml::node* TableReader::get(const std::string& key) {
     check_schema(key);
@@ -96,8 +93,7 @@ std::optional<std::vector<double>> TableReader::numbers(const std::string& key, 
     const toml::node* node = get(key);
     if (node == nullptr) return std::nullopt;
     const toml::array* a = node->as_array();
-    if (a == nullptr || a->size() != n)
-        fail(key, "expected an array of " + std::to_string(n) + " numbers");
+    if (a == nullptr || a->size() != n) fail(key, "expected an array of " + std::to_string(n) + " numbers");
     std::vector<double> out;
     for (const toml::node& e : *a) {
         const std::optional<double> v = e.value<double>();
@@ -132,8 +128,7 @@ std::optional<std::vector<double>> TableReader::per_band(const std::string& key,
     std::vector<double> out;
     if (const toml::array* a = node->as_array()) {
         if (a->size() != bands)
-            fail(key, "expected one value per band (" + std::to_string(bands) + "), got " +
-                          std::to_string(a->size()));
+            fail(key, "expected one value per band (" + std::to_string(bands) + "), got " + std::to_string(a->size()));
         for (const toml::node& e : *a) {
             const std::optional<double> v = e.value<double>();
             if (!v) fail(key, "expected numbers");

@@ -19,16 +19,15 @@ std::uint64_t side_sum(const TallyLayout& L, std::span<const std::uint64_t> data
 }
 
 // sqrt(Q - S^2 / N) of one side in counts, from its arrivals S and repeats X (Q = S + X).
-double side_sigma_counts(double s, double x, double n) {
-    return std::sqrt(std::max(0.0, s + x - s * s / n));
-}
+double side_sigma_counts(double s, double x, double n) { return std::sqrt(std::max(0.0, s + x - s * s / n)); }
 }  // namespace
 
 std::vector<double> side_illuminance_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
                                         std::span<const double> area, double e0) {
     std::vector<double> e(L.sides());
     for (std::size_t i = 0; i < L.sides(); ++i) {
-        const std::uint64_t n = side_sum(L, data, i, TallyLayout::kCountOdd) + side_sum(L, data, i, TallyLayout::kCountEven);
+        const std::uint64_t n = side_sum(L, data, i, TallyLayout::kCountOdd) +
+                                side_sum(L, data, i, TallyLayout::kCountEven);
         e[i] = static_cast<double>(n) * e0 / area[i / TallyLayout::kSides];
     }
     return e;
@@ -47,8 +46,8 @@ std::vector<double> side_sigma_lx(const TallyLayout& L, std::span<const std::uin
     return sigma;
 }
 
-GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64_t> data,
-                               std::span<const double> area, double e0, std::uint64_t photons) {
+GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64_t> data, std::span<const double> area,
+                               double e0, std::uint64_t photons) {
     // Eqs. (4)-(5) on the band-summed map of the lit sides: E_odd,t = 2 n_odd E0 / A_t,
     // likewise even; and each side's second-moment variance.
     double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_e2 = 0.0, sum_var = 0.0;
@@ -71,7 +70,8 @@ GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64
         if (photons > 0) {
             const double sigma = side_sigma_counts(static_cast<double>(odd + even),
                                                    static_cast<double>(side_sum(L, data, i, TallyLayout::kRepeats)),
-                                                   n_photons) * k;
+                                                   n_photons) *
+                                 k;
             sum_var += a * sigma * sigma;
         }
     }
@@ -93,8 +93,7 @@ GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64
 }
 
 DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const TallyLayout& L,
-                                   std::span<const std::uint64_t> data, double e0,
-                                   std::uint64_t photons, CellRange r) {
+                                   std::span<const std::uint64_t> data, double e0, std::uint64_t photons, CellRange r) {
     const bool whole_grid = r.i1 == 0;
     if (r.i1 == 0) r = {0, det.nx, 0, det.ny};
     const std::size_t nb = L.bands();
@@ -105,9 +104,7 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
     out.value.resize(static_cast<std::size_t>(det.cells()) * nb);
     out.sigma_rel.resize(out.value.size());
     // eq. (8) for one cell from its n_c and q_c.
-    auto rel = [&](double n, double q) {
-        return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n)) : nan;
-    };
+    auto rel = [&](double n, double q) { return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n)) : nan; };
     // sobol: the spread of the replicate means instead (docs/QMC.md). `slot(r)` gives the
     // replicate-r count of what is estimated; the bands of a cell are summed by calling
     // it once per band.
@@ -126,7 +123,8 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
         if (R == 0) return rel(n, q);
         return replicate_rel([&](std::size_t rep) {
             double sum = 0.0;
-            for (std::size_t b = b0; b < b1; ++b) sum += static_cast<double>(data[L.detector_replicate_n(di, rep, c, b)]);
+            for (std::size_t b = b0; b < b1; ++b)
+                sum += static_cast<double>(data[L.detector_replicate_n(di, rep, c, b)]);
             return sum;
         });
     };
@@ -181,8 +179,8 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
             v[c] = n * per_count;
             s[c] = n > 0.0 ? cell_rel(c, 0, nb, n, q) * v[c] : nan;
         }
-        out.metrics.push_back(illuminance_metrics(v, s, det.nx, TaskArea{"", 0, det.nx, 0, det.ny},
-                                                  out.mean_value * out.mean_sigma_rel));
+        out.metrics.push_back(
+            illuminance_metrics(v, s, det.nx, TaskArea{"", 0, det.nx, 0, det.ny}, out.mean_value * out.mean_sigma_rel));
         for (const TaskArea& a : det.task_areas) {
             std::optional<double> avg_sigma;
             if (R > 0) {
@@ -191,13 +189,14 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
                 for (int j = a.j0; j < a.j1; ++j)
                     for (int i = a.i0; i < a.i1; ++i) area_sum += v[j * det.nx + i];
                 avg_sigma = area_sum / k * replicate_rel([&](std::size_t rep) {
-                    double sum = 0.0;
-                    for (int j = a.j0; j < a.j1; ++j)
-                        for (int i = a.i0; i < a.i1; ++i)
-                            for (std::size_t b = 0; b < nb; ++b)
-                                sum += static_cast<double>(data[L.detector_replicate_n(di, rep, j * det.nx + i, b)]);
-                    return sum;
-                });
+                                double sum = 0.0;
+                                for (int j = a.j0; j < a.j1; ++j)
+                                    for (int i = a.i0; i < a.i1; ++i)
+                                        for (std::size_t b = 0; b < nb; ++b)
+                                            sum += static_cast<double>(
+                                                data[L.detector_replicate_n(di, rep, j * det.nx + i, b)]);
+                                return sum;
+                            });
             }
             out.metrics.push_back(illuminance_metrics(v, s, det.nx, a, avg_sigma));
         }

@@ -68,7 +68,7 @@ double expected_extreme_bias(std::span<const double> sigma) {
     std::vector<double> s;
     for (double x : sigma)
         if (x > 0.0) s.push_back(x);
-    if (s.size() <= 1) return 0.0;  // one noisy cell: E[sigma Z] = 0
+    if (s.size() <= 1) return 0.0;                                            // one noisy cell: E[sigma Z] = 0
     if (s.size() == 2) return std::hypot(s[0], s[1]) / std::sqrt(2.0 * kPi);  // max(a Z1, b Z2), exactly
     // Many cells: sigmas that agree to 0.1 % share one factor Phi^count (the cost then
     // does not grow with the grid; the bias changes by far less than 0.1 %).
@@ -151,7 +151,7 @@ IlluminanceMetrics illuminance_metrics(std::span<const double> value, std::span<
         m.min_over_max = m.min_lx / m.max_lx;
         m.min_over_max_bias = m.min_over_max - (m.min_lx - m.min_bias_lx) / (m.max_lx - m.max_bias_lx);
         // Two different cells are independent; one cell (K = 1) gives exactly 1.
-        m.min_over_max_sigma = cmin == cmax ? 0.0
+        m.min_over_max_sigma = cmin == cmax     ? 0.0
                                : m.min_lx > 0.0 ? m.min_over_max * std::hypot(r_min, r_max)
                                                 : m.min_sigma_lx / m.max_lx;
     } else {

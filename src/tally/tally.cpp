@@ -80,8 +80,7 @@ void unpack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask,
     take(message.size() - L.surface_end(), L.surface_end());
 }
 
-TallyBuffer::TallyBuffer(TallyStore& store)
-    : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}
+TallyBuffer::TallyBuffer(TallyStore& store) : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}
 
 void TallyBuffer::flush() {
     constexpr std::size_t kAhead = 8;  // store lines requested before their add

@@ -23,8 +23,8 @@ EmbreeScene::EmbreeScene(const Scene& scene) : origin_(0.5 * (scene.bounds_min +
                                                           sizeof(Vec3f), scene.vertices.size()));
     for (std::size_t i = 0; i < scene.vertices.size(); ++i) v[i] = to_local(scene.vertices[i]);
     vertices_ = v;
-    auto* idx = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), scene.triangles.size()));
+    auto* idx = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 sizeof(glm::uvec3), scene.triangles.size()));
     margin_.resize(scene.triangles.size());
     for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
         const glm::uvec3 t = idx[i] = scene.triangles[i];
@@ -34,8 +34,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : origin_(0.5 * (scene.bounds_min +
     rtcAttachGeometry(scene_, geom);
     rtcReleaseGeometry(geom);  // the scene keeps it, and with it the vertex buffer
     rtcCommitScene(scene_);
-    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
-        throw std::runtime_error("Embree: building the scene failed");
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
 }
 
 EmbreeScene::~EmbreeScene() {

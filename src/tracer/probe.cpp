@@ -59,18 +59,26 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
                                  Vec3f(scene.triangle_normal[t]), margin);
             }
             const Hit h = embree.intersect_local(o, Vec3f(r.direction));
-            if (!h.found) { ++escaped; continue; }
+            if (!h.found) {
+                ++escaped;
+                continue;
+            }
             if (scene.materials[scene.triangle_material[h.triangle]].type == MaterialType::black) ++black;
         }
         char buf[256];
         if (black == rays) {
-            std::snprintf(buf, sizeof buf, "%s: every probe ray hits a black surface first: its photons are all absorbed at the first hit (is it inside a closed black box?)", l.label.c_str());
+            std::snprintf(buf, sizeof buf,
+                          "%s: every probe ray hits a black surface first: its photons are all absorbed at the first "
+                          "hit (is it inside a closed black box?)",
+                          l.label.c_str());
             warnings.emplace_back(buf);
         } else if (escaped == rays && l.type != LightType::directional) {
-            std::snprintf(buf, sizeof buf, "%s: no probe ray hits any surface: its light leaves the scene", l.label.c_str());
+            std::snprintf(buf, sizeof buf, "%s: no probe ray hits any surface: its light leaves the scene",
+                          l.label.c_str());
             warnings.emplace_back(buf);
         } else if (escaped > rays / 2 && l.type != LightType::directional) {
-            std::snprintf(buf, sizeof buf, "%s: %.0f%% of probe rays leave the scene without hitting a surface", l.label.c_str(), 100.0 * escaped / rays);
+            std::snprintf(buf, sizeof buf, "%s: %.0f%% of probe rays leave the scene without hitting a surface",
+                          l.label.c_str(), 100.0 * escaped / rays);
             warnings.emplace_back(buf);
         }
     }

@@ -16,8 +16,8 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
     // The tallies keep per-replicate counts for exactly the sampler's streams.
     const std::size_t streams = sampler_.kind() == SamplerKind::sobol ? sampler_.replicates() : 0;
     if (layout_.replicates() != streams)
-        throw std::logic_error("tally layout for " + std::to_string(layout_.replicates()) + " replicates, sampler with " +
-                               std::to_string(streams));
+        throw std::logic_error("tally layout for " + std::to_string(layout_.replicates()) +
+                               " replicates, sampler with " + std::to_string(streams));
     for (std::uint32_t i = 0; i < scene.detectors.size(); ++i) {
         const Detector& d = scene.detectors[i];
         if (d.type == DetectorType::luminance) luminance_dets_.push_back(i);
@@ -120,7 +120,8 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     const bool odd = (p.k & 1u) != 0;
     out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
     if (p.bounce == 0)
-        out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
+        out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven),
+                1);
     p.arrivals.push_back(layout_.surface(hit.triangle, side, p.band, TallyLayout::kRepeats));
 
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),

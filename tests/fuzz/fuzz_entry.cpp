@@ -261,8 +261,8 @@ void check_scene(const Scene& s) {
     for (std::size_t t = 0; t < T; ++t) {
         for (int k = 0; k < 3; ++k)
             if (s.triangles[t][k] >= V)
-                broken("triangle " + std::to_string(t) + " names vertex " + std::to_string(s.triangles[t][k]) +
-                       " of " + std::to_string(V));
+                broken("triangle " + std::to_string(t) + " names vertex " + std::to_string(s.triangles[t][k]) + " of " +
+                       std::to_string(V));
         if (s.triangle_material[t] >= s.materials.size()) broken("material index out of range");
         if (!(s.triangle_area_m2[t] > 0.0 && std::isfinite(s.triangle_area_m2[t]))) broken("bad triangle area");
         if (!finite(s.triangle_normal[t])) broken("normal not finite");
@@ -278,7 +278,8 @@ void check_scene(const Scene& s) {
             if (!(c >= 0.0 && c <= 1.0)) broken(l.label + ": band share " + std::to_string(c));
         if (l.type == LightType::area && !(l.surface.area_m2 > 0.0 && std::isfinite(l.surface.area_m2)))
             broken(l.label + ": emitter area " + std::to_string(l.surface.area_m2));
-        if (l.type == LightType::point && l.distribution && !(l.distribution->flux_lm() > 0.0 && std::isfinite(l.distribution->flux_lm())))
+        if (l.type == LightType::point && l.distribution &&
+            !(l.distribution->flux_lm() > 0.0 && std::isfinite(l.distribution->flux_lm())))
             broken(l.label + ": sampling table flux");
         // A few emitted rays must be finite.
         for (int k = 0; k < 4; ++k) {
@@ -365,7 +366,8 @@ int fuzz_ies(const std::uint8_t* data, std::size_t size) {
     for (int g = 0; g <= 12; ++g)
         for (int c = 0; c < 8; ++c) {
             const double gr = g * kPi / 12.0, cr = c * kPi / 4.0 - 1.0;
-            const double v = p.intensity_cd(Vec3(std::sin(gr) * std::cos(cr), std::sin(gr) * std::sin(cr), std::cos(gr)));
+            const double v = p.intensity_cd(
+                Vec3(std::sin(gr) * std::cos(cr), std::sin(gr) * std::sin(cr), std::cos(gr)));
             if (!(v >= 0.0 && std::isfinite(v))) broken("intensity " + std::to_string(v));
         }
     // Start points on the luminous opening stay finite and inside its bounding box.
@@ -398,7 +400,9 @@ int fuzz_mesh(const std::uint8_t* data, std::size_t size) {
     write_input("input" + ext, data + 1, size - 1);
     std::string scene = "[[material]]\nname = \"m\"\nreflectance = 0.5\n"
                         "[[material]]\nname = \"red\"\nreflectance = 0.7\n"
-                        "[[mesh]]\nfile = \"input" + ext + "\"\nmaterial = \"m\"\n"
+                        "[[mesh]]\nfile = \"input" +
+                        ext +
+                        "\"\nmaterial = \"m\"\n"
                         "[[light]]\ntype = \"point\"\nposition = [0.2, 0.3, 2]\nflux_lm = 100\n";
     const fs::path file = write_input("mesh_scene.toml", reinterpret_cast<const std::uint8_t*>(scene.data()),
                                       scene.size());

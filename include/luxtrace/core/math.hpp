@@ -29,13 +29,10 @@ struct Frame {
         const double sign = std::copysign(1.0, n.z);
         const double a = -1.0 / (sign + n.z);
         const double b = n.x * n.y * a;
-        return {Vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-                Vec3(b, sign + n.y * n.y * a, -n.y), n};
+        return {Vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3(b, sign + n.y * n.y * a, -n.y), n};
     }
     Vec3 to_world(const Vec3& v) const { return v.x * t + v.y * b + v.z * n; }
-    Vec3 to_local(const Vec3& v) const {
-        return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)};
-    }
+    Vec3 to_local(const Vec3& v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
 };
 
 }  // namespace luxtrace

@@ -16,7 +16,7 @@ namespace luxtrace {
 struct CylinderShape {
     double radius_m = 0.01;
     double height_m = 0.2;
-    bool half = false;                   // only the half whose outward normal n has n . facing >= 0
+    bool half = false;                      // only the half whose outward normal n has n . facing >= 0
     double facing_x = 1.0, facing_y = 0.0;  // unit, across the axis
 };
 

@@ -40,11 +40,11 @@ struct Detector {
     // cylindrical, semicylindrical: the small cylinder at every cell centre, and the
     // illuminance detector on the same grid whose values give the modelling ratio.
     double radius_m = 0.01, height_m = 0.2;  // the loader's defaults (scene_loader.cpp says why)
-    Vec3 facing{1, 0, 0};                 // semicylindrical: the curved half faces this way
-    std::string horizontal;               // name of that detector, or empty
-    int horizontal_index = -1;            // its index in Scene::detectors, or -1
-    CylinderShape cylinder;               // derived: the cylinder in the grid's frame (u, v, normal)
-    std::vector<TaskArea> task_areas;  // illuminance only: areas with their own metrics
+    Vec3 facing{1, 0, 0};                    // semicylindrical: the curved half faces this way
+    std::string horizontal;                  // name of that detector, or empty
+    int horizontal_index = -1;               // its index in Scene::detectors, or -1
+    CylinderShape cylinder;                  // derived: the cylinder in the grid's frame (u, v, normal)
+    std::vector<TaskArea> task_areas;        // illuminance only: areas with their own metrics
     // Illuminance: count only photons that have scattered at least once (not the direct
     // flight from a light), as an observer's eye detector does for UGR's background.
     bool indirect_only = false;
@@ -65,9 +65,7 @@ struct Detector {
     // The cone's projected solid angle, integral of cos(gamma) d omega over the cone:
     // cos(theta) pi sin^2(a), exact while the cone stays above the plane (theta + a <= 90
     // degrees), since cos(gamma) is linear in the direction and the cone is symmetric.
-    double projected_solid_angle_sr() const {
-        return cos_view() * kPi * (1.0 - cos_half_angle * cos_half_angle);
-    }
+    double projected_solid_angle_sr() const { return cos_view() * kPi * (1.0 - cos_half_angle * cos_half_angle); }
     double cos_view() const { return glm::dot(cone_axis, normal); }
     // The cone dips below the detector plane: the divisor is then no longer exact.
     bool cone_below_plane() const;

@@ -23,10 +23,10 @@ constexpr double kUgrMin = 10.0;
 constexpr double kUgrMax = 30.0;
 
 struct UgrEstimate {
-    double indirect_illuminance_lx = 0.0;   // E_ind at the eye
-    double indirect_sigma_rel = 0.0;        // its relative standard error
+    double indirect_illuminance_lx = 0.0;     // E_ind at the eye
+    double indirect_sigma_rel = 0.0;          // its relative standard error
     double background_luminance_cd_m2 = 0.0;  // Lb = E_ind / pi
-    double glare_sum = 0.0;                 // sum of L^2 omega / p^2
+    double glare_sum = 0.0;                   // sum of L^2 omega / p^2
     // NaN when there is no luminaire in view or no indirect light was registered.
     double ugr = 0.0;
     // First order: dUGR = 8 / ln(10) dLb / Lb, and Lb's relative error is E_ind's.

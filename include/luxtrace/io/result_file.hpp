@@ -22,9 +22,9 @@ struct HistoryRow {
     double time_s = 0.0;
     std::uint64_t photons = 0;
     double sigma_rel_global = 0.0;
-    double forecast_s = 0.0;                // of the first target; NaN if none
-    std::vector<double> target_value;       // per target: its error or count
-    std::vector<double> target_forecast_s;  // per target: forecast wall time to meet it
+    double forecast_s = 0.0;                      // of the first target; NaN if none
+    std::vector<double> target_value;             // per target: its error or count
+    std::vector<double> target_forecast_s;        // per target: forecast wall time to meet it
     std::vector<double> target_forecast_photons;  // per target: forecast photons to meet it
 };
 
@@ -41,8 +41,8 @@ struct RunInfo {
     std::string sampler;
     std::uint64_t photon_layout = 0;  // which random numbers a photon draws (tracer.hpp)
     std::uint64_t reductions = 0;
-    double reduction_stall_s = 0.0;  // tracing time lost to snapshots (max over ranks)
-    double reduction_wait_s = 0.0;   // main thread's wait for reductions (tracing goes on)
+    double reduction_stall_s = 0.0;             // tracing time lost to snapshots (max over ranks)
+    double reduction_wait_s = 0.0;              // main thread's wait for reductions (tracing goes on)
     std::uint64_t reduction_message_words = 0;  // words a rank sent in the last reduction (0: one rank)
     std::vector<std::string> target_labels;
     std::vector<double> target_goals;
@@ -71,9 +71,9 @@ struct CheckpointState {
 
 // Writes `path` atomically (a temporary file in the same directory, then rename).
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  const std::vector<std::uint64_t>& tallies, const RunInfo& info,
-                  const GlobalEstimate& global, const std::vector<DetectorEstimate>& detectors,
-                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);
+                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const GlobalEstimate& global,
+                  const std::vector<DetectorEstimate>& detectors, const std::vector<HistoryRow>& history,
+                  const CheckpointData* checkpoint = nullptr);
 
 // Reads a checkpoint written by write_result with CheckpointData; throws InputError.
 CheckpointState read_checkpoint(const std::filesystem::path& path);

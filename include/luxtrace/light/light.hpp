@@ -17,7 +17,7 @@ enum class LightType { point, spot, area, directional };
 struct EmittedRay {
     Vec3 origin;
     Vec3 direction;
-    int emitter_triangle = -1;  // area lights: the scene triangle the photon leaves from,
+    int emitter_triangle = -1;                // area lights: the scene triangle the photon leaves from,
     double emitter_u = 0.0, emitter_v = 0.0;  // and the point's barycentrics on it (as Embree's)
 };
 
@@ -30,14 +30,14 @@ struct EmitterSurface {
 };
 
 struct Light {
-    std::string label;        // e.g. "light 2 (spot)" for messages
+    std::string label;  // e.g. "light 2 (spot)" for messages
     LightType type = LightType::point;
     double flux_lm = 0.0;
     std::vector<double> band_share;  // normalised colour share per band
     // point / spot
-    Vec3 position{0.0};               // point with photometry: the photometric centre
-    Vec3 aim{0.0, 0.0, -1.0};        // point with photometry: photometric axis; spot: axis
-    double cos_half_angle = 1.0;     // spot
+    Vec3 position{0.0};           // point with photometry: the photometric centre
+    Vec3 aim{0.0, 0.0, -1.0};     // point with photometry: photometric axis; spot: axis
+    double cos_half_angle = 1.0;  // spot
     // A point light with a luminaire's photometry: its direction sampler, and the
     // photometry as read (intensities for the renderer's direct light). Intensity toward
     // a direction = photometry->intensity_cd(local) * flux_lm / photometry->flux_lm().

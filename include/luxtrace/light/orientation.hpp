@@ -26,7 +26,7 @@ namespace luxtrace {
 struct LuminairePlacement {
     Vec3 aim{0.0, 0.0, -1.0};  // non-zero
     double rotation_deg = 0.0;
-    std::optional<Vec3> c0;    // instead of rotation_deg; not parallel to aim
+    std::optional<Vec3> c0;  // instead of rotation_deg; not parallel to aim
     double tilt_deg = 0.0, roll_deg = 0.0, spin_deg = 0.0;
 };
 

@@ -40,19 +40,19 @@ enum class CPlaneSymmetry {
 std::optional<CPlaneSymmetry> c_plane_symmetry(const std::vector<double>& horizontal_deg);
 
 // Shape of the luminous opening in the luminaire frame (the LM-63-2002/2019 table of
-// luminous shapes by the signs of width, length and height; EULUMDAT's luminous area). Sizes in metres: `length_m` along the
-// C0-C180 axis (local x), `width_m` along C90-C270 (local y), `height_m` along the
-// photometric axis (local z). The photometric centre is the shape's centre.
+// luminous shapes by the signs of width, length and height; EULUMDAT's luminous area). Sizes in metres: `length_m`
+// along the C0-C180 axis (local x), `width_m` along C90-C270 (local y), `height_m` along the photometric axis (local
+// z). The photometric centre is the shape's centre.
 struct LuminousOpening {
     enum class Shape {
-        point,                 // no size given: all light from the photometric centre
-        rectangle,             // length x width, flat, facing +-z
-        ellipse,               // a disk when length = width
-        box,                   // length x width x height, luminous top, bottom and sides
-        vertical_cylinder,     // elliptic cross-section length x width, axis along z, height
-        cylinder_along_length, // horizontal cylinder, axis along x (length), diameter width = height
-        cylinder_along_width,  // horizontal cylinder, axis along y (width), diameter length = height
-        ellipsoid,             // a sphere when all three are equal
+        point,                  // no size given: all light from the photometric centre
+        rectangle,              // length x width, flat, facing +-z
+        ellipse,                // a disk when length = width
+        box,                    // length x width x height, luminous top, bottom and sides
+        vertical_cylinder,      // elliptic cross-section length x width, axis along z, height
+        cylinder_along_length,  // horizontal cylinder, axis along x (length), diameter width = height
+        cylinder_along_width,   // horizontal cylinder, axis along y (width), diameter length = height
+        ellipsoid,              // a sphere when all three are equal
     };
     Shape shape = Shape::point;
     double length_m = 0.0, width_m = 0.0, height_m = 0.0;
@@ -75,13 +75,13 @@ struct TiltTable {
 struct Photometry {
     std::string format;  // "IES LM-63-2002", "EULUMDAT", ... (for reports)
     PhotometricType type = PhotometricType::C;
-    std::vector<double> vertical_deg;             // gamma (C) or V (B, A) angles
-    std::vector<double> horizontal_deg;           // C (C) or H (B, A) angles as in the file (B, A:
-                                                  // mirrored to -90 when the file gives 0-90)
-    std::vector<std::vector<double>> candela_cd;  // [horizontal][vertical] in cd, with every
-                                                  // factor of the file applied
+    std::vector<double> vertical_deg;                           // gamma (C) or V (B, A) angles
+    std::vector<double> horizontal_deg;                         // C (C) or H (B, A) angles as in the file (B, A:
+                                                                // mirrored to -90 when the file gives 0-90)
+    std::vector<std::vector<double>> candela_cd;                // [horizontal][vertical] in cd, with every
+                                                                // factor of the file applied
     std::vector<std::pair<std::string, std::string>> keywords;  // "[TEST] x" -> {"TEST", "x"}
-    std::string luminaire;  // the file's name for it, for reports
+    std::string luminaire;                                      // the file's name for it, for reports
     int num_lamps = 1;
     // Rated lamp flux of all lamps (lm); < 0 for absolute photometry (no lamp rating).
     double lamp_flux_lm = -1.0;

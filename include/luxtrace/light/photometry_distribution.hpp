@@ -36,9 +36,9 @@ private:
     int copies_ = 1;                      // copies of it around the circle (type C symmetry)
     CPlaneSymmetry symmetry_ = CPlaneSymmetry::Full;
     double flux_lm_ = 0.0;
-    std::vector<double> edge_;            // cos gamma (C) or sin latitude (B, A) at row edges
-    AliasTable marginal_;                 // over rows
-    std::vector<AliasTable> rows_;        // per row over its cells
+    std::vector<double> edge_;      // cos gamma (C) or sin latitude (B, A) at row edges
+    AliasTable marginal_;           // over rows
+    std::vector<AliasTable> rows_;  // per row over its cells
 };
 
 }  // namespace luxtrace

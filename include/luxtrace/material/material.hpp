@@ -27,8 +27,14 @@ struct Material {
     std::vector<double> transmittance;
 };
 
-enum class ScatterEvent { absorbed, diffuse_reflection, specular_reflection,
-                          diffuse_transmission, specular_transmission, refraction };
+enum class ScatterEvent {
+    absorbed,
+    diffuse_reflection,
+    specular_reflection,
+    diffuse_transmission,
+    specular_transmission,
+    refraction
+};
 
 struct Scattered {
     ScatterEvent event = ScatterEvent::absorbed;

@@ -37,8 +37,7 @@ public:
 
     // Non-blocking: `recv` (rank 0 only, resized there) receives the element-wise sum of
     // every rank's `send`, which must stay untouched until the reduction completes.
-    PendingReduce ireduce_sum_to_root(const std::vector<std::uint64_t>& send,
-                                      std::vector<std::uint64_t>& recv) const;
+    PendingReduce ireduce_sum_to_root(const std::vector<std::uint64_t>& send, std::vector<std::uint64_t>& recv) const;
     // Rank 0's values to every rank (same length everywhere).
     void broadcast(std::vector<double>& values) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;

@@ -15,8 +15,8 @@ public:
     // Throws InputError (starting with `what`, e.g. "--camera") if target == position,
     // up is parallel to the view, the field of view is outside (0, 180) degrees or the
     // size is not 1..16384 pixels each way.
-    PinholeCamera(const Vec3& position, const Vec3& target, const Vec3& up, double fov_deg, int width,
-                  int height, const std::string& what = "camera");
+    PinholeCamera(const Vec3& position, const Vec3& target, const Vec3& up, double fov_deg, int width, int height,
+                  const std::string& what = "camera");
     explicit PinholeCamera(const Camera& c);
 
     int width() const { return width_; }

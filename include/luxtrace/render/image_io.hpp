@@ -24,8 +24,8 @@ struct LuminanceImage {
     int band_count() const { return static_cast<int>(bands.size()); }
     float& at(int x, int y, int b) { return values[(static_cast<std::size_t>(y) * width + x) * bands.size() + b]; }
     float at(int x, int y, int b) const { return values[(static_cast<std::size_t>(y) * width + x) * bands.size() + b]; }
-    double luminance(int x, int y) const;    // sum over bands
-    std::vector<double> luminance() const;   // per pixel, row-major
+    double luminance(int x, int y) const;   // sum over bands
+    std::vector<double> luminance() const;  // per pixel, row-major
     // Three bands named R, G, B: shown in colour; anything else is shown grey.
     bool is_rgb() const;
 };
@@ -48,8 +48,7 @@ void write_exr(const std::filesystem::path& path, const LuminanceImage& image);
 // PNG through cairo. With `legend`, a vertical colour bar with labelled ticks in cd/m^2
 // is drawn in a panel to the right of the picture (the PNG is then wider than the
 // picture by legend_panel_width(height) pixels). Throws std::runtime_error.
-void write_png(const std::filesystem::path& path, const DisplayImage& image,
-               const FalseColourScale* legend = nullptr);
+void write_png(const std::filesystem::path& path, const DisplayImage& image, const FalseColourScale* legend = nullptr);
 int legend_panel_width(int image_height);
 
 }  // namespace luxtrace

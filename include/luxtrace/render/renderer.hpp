@@ -51,8 +51,8 @@ public:
 
 private:
     struct Rng;
-    void shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng,
-               const RenderOptions& opt, double* out) const;
+    void shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng, const RenderOptions& opt,
+               double* out) const;
     void direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const;
     void add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const;
     bool occluded(const Vec3& o, const Vec3& d, double t_far) const;
@@ -61,9 +61,9 @@ private:
     const EmbreeScene& embree_;
     int bands_;
     double eps_;
-    std::vector<double> vertex_secondary_;   // [V][2][B]
-    std::vector<int> emitter_of_;            // per triangle: area light index or -1
-    std::vector<double> emitted_radiance_;   // per light and band: M / pi (area lights)
+    std::vector<double> vertex_secondary_;  // [V][2][B]
+    std::vector<int> emitter_of_;           // per triangle: area light index or -1
+    std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights)
 };
 
 // What `luxtrace render` needs from a result: the scene reloaded from the file named by

@@ -25,12 +25,12 @@ struct Decision {
 
 struct ReductionInput {
     std::span<const std::uint64_t> tallies;
-    std::uint64_t photons = 0;     // photons traced in all, including earlier runs
-    double elapsed_s = 0.0;        // wall time of this run so far
-    bool all_ranks_idle = false;   // the photon budget is spent
-    bool signalled = false;        // SIGTERM / SIGUSR1 seen by some rank
-    double stall_s = 0.0;          // tracing time lost per reduction (pause + copy)
-    double write_s = 0.0;          // time of the latest checkpoint write
+    std::uint64_t photons = 0;    // photons traced in all, including earlier runs
+    double elapsed_s = 0.0;       // wall time of this run so far
+    bool all_ranks_idle = false;  // the photon budget is spent
+    bool signalled = false;       // SIGTERM / SIGUSR1 seen by some rank
+    double stall_s = 0.0;         // tracing time lost per reduction (pause + copy)
+    double write_s = 0.0;         // time of the latest checkpoint write
 };
 
 class RunController {
@@ -56,7 +56,7 @@ public:
 private:
     const Scene& scene_;
     const TallyLayout& layout_;
-    std::vector<HistoryRow> history_;           // stored: whole run including earlier parts
+    std::vector<HistoryRow> history_;                // stored: whole run including earlier parts
     std::vector<std::vector<HistoryPoint>> points_;  // per target, this part only
     std::vector<HistoryPoint> rate_points_;          // (time, photons) of this part only
     double time_offset_s_;

@@ -16,9 +16,9 @@ class Communicator;
 class EmbreeScene;
 
 struct RunOptions {
-    int threads = 0;     // per rank; 0 = every core this process may run on
+    int threads = 0;  // per rank; 0 = every core this process may run on
     bool quiet = false;
-    std::string restart;                 // checkpoint to continue from
+    std::string restart;  // checkpoint to continue from
     // Set (to the signal number) by the CLI's SIGTERM/SIGUSR1 handler: checkpoint and stop.
     const std::atomic<int>* signal = nullptr;
     // A BVH of this scene built already (benchmarks trace with the one they measure on);
@@ -37,8 +37,8 @@ struct RunSummary {
     std::string output;
     std::uint64_t photons = 0;
     double elapsed_s = 0.0;
-    double tracing_s = 0.0;   // this run's tracing threads, from start to stop (max over ranks)
-    std::uint64_t rays = 0;   // intersections in all: surface arrivals + escaped photons (root)
+    double tracing_s = 0.0;  // this run's tracing threads, from start to stop (max over ranks)
+    std::uint64_t rays = 0;  // intersections in all: surface arrivals + escaped photons (root)
     GlobalEstimate global;
     std::vector<DetectorEstimate> detectors;
 };

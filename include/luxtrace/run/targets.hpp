@@ -19,7 +19,7 @@ struct TargetStatus {
     double value = 0.0;  // current error (relative, or lx / cd/m^2) or photons received
     double goal = 0.0;
     bool met = false;
-    std::string label;   // e.g. "detector:desk rel (arith)"
+    std::string label;  // e.g. "detector:desk rel (arith)"
 };
 
 TargetKind kind_of(const Target& t);

@@ -18,7 +18,6 @@ struct Transform {
 // Loads every triangle of the file with node transforms applied, then `transform`;
 // each triangle carries the name of its file material (OBJ `usemtl`).
 // Throws InputError naming `context` (file:line of the scene entry) and the mesh file.
-TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& transform,
-                       const std::string& context);
+TriangleMesh load_mesh(const std::filesystem::path& file, const Transform& transform, const std::string& context);
 
 }  // namespace luxtrace

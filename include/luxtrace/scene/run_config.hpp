@@ -10,11 +10,11 @@ enum class Averaging { quadratic, arithmetic };
 
 // One [[run.target]]: a stop criterion on the global map or on (part of) a detector.
 struct Target {
-    std::string on = "global";   // as written in the scene file
-    std::string detector;        // empty for the global map
+    std::string on = "global";  // as written in the scene file
+    std::string detector;       // empty for the global map
     // Cell range [i0, i1) x [j0, j1) on the detector; i1 = j1 = 0 means the whole grid.
     int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-    double relative_error = 0.0;   // 0 = not set
+    double relative_error = 0.0;  // 0 = not set
     double absolute_error = 0.0;
     double photons_received = 0.0;
     Averaging averaging = Averaging::quadratic;
@@ -23,17 +23,17 @@ struct Target {
 struct RunConfig {
     std::uint64_t seed = 1;
     std::uint64_t photons = 1'000'000;
-    double time_limit_s = 0.0;       // 0 = none
+    double time_limit_s = 0.0;  // 0 = none
     double report_every_s = 2.0;
     // Reductions every this many photons (per run, split evenly over the ranks) instead
     // of every report_every_s: the history is then the same on any machine. 0 = by time.
     std::uint64_t report_every_photons = 0;
-    std::string output;              // result path (relative to the working directory)
-    double checkpoint_every_s = 0.0; // 0 = none
-    std::string checkpoint;          // checkpoint path
+    std::string output;               // result path (relative to the working directory)
+    double checkpoint_every_s = 0.0;  // 0 = none
+    std::string checkpoint;           // checkpoint path
     std::string sampler = "random";
-    std::uint32_t replicates = 8;    // sobol: independent randomisations (docs/QMC.md)
-    int max_bounces = 10000;         // safety bound for lossless mirror traps
+    std::uint32_t replicates = 8;  // sobol: independent randomisations (docs/QMC.md)
+    int max_bounces = 10000;       // safety bound for lossless mirror traps
     std::vector<Target> targets;
 };
 

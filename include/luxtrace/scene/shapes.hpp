@@ -20,8 +20,8 @@ struct TriangleMesh {
 Vec3 default_up(const Vec3& normal);
 
 // size_u along u = up x normal, size_v along up (the detector convention).
-TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& up,
-                            double size_u, double size_v, int subdivisions);
+TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& up, double size_u, double size_v,
+                            int subdivisions);
 TriangleMesh make_box(const Vec3& center, const Vec3& size, int subdivisions, bool inward);
 TriangleMesh make_sphere(const Vec3& center, double radius, int subdivisions, bool inward);
 TriangleMesh make_disk(const Vec3& center, const Vec3& normal, double radius, int subdivisions);

@@ -22,7 +22,7 @@ struct GlobalEstimate {
     double sigma_lx = 0.0;
     double sigma_rel_arithmetic = 0.0;
     double sigma_rel_quadratic = 0.0;
-    double mean_arithmetic_lx = 0.0;   // eq. (4), area-weighted
+    double mean_arithmetic_lx = 0.0;  // eq. (4), area-weighted
     double mean_quadratic_lx = 0.0;
     // From each side's second moment (issue 13): sigma_t^2 = (E0 / A_t)^2 (Q_t - S_t^2 / N),
     // S_t the side's arrivals, Q_t = sum over photons of their arrivals there squared, and
@@ -56,22 +56,24 @@ std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std
 GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                std::span<const double> area_m2, double e0, std::uint64_t photons);
 
-struct CellRange { int i0 = 0, i1 = 0, j0 = 0, j1 = 0; };  // [i0,i1) x [j0,j1); i1 = 0: all
+struct CellRange {
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};  // [i0,i1) x [j0,j1); i1 = 0: all
 
 struct DetectorEstimate {
-    std::vector<double> value;       // [ny][nx][B], lx or cd/m^2
-    std::vector<double> sigma_rel;   // [ny][nx][B], eq. (8); NaN where the cell got nothing
-    double mean_arithmetic = 0.0;    // over the range, band-summed values
+    std::vector<double> value;      // [ny][nx][B], lx or cd/m^2
+    std::vector<double> sigma_rel;  // [ny][nx][B], eq. (8); NaN where the cell got nothing
+    double mean_arithmetic = 0.0;   // over the range, band-summed values
     double mean_quadratic = 0.0;
-    double sigma_abs = 0.0;          // sqrt(mean sigma_c^2), eq. (9) numerator
+    double sigma_abs = 0.0;  // sqrt(mean sigma_c^2), eq. (9) numerator
     double sigma_rel_arithmetic = 0.0;
     double sigma_rel_quadratic = 0.0;
     // The detector's mean value over the whole grid and its relative standard error,
     // eq. (8) applied to the grid as one cell.
     double mean_value = 0.0;
     double mean_sigma_rel = 0.0;
-    std::uint64_t photons_received = 0;   // whole detector
-    std::uint64_t registrations = 0;      // sum of n_c over the range
+    std::uint64_t photons_received = 0;  // whole detector
+    std::uint64_t registrations = 0;     // sum of n_c over the range
     // How sigma_rel and the summaries were estimated: eq. (8) (independent photons,
     // random) or the spread of the R replicate means (sobol, replicate_estimate), with
     // `dof` = R - 1 degrees of freedom (0 for eq. 8).
@@ -99,7 +101,7 @@ ReplicateEstimate replicate_estimate(std::span<const double> sums, std::span<con
 
 // photons = N, the photons emitted so far.
 DetectorEstimate estimate_detector(const Detector& det, std::size_t det_index, const TallyLayout& layout,
-                                   std::span<const std::uint64_t> data, double e0,
-                                   std::uint64_t photons, CellRange range = {});
+                                   std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                   CellRange range = {});
 
 }  // namespace luxtrace

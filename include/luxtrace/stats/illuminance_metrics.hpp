@@ -33,8 +33,8 @@ struct IlluminanceMetrics {
     double max_lx = 0.0, max_sigma_lx = 0.0, max_bias_lx = 0.0;
     int min_i = 0, min_j = 0, max_i = 0, max_j = 0;
     std::uint64_t min_competitors = 0, max_competitors = 0;
-    double u0 = 0.0, u0_sigma = 0.0;                    // Emin / Eavg
-    double u0_bias = 0.0;                               // Emin's bias / Eavg (<= 0)
+    double u0 = 0.0, u0_sigma = 0.0;                      // Emin / Eavg
+    double u0_bias = 0.0;                                 // Emin's bias / Eavg (<= 0)
     double min_over_max = 0.0, min_over_max_sigma = 0.0;  // Emin / Emax
     // Emin / Emax minus its value with both extremes bias-corrected (<= 0)
     double min_over_max_bias = 0.0;

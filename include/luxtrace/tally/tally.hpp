@@ -28,7 +28,12 @@ public:
     // counts it gives the per-side second moment sum n^2 = count + repeats, which is zero
     // work for the photons that arrive on a side once at most.
     enum SurfaceSlot : std::size_t {
-        kCountOdd = 0, kCountEven = 1, kDirectOdd = 2, kDirectEven = 3, kRepeats = 4, kSurfaceSlots = 5
+        kCountOdd = 0,
+        kCountEven = 1,
+        kDirectOdd = 2,
+        kDirectEven = 3,
+        kRepeats = 4,
+        kSurfaceSlots = 5
     };
     static constexpr std::size_t kSides = 2;
     TallyLayout() = default;
@@ -61,9 +66,7 @@ public:
         return detector_n(det, cell, band) + 1;
     }
     // Photons that registered at least once in the detector.
-    std::size_t detector_received(std::size_t det) const {
-        return det_offset_[det] + det_cells_[det] * bands_ * 2;
-    }
+    std::size_t detector_received(std::size_t det) const { return det_offset_[det] + det_cells_[det] * bands_ * 2; }
     // The whole grid as one cell: sum over photons of E (registrations anywhere in the
     // detector) and of E^2, for the error of the detector's mean value.
     std::size_t detector_total_n(std::size_t det) const { return detector_received(det) + 1; }
@@ -137,7 +140,10 @@ public:
         std::size_t h = (index * 0x9E3779B97F4A7C15ull) >> (64 - kLogCapacity);
         while (true) {
             Slot& s = slots_[h];
-            if (s.index == index) { s.value += value; return; }
+            if (s.index == index) {
+                s.value += value;
+                return;
+            }
             if (s.index == kEmpty) {
                 s = {index, value};
                 used_[used_count_++] = static_cast<std::uint16_t>(h);
@@ -154,7 +160,10 @@ private:
     static constexpr std::size_t kCapacity = std::size_t{1} << kLogCapacity;
     static constexpr std::size_t kMaxLoad = kCapacity / 2;
     static constexpr std::size_t kEmpty = ~std::size_t{0};
-    struct Slot { std::size_t index; std::uint64_t value; };
+    struct Slot {
+        std::size_t index;
+        std::uint64_t value;
+    };
     TallyStore& store_;
     std::vector<Slot> slots_;
     std::vector<std::uint16_t> used_;  // slots in use, in the order they were taken

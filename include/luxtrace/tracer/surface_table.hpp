@@ -16,11 +16,11 @@ struct Scene;
 class EmbreeScene;
 
 struct alignas(64) TriangleRecord {
-    Vec3f p0, p1, p2;       // local float coordinates, as Embree intersects them
-    Vec3f normal;           // unit geometric normal, front side
-    std::uint32_t material; // index into Scene::materials
-    float margin;           // EmbreeScene::self_hit_margin
-    float min_height;       // the smallest of its three heights (point_on_triangle)
+    Vec3f p0, p1, p2;        // local float coordinates, as Embree intersects them
+    Vec3f normal;            // unit geometric normal, front side
+    std::uint32_t material;  // index into Scene::materials
+    float margin;            // EmbreeScene::self_hit_margin
+    float min_height;        // the smallest of its three heights (point_on_triangle)
 };
 static_assert(sizeof(TriangleRecord) == 64, "one cache line per triangle");
 

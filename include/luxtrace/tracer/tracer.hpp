@@ -41,8 +41,8 @@ struct RecordedRay {
 
 class PhotonTracer {
 public:
-    PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
-                 const TallyLayout& layout, PhotonSampler sampler);
+    PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces, const TallyLayout& layout,
+                 PhotonSampler sampler);
     // Trace photons [first, last) and add their contributions to `out`.
     void trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out);
     // Append every ray traced from now on to `sink` (null: stop recording).
@@ -51,7 +51,10 @@ public:
     static constexpr int kInFlight = 8;
 
 private:
-    struct Registration { std::size_t index; std::uint32_t detector; };
+    struct Registration {
+        std::size_t index;
+        std::uint32_t detector;
+    };
     struct Photon {
         std::uint64_t k = 0;
         int band = 0;
@@ -59,7 +62,7 @@ private:
         Vec3f origin;
         Vec3 direction;
         Hit hit;
-        std::vector<Registration> regs;  // detector registrations, counted at the end
+        std::vector<Registration> regs;     // detector registrations, counted at the end
         std::vector<std::size_t> arrivals;  // kRepeats slot of every surface arrival
     };
     static void add_repeats(std::vector<std::size_t>& arrivals, TallyBuffer& out);
@@ -82,7 +85,7 @@ private:
     PhotonSampler sampler_;
     std::vector<std::uint32_t> illuminance_dets_, luminance_dets_, cylinder_dets_;
     std::vector<std::uint32_t> indirect_dets_;  // illuminance detectors of indirect light only (observers' eyes)
-    std::vector<int> cylinder_cells_;  // scratch for check_cylinders
+    std::vector<int> cylinder_cells_;           // scratch for check_cylinders
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));
     std::array<PhotonSampler::Block, PhiloxSampler::kBatch> start_blocks_{};

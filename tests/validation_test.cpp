@@ -487,7 +487,9 @@ TEST(Validation, LuminousOpeningNearField) {
         const std::vector<double> av = area.f64("/detectors/" + name + "/value");
         const std::vector<double> as = area.f64("/detectors/" + name + "/sigma_rel");
         const double z_point = (pv[4] - ref[4]) / (ps[4] * pv[4]);
-        if (h <= kSize) EXPECT_GT(z_point, 20.0) << name << ": the point model should fail this close";
+        if (h <= kSize) {
+            EXPECT_GT(z_point, 20.0) << name << ": the point model should fail this close";
+        }
         std::cout << "[near field] d/size " << h / kSize << ": E " << ref[4] << " lx; area model "
                   << 100.0 * (av[4] / ref[4] - 1.0) << " % +- " << 100.0 * as[4] << " %, point model "
                   << 100.0 * (pv[4] / ref[4] - 1.0) << " % +- " << 100.0 * ps[4] << " %\n";

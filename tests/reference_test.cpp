@@ -154,13 +154,18 @@ TEST(Reference, UnknownAndMisplacedKeysAreRefusedWithTheirNames) {
     // Not in the schema: unknown, with the keys the table does take.
     const std::string unknown = message(base + lamp +
                                         "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
-                                        "radius = 2\n");
-    EXPECT_NE(unknown.find("unknown key 'radius'"), std::string::npos) << unknown;
+                                        "diameter = 2\n");
+    EXPECT_NE(unknown.find("unknown key 'diameter'"), std::string::npos) << unknown;
     EXPECT_NE(unknown.find("half_angle_deg"), std::string::npos) << unknown;
-    // In the schema but not for this type: a rectangle has no radius.
+    // In the schema but not for this type: a rectangle has no radius, nor an illuminance
+    // detector (only cylindrical and semicylindrical ones have).
     const std::string misplaced = message(base + "radius = 1\n" + lamp);
     EXPECT_NE(misplaced.find("key 'radius' does not apply"), std::string::npos) << misplaced;
     EXPECT_NE(misplaced.find("s.toml:"), std::string::npos) << misplaced;
+    const std::string not_cylinder = message(base + lamp +
+                                             "[[detector]]\nname = \"d\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+                                             "radius = 2\n");
+    EXPECT_NE(not_cylinder.find("key 'radius' does not apply"), std::string::npos) << not_cylinder;
     fs::remove_all(dir);
 }
 

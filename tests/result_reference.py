@@ -5,8 +5,9 @@
 
 Every group, dataset and attribute in the files must be documented, and every documented
 one must occur in at least one of the files (so give a result and a checkpoint of a run
-with a sobol sampler, targets and both detector types). Detector groups are matched as
-/detectors/NAME. Exit 1 listing the differences.
+with a sobol sampler, targets, every detector type, a task area and an observer). The
+groups named by the scene are matched as /detectors/NAME, /detectors/NAME/task_areas/AREA
+and /observers/NAME. Exit 1 listing the differences.
 """
 import re
 import sys
@@ -40,9 +41,14 @@ def written(path):
 
     def generic(name):
         parts = name.split("/")
-        if len(parts) >= 3 and parts[1] == "detectors":
+        if len(parts) >= 3 and parts[1] in ("detectors", "observers"):
             parts[2] = "NAME"
+        if len(parts) >= 5 and parts[1] == "detectors" and parts[3] == "task_areas":
+            parts[4] = "AREA"
         return "/".join(parts) or "/"
+
+    # Groups named by the scene are documented as NAME / AREA tables, not as rows.
+    named_by_scene = ("/detectors", "/observers", "/detectors/NAME/task_areas")
 
     def attrs(obj, where):
         for a in obj.attrs:
@@ -57,7 +63,7 @@ def written(path):
             parent = generic(parent or "/")
             if isinstance(item, h5py.Dataset):
                 out.add((parent, leaf, "dataset"))
-            elif parent != "/detectors":  # the NAME groups themselves are not listed
+            elif parent not in named_by_scene:
                 out.add((parent, leaf, "group"))
             attrs(item, generic(full))
 

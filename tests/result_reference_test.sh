@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# docs/REFERENCE.md section 4 against what a run writes: a small sobol run of
-# tests/data/scenes/every_key.toml (illuminance and luminance detectors, three targets)
-# that also writes a checkpoint; tests/result_reference.py compares both files with the tables.
+# docs/REFERENCE.md section 4 against what runs write: a small sobol run of
+# tests/data/scenes/every_key.toml (illuminance and luminance detectors, a task area, three
+# targets) that also writes a checkpoint, and one of tests/data/reference/more_keys.toml
+# (cylindrical with horizontal, semicylindrical, an observer with luminaires in view and
+# notes, a maintenance factor all lights share); tests/result_reference.py compares the
+# three files with the tables.
 #   result_reference_test.sh LUXTRACE WORKDIR
 set -euo pipefail
 lux=$1
@@ -13,5 +16,7 @@ mkdir -p "$work"
     --report-every-photons 20k --checkpoint-every 0.000001 --checkpoint "$work/ck.h5" \
     --output "$work/r.h5" --threads 2 --quiet
 test -f "$work/ck.h5" || { echo "no checkpoint was written" >&2; exit 1; }
-/usr/bin/python3 "$src/tests/result_reference.py" "$src/docs/REFERENCE.md" "$work/r.h5" "$work/ck.h5"
+"$lux" run "$src/tests/data/reference/more_keys.toml" --photons 20k --output "$work/more.h5" --threads 2 --quiet
+/usr/bin/python3 "$src/tests/result_reference.py" "$src/docs/REFERENCE.md" "$work/r.h5" "$work/ck.h5" \
+    "$work/more.h5"
 rm -rf "$work"

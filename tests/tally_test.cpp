@@ -27,11 +27,17 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
                                    TallyLayout::kDirectEven, TallyLayout::kRepeats}) {
                         const std::size_t i = L.surface(t, side, b, s);
                         take(i);
-                        // Each side's slots are one contiguous run (what the reduction packs).
-                        const std::size_t first = L.side_begin(t * TallyLayout::kSides + side);
+                        // Each side's counts are one run, its repeats another (what the
+                        // reduction packs); the counts of a side and band share a 32-byte
+                        // aligned block.
+                        const std::size_t n = L.side_index(t, side);
+                        EXPECT_EQ(L.triangle_of(n), t);
+                        const bool repeats = s == TallyLayout::kRepeats;
+                        const std::size_t first = repeats ? L.repeats_begin(n) : L.counts_begin(n);
                         EXPECT_GE(i, first);
-                        EXPECT_LT(i, first + L.side_slots());
+                        EXPECT_LT(i, first + (repeats ? 3 : 3 * TallyLayout::kCountSlots));
                         EXPECT_LT(i, L.surface_end());
+                        if (!repeats) EXPECT_EQ((i - s) % 4, 0u) << "counts block not 32-byte aligned";
                     }
         const int cells[] = {4, 9};
         const TallyLayout plain(7, 3, {4, 9});
@@ -97,7 +103,9 @@ TEST(LitSides, PackingLeavesOutUnlitSidesAndRestoresTheMessageExactly) {
         std::vector<std::uint64_t> m(L.size() + 3, 0);
         for (std::size_t c = 0; c < TallyLayout::kCounters; ++c) m[c] = g() % 100;
         for (std::size_t i = 0; i < L.sides(); i += static_cast<std::size_t>(lit_every))
-            m[L.side_begin(i) + g() % L.side_slots()] = 1 + g() % 1000;
+            m[L.counts_begin(i) + g() % (L.bands() * TallyLayout::kCountSlots)] = 1 + g() % 1000;
+        for (std::size_t i = 0; i < L.sides(); i += static_cast<std::size_t>(2 * lit_every))
+            m[L.repeats_begin(i) + g() % L.bands()] = 2 * (1 + g() % 100);  // some lit sides have repeats
         for (std::size_t i = L.surface_end(); i < m.size(); ++i) m[i] = g() % 50;
         return m;
     };

@@ -349,9 +349,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         summary.rays = reduced[layout.counter(TallyLayout::kEscaped)];
         for (std::size_t i = 0; i < layout.sides(); ++i)
             for (std::size_t b = 0; b < layout.bands(); ++b)
-                summary.rays +=
-                    reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountOdd] +
-                    reduced[layout.side_begin(i) + b * TallyLayout::kSurfaceSlots + TallyLayout::kCountEven];
+                summary.rays += reduced[layout.side_slot(i, b, TallyLayout::kCountOdd)] +
+                                reduced[layout.side_slot(i, b, TallyLayout::kCountEven)];
         const std::string result_err = attempt_write(run.output, reduced, elapsed, summary.stop_reason, false);
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         std::string ck_err;

@@ -13,8 +13,7 @@ namespace {
 std::uint64_t side_sum(const TallyLayout& L, std::span<const std::uint64_t> data, std::size_t side_index,
                        TallyLayout::SurfaceSlot slot) {
     std::uint64_t n = 0;
-    const std::size_t base = L.side_begin(side_index);
-    for (std::size_t b = 0; b < L.bands(); ++b) n += data[base + b * TallyLayout::kSurfaceSlots + slot];
+    for (std::size_t b = 0; b < L.bands(); ++b) n += data[L.side_slot(side_index, b, slot)];
     return n;
 }
 
@@ -25,11 +24,13 @@ double side_sigma_counts(double s, double x, double n) { return std::sqrt(std::m
 std::vector<double> side_illuminance_lx(const TallyLayout& L, std::span<const std::uint64_t> data,
                                         std::span<const double> area, double e0) {
     std::vector<double> e(L.sides());
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        const std::uint64_t n = side_sum(L, data, i, TallyLayout::kCountOdd) +
-                                side_sum(L, data, i, TallyLayout::kCountEven);
-        e[i] = static_cast<double>(n) * e0 / area[i / TallyLayout::kSides];
-    }
+    for (std::size_t t = 0; t < L.triangles(); ++t)
+        for (std::size_t side = 0; side < TallyLayout::kSides; ++side) {
+            const std::size_t i = L.side_index(t, side);
+            const std::uint64_t n = side_sum(L, data, i, TallyLayout::kCountOdd) +
+                                    side_sum(L, data, i, TallyLayout::kCountEven);
+            e[t * TallyLayout::kSides + side] = static_cast<double>(n) * e0 / area[t];
+        }
     return e;
 }
 
@@ -37,12 +38,15 @@ std::vector<double> side_sigma_lx(const TallyLayout& L, std::span<const std::uin
                                   std::span<const double> area, double e0, std::uint64_t photons) {
     std::vector<double> sigma(L.sides(), std::numeric_limits<double>::quiet_NaN());
     if (photons == 0) return sigma;
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        const double s = static_cast<double>(side_sum(L, data, i, TallyLayout::kCountOdd) +
-                                             side_sum(L, data, i, TallyLayout::kCountEven));
-        const double x = static_cast<double>(side_sum(L, data, i, TallyLayout::kRepeats));
-        sigma[i] = side_sigma_counts(s, x, static_cast<double>(photons)) * e0 / area[i / TallyLayout::kSides];
-    }
+    for (std::size_t t = 0; t < L.triangles(); ++t)
+        for (std::size_t side = 0; side < TallyLayout::kSides; ++side) {
+            const std::size_t i = L.side_index(t, side);
+            const double s = static_cast<double>(side_sum(L, data, i, TallyLayout::kCountOdd) +
+                                                 side_sum(L, data, i, TallyLayout::kCountEven));
+            const double x = static_cast<double>(side_sum(L, data, i, TallyLayout::kRepeats));
+            sigma[t * TallyLayout::kSides + side] = side_sigma_counts(s, x, static_cast<double>(photons)) * e0 /
+                                                    area[t];
+        }
     return sigma;
 }
 
@@ -57,7 +61,7 @@ GlobalEstimate estimate_global(const TallyLayout& L, std::span<const std::uint64
         const std::uint64_t odd = side_sum(L, data, i, TallyLayout::kCountOdd);
         const std::uint64_t even = side_sum(L, data, i, TallyLayout::kCountEven);
         if (odd + even == 0) continue;
-        const double a = area[i / TallyLayout::kSides];
+        const double a = area[L.triangle_of(i)];
         const double k = e0 / a;
         const double e_odd = 2.0 * static_cast<double>(odd) * k;
         const double e_even = 2.0 * static_cast<double>(even) * k;

@@ -9,7 +9,7 @@ namespace luxtrace {
 TallyLayout::TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
                          std::size_t replicates)
     : triangles_(triangles), bands_(bands), replicates_(replicates) {
-    size_ = kCounters + triangles * kSides * bands * kSurfaceSlots;
+    size_ = kCounters + triangles * kSides * bands * kSurfaceSlots;  // counts, then repeats
     for (int cells : detector_cells) {
         det_offset_.push_back(size_);
         det_cells_.push_back(static_cast<std::size_t>(cells));
@@ -39,11 +39,20 @@ namespace {
 bool bit(std::span<const std::uint64_t> mask, std::size_t i) { return ((mask[i / 64] >> (i % 64)) & 1u) != 0; }
 }  // namespace
 
+// A side's two runs of slots, its counts and its repeats (tally.hpp).
+struct SideRuns {
+    std::size_t begin[2], length[2];
+};
+SideRuns runs_of(const TallyLayout& L, std::size_t i) {
+    return {{L.counts_begin(i), L.repeats_begin(i)}, {L.bands() * TallyLayout::kCountSlots, L.bands()}};
+}
+
 std::vector<std::uint64_t> lit_side_mask(const TallyLayout& L, std::span<const std::uint64_t> message) {
+    // A side with repeats has counts: its counts alone tell.
     std::vector<std::uint64_t> mask((L.sides() + 63) / 64, 0);
-    const std::size_t n = L.side_slots();
+    const std::size_t n = L.bands() * TallyLayout::kCountSlots;
     for (std::size_t i = 0; i < L.sides(); ++i) {
-        const std::uint64_t* s = message.data() + L.side_begin(i);
+        const std::uint64_t* s = message.data() + L.counts_begin(i);
         std::uint64_t any = 0;
         for (std::size_t k = 0; k < n; ++k) any |= s[k];
         if (any != 0) mask[i / 64] |= std::uint64_t{1} << (i % 64);
@@ -53,31 +62,33 @@ std::vector<std::uint64_t> lit_side_mask(const TallyLayout& L, std::span<const s
 
 void pack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
                     std::vector<std::uint64_t>& packed) {
-    const std::size_t n = L.side_slots();
     packed.clear();
-    packed.insert(packed.end(), message.begin(), message.begin() + static_cast<std::ptrdiff_t>(L.side_begin(0)));
-    for (std::size_t i = 0; i < L.sides(); ++i)
-        if (bit(mask, i)) {
-            const auto s = message.begin() + static_cast<std::ptrdiff_t>(L.side_begin(i));
-            packed.insert(packed.end(), s, s + static_cast<std::ptrdiff_t>(n));
-        }
-    packed.insert(packed.end(), message.begin() + static_cast<std::ptrdiff_t>(L.surface_end()), message.end());
+    auto put = [&](std::size_t from, std::size_t count) {
+        const auto s = message.begin() + static_cast<std::ptrdiff_t>(from);
+        packed.insert(packed.end(), s, s + static_cast<std::ptrdiff_t>(count));
+    };
+    put(0, L.counts_begin(0));
+    for (int run = 0; run < 2; ++run)
+        for (std::size_t i = 0; i < L.sides(); ++i)
+            if (bit(mask, i)) put(runs_of(L, i).begin[run], runs_of(L, i).length[run]);
+    put(L.surface_end(), message.size() - L.surface_end());
 }
 
 void unpack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> packed,
                       std::span<std::uint64_t> message) {
-    const std::size_t n = L.side_slots();
     auto in = packed.begin();
-    auto take = [&](std::size_t count, std::size_t to) {
+    auto take = [&](std::size_t to, std::size_t count) {
         std::copy(in, in + static_cast<std::ptrdiff_t>(count), message.begin() + static_cast<std::ptrdiff_t>(to));
         in += static_cast<std::ptrdiff_t>(count);
     };
-    take(L.side_begin(0), 0);
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        if (bit(mask, i)) take(n, L.side_begin(i));
-        else std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(L.side_begin(i)), n, 0);
-    }
-    take(message.size() - L.surface_end(), L.surface_end());
+    take(0, L.counts_begin(0));
+    for (int run = 0; run < 2; ++run)
+        for (std::size_t i = 0; i < L.sides(); ++i) {
+            const SideRuns r = runs_of(L, i);
+            if (bit(mask, i)) take(r.begin[run], r.length[run]);
+            else std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(r.begin[run]), r.length[run], 0);
+        }
+    take(L.surface_end(), message.size() - L.surface_end());
 }
 
 TallyBuffer::TallyBuffer(TallyStore& store) : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}

@@ -44,7 +44,8 @@ struct GlobalEstimate {
     const char* estimator_name() const { return moment_primary ? "second_moment" : "odd_even"; }
 };
 
-// Band-summed illuminance of every triangle side [2 t + side]; E0 = flux per photon (lm).
+// Band-summed illuminance of every triangle side, [2 t + side] (the result file's order,
+// not the tallies'); E0 = flux per photon (lm).
 std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                         std::span<const double> area_m2, double e0);
 // Per side [2 t + side]: the standard error of the band-summed illuminance from the second

@@ -35,7 +35,7 @@ public:
         kRepeats = 4,
         kSurfaceSlots = 5
     };
-    static constexpr std::size_t kSides = 2;
+    static constexpr std::size_t kSides = 2, kCountSlots = 4;
     TallyLayout() = default;
     // replicates: R of the sobol sampler (docs/QMC.md), 0 for random; with R > 0 every
     // detector also keeps per replicate its cells' registrations and its total.
@@ -49,15 +49,27 @@ public:
     std::size_t detector_count() const { return det_offset_.size(); }
 
     std::size_t counter(Counter c) const { return c; }
+    // Memory layout: the four counts of every side and band first, all front sides, then
+    // all back sides (32 bytes per side and band, aligned: one cache line touched per
+    // arrival, and a closed room's lit fronts lie together as one-sided maps did), then
+    // the repeats of every side and band, touched only when a photon comes back.
     std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s) const {
-        return side_begin(tri * kSides + side) + band * kSurfaceSlots + s;
+        return side_slot(side_index(tri, side), band, s);
     }
-    // The slots of side `side_index` = 2 tri + side lie in [side_begin, side_begin + side_slots()).
-    std::size_t side_begin(std::size_t side_index) const { return kCounters + side_index * side_slots(); }
-    std::size_t side_slots() const { return bands_ * kSurfaceSlots; }
+    // Sides are numbered side * T + tri; `i` below is such a number.
+    std::size_t side_index(std::size_t tri, std::size_t side) const { return side * triangles_ + tri; }
+    std::size_t triangle_of(std::size_t i) const { return i % triangles_; }
     std::size_t sides() const { return triangles_ * kSides; }
+    std::size_t side_slot(std::size_t i, std::size_t band, SurfaceSlot s) const {
+        return s == kRepeats ? repeats_begin(i) + band : counts_begin(i) + band * kCountSlots + s;
+    }
+    // Side i's counts lie in [counts_begin(i), + bands * kCountSlots), its repeats in
+    // [repeats_begin(i), + bands).
+    std::size_t counts_begin(std::size_t i) const { return kCounters + i * bands_ * kCountSlots; }
+    std::size_t repeats_begin(std::size_t i) const { return counts_begin(sides()) + i * bands_; }
+    std::size_t side_slots() const { return bands_ * kSurfaceSlots; }  // per side, both parts
     // Everything after the surface map (detectors, replicates) starts here.
-    std::size_t surface_end() const { return side_begin(sides()); }
+    std::size_t surface_end() const { return repeats_begin(sides()); }
     // n_c of cell `cell` in `band`; q_c is the next slot.
     std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band) const {
         return det_offset_[det] + (cell * bands_ + band) * 2;

@@ -15,11 +15,18 @@ import numpy as np
 from .result import FRONT
 
 _SEAL_BYTES = 512
-# Integer attributes the binary writes as uint64 (every other number is float64).
+# Integer attributes the binary writes as uint64 (every other number is float64). Values
+# that are integers already (read from a file as such, or counted here) stay uint64 too,
+# so attributes added to the binary later keep their type without a change here.
 _U64 = {"format_version", "seed", "ranks", "threads_per_rank", "photons", "replicates", "replicate_photons",
         "photon_layout", "reductions", "maintenance_factor_uniform", "seeds", "photons_escaped",
         "photons_absorbed", "photons_truncated", "cells", "photons_received", "error_dof", "replicate_total",
         "budget", "layout_size", "triangles", "bands"}
+
+
+def _is_integer(v):
+    a = np.asarray(v)
+    return a.dtype.kind in "iu" and not isinstance(v, bool)
 
 
 def _set_attrs(obj, attrs):
@@ -28,7 +35,7 @@ def _set_attrs(obj, attrs):
             obj.attrs[k] = v
         elif isinstance(v, (list, tuple)) and v and all(isinstance(x, str) for x in v):
             obj.attrs.create(k, list(v), dtype=h5py.string_dtype())
-        elif k in _U64:
+        elif k in _U64 or _is_integer(v):
             obj.attrs[k] = np.asarray(v, dtype=np.uint64)
         else:
             obj.attrs[k] = np.asarray(v, dtype=float)

@@ -85,7 +85,7 @@ RankWork::Next RankWork::next_chunk(std::uint64_t max, PhotonRange& out) {
 
 bool RankWork::fence_reached() const {
     std::lock_guard lock(mutex_);
-    return item_.empty() || handed_out_ >= fence_;
+    return !item_.empty() && handed_out_ >= fence_;
 }
 
 void RankWork::set_fence(std::uint64_t handed_out) {

@@ -504,7 +504,8 @@ struct Loader {
     // half-open and 0-based like a run target's [i0:i1,j0:j1].
     void parse_task_areas(TableReader& r, const toml::array& areas, Detector& d) {
         if (d.type != DetectorType::illuminance)
-            r.fail("task_area", "task areas belong to illuminance detectors (a luminance grid has no uniformity U0)");
+            r.fail("task_area", std::string("task areas belong to illuminance detectors (this one is ") +
+                                    detector_type_name(d.type) + ": no uniformity U0 is computed for it)");
         for (std::size_t k = 0; k < areas.size(); ++k) {
             const toml::table* t = areas[k].as_table();
             if (t == nullptr)

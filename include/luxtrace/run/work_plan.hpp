@@ -64,7 +64,10 @@ public:
     // fixed photon counts); kNoFence lifts it.
     static constexpr std::uint64_t kNoFence = UINT64_MAX;
     void set_fence(std::uint64_t handed_out);
-    // Every photon up to the fence has been handed out, or the work is exhausted.
+    // Every photon up to the fence has been handed out and work remains beyond it. Once
+    // the work runs out, the end is the pool's threads all going idle instead: a thread
+    // still tracing the last chunk would otherwise make every check true at once, and the
+    // run would reduce again and again until that thread finished (and re-pause it).
     bool fence_reached() const;
     // Valid while no chunk is being traced (all threads paused or finished).
     RankProgress progress() const;

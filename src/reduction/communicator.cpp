@@ -46,6 +46,7 @@ struct PendingReduce::Impl {
 };
 
 PendingReduce::PendingReduce(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PendingReduce PendingReduce::completed() { return PendingReduce(std::make_unique<Impl>()); }
 PendingReduce::~PendingReduce() {
     if (impl_) wait();
 }

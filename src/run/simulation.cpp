@@ -249,7 +249,13 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     // a closed room's walls send their lit side only. Rank 0 restores the full message.
     std::vector<std::uint64_t> side_mask, packed, packed_reduced;
     auto start_reduce = [&]() -> PendingReduce {
-        if (R == 1) return comm.ireduce_sum_to_root(snapshot, reduced);
+        if (R == 1) {
+            // One rank: the sum is the snapshot itself. Hand its buffer over instead of
+            // copying the whole tally array (80 MB on a million triangles) every time.
+            reduced.swap(snapshot);
+            snapshot.resize(reduced.size());
+            return PendingReduce::completed();
+        }
         side_mask = lit_side_mask(layout, snapshot);
         comm.allreduce_or(side_mask);
         pack_lit_sides(layout, side_mask, snapshot, packed);

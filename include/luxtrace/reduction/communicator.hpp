@@ -12,6 +12,8 @@ class PendingReduce {
 public:
     struct Impl;
     explicit PendingReduce(std::unique_ptr<Impl> impl);
+    // A reduction that needed no message (one rank).
+    static PendingReduce completed();
     ~PendingReduce();
     PendingReduce(PendingReduce&&) noexcept;
     PendingReduce& operator=(PendingReduce&&) noexcept;

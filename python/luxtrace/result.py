@@ -48,6 +48,17 @@ def _attrs(obj):
     return {k: _plain(v) for k, v in obj.attrs.items()}
 
 
+def crc32_and_length(f):
+    """CRC-32 and length of what remains of the open binary file ``f`` (the seal's sums)."""
+    crc, length = 0, 0
+    while True:
+        block = f.read(1 << 20)
+        if not block:
+            return crc, length
+        crc = zlib.crc32(block, crc)
+        length += len(block)
+
+
 def check_seal(path):
     """Check the seal luxtrace 0.2 and later put in a file's first 512 bytes (SPEC §4).
 
@@ -68,13 +79,7 @@ def check_seal(path):
             want_crc, want_length = int(words[1], 16), int(words[3])
         except (ValueError, IndexError):
             raise ResultError(f"{path}: damaged file: its luxtrace seal cannot be read") from None
-        crc, length = 0, 0
-        while True:
-            block = f.read(1 << 20)
-            if not block:
-                break
-            crc = zlib.crc32(block, crc)
-            length += len(block)
+        crc, length = crc32_and_length(f)
     if length != want_length:
         raise ResultError(f"{path}: damaged file: it has {length} bytes after its seal, {want_length} when "
                           "luxtrace wrote it (cut short, or appended to)")

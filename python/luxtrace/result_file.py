@@ -7,12 +7,11 @@ and renamed, and sealed: a 512-byte user block holding the CRC-32 and length of 
 so ``luxtrace info``, ``render`` and ``export-xdmf`` read it like one of theirs.
 """
 import os
-import zlib
 
 import h5py
 import numpy as np
 
-from .result import FRONT
+from .result import FRONT, crc32_and_length
 
 _SEAL_BYTES = 512
 # Integer attributes the binary writes as uint64 (every other number is float64). Values
@@ -114,13 +113,7 @@ def _seal(path):
     bytes (zero-padded), over everything after them."""
     with open(path, "r+b") as f:
         f.seek(_SEAL_BYTES)
-        crc, length = 0, 0
-        while True:
-            block = f.read(1 << 20)
-            if not block:
-                break
-            crc = zlib.crc32(block, crc)
-            length += len(block)
+        crc, length = crc32_and_length(f)
         line = f"luxtrace-seal v1 crc32 {crc:08x} length {length}\n".encode()
         f.seek(0)
         f.write(line + bytes(_SEAL_BYTES - len(line)))

@@ -16,6 +16,14 @@ common=(--photons 300000 --seed 7 --quiet --sampler "$sampler")
 "${mpi[@]}" -n 2 "$lux" run "$scene" "${common[@]}" --threads 1 --output "$work/r2t1.h5"
 "${mpi[@]}" -n 3 "$lux" run "$scene" "${common[@]}" --threads 2 --output "$work/r3t2.h5"
 "$lux" run "$scene" --photons 300000 --seed 8 --quiet --sampler "$sampler" --threads 2 --output "$work/seed8.h5"
+# A run stopped by a target at a reduction at photon counts holds exactly that
+# reduction's photons, whatever the threads and their timing at the end. (Not across rank
+# counts: each rank traces its own share of the photon indices between reductions.)
+target=(--photons 1e9 --target 0.03 --report-every-photons 20000 --seed 7 --quiet --sampler "$sampler")
+"$lux" run "$scene" "${target[@]}" --threads 1 --output "$work/t1.h5"
+"$lux" run "$scene" "${target[@]}" --threads 2 --output "$work/t2.h5"
+"${mpi[@]}" -n 2 "$lux" run "$scene" "${target[@]}" --threads 1 --output "$work/t3.h5"
+"${mpi[@]}" -n 2 "$lux" run "$scene" "${target[@]}" --threads 2 --output "$work/t4.h5"
 status=0
 for other in r1t2 r2t1 r3t2; do
     if "$cmp" "$work/r1t1.h5" "$work/$other.h5"; then echo "identical: r1t1 vs $other"
@@ -36,6 +44,11 @@ sys.exit(0 if unlit > 0 and int(a["reduction_message_words"]) == want else 1)
 PY
 then echo "the reduction message leaves out the unlit sides"
 else echo "FAIL: the reduction message is not the lit sides' tallies"; status=1; fi
+for pair in "t1 t2" "t3 t4"; do
+    set -- $pair
+    if "$cmp" "$work/$1.h5" "$work/$2.h5" >/dev/null; then echo "identical: a target met at photon counts, $1 vs $2"
+    else echo "FAIL: the target-stopped runs $1 and $2 differ"; status=1; fi
+done
 if "$cmp" "$work/r1t1.h5" "$work/seed8.h5" >/dev/null; then
     echo "FAIL: seeds 7 and 8 gave identical tallies"; status=1
 else echo "different seeds differ, as they must"; fi

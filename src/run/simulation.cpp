@@ -276,7 +276,9 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     // reductions (the workers trace meanwhile).
     double stall_total_s = 0.0, reduce_total_s = 0.0;
     std::uint64_t reductions = 0;
-    std::vector<double> decision(4, 0.0);
+    // stop, checkpoint, exit code, next period, and whether the result is this very
+    // reduction's snapshot (below).
+    std::vector<double> decision(5, 0.0);
     while (true) {
         const double due = comm.wtime() + period;
         while (comm.wtime() < due && !pool.exhausted() && !pool.failed() &&
@@ -294,7 +296,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         reduce_total_s += comm.wtime() - r0;
         if (comm.is_root() && (reduced[kInputFault] > 0 || reduced[kInternalFault] > 0)) {
             // A rank could not trace: its tallies are incomplete, nothing is written.
-            decision = {1.0, 0.0, reduced[kInternalFault] > 0 ? 1.0 : 2.0, period};
+            decision = {1.0, 0.0, reduced[kInternalFault] > 0 ? 1.0 : 2.0, period, 0.0};
             summary.stop_reason = "error";
         } else if (comm.is_root()) {
             ReductionInput in;
@@ -309,8 +311,13 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             if (show) {
                 out << (tty ? "\r" : "") << control->progress_line() << (tty ? "\033[K" : "\n") << std::flush;
             }
-            decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code),
-                        d.next_period_s};
+            // With reductions at photon counts, a run that ends there (a target met, the
+            // budget traced) keeps exactly that snapshot's photons: the threads' chunks
+            // beyond it depend on timing, and the result must not (README: the same on any
+            // machine).
+            const bool keep_snapshot = fence_step > 0 && d.stop && d.exit_code == 0 && !d.checkpoint;
+            decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code), d.next_period_s,
+                        keep_snapshot ? 1.0 : 0.0};
             summary.stop_reason = d.reason;
             // A periodic checkpoint comes from this exact snapshot; a final one (exit 3)
             // from the final reduction below, which holds more photons.
@@ -339,9 +346,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         if (pool.failed()) summary.error = describe(pool.error());
         return summary;
     }
-    fill_snapshot(false, false);
-    start_reduce().wait();
-    finish_reduce();
+    if (decision[4] == 0.0) {
+        fill_snapshot(false, false);
+        start_reduce().wait();
+        finish_reduce();
+    }
     const double elapsed = comm.allreduce_max(comm.wtime() - t0);
     info.reductions = reductions;
     info.reduction_stall_s = comm.allreduce_max(stall_total_s);

@@ -90,22 +90,18 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
 bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out) {
     const Hit& hit = p.hit;
     const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
-    if (!illuminance_dets_.empty()) {
+    // Illuminance detectors the flight crosses.
+    auto cross = [&](const std::vector<std::uint32_t>& dets) {
         const Vec3 o = embree_.to_scene(p.origin);
-        for (std::uint32_t di : illuminance_dets_) {
+        for (std::uint32_t di : dets) {
             const int cell = scene_.detectors[di].crossing(o, p.direction, t_max);
             if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
         }
-    }
+    };
+    if (!illuminance_dets_.empty()) cross(illuminance_dets_);
     if (!cylinder_dets_.empty()) check_cylinders(p, t_max);
     // Indirect only: the flight from the light (bounce 0) is the direct one.
-    if (!indirect_dets_.empty() && p.bounce > 0) {
-        const Vec3 o = embree_.to_scene(p.origin);
-        for (std::uint32_t di : indirect_dets_) {
-            const int cell = scene_.detectors[di].crossing(o, p.direction, t_max);
-            if (cell >= 0) p.regs.push_back({layout_.detector_n(di, cell, p.band), di});
-        }
-    }
+    if (!indirect_dets_.empty() && p.bounce > 0) cross(indirect_dets_);
     if (!hit.found) {
         finish(p, TallyLayout::kEscaped, out);
         return false;

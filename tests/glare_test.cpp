@@ -90,16 +90,12 @@ TEST(Ugr, FormulaAndError) {
 
 class ObserverKeys : public ::testing::Test {
 protected:
+    test_support::ScratchDir scratch_{std::string("glare_test_") +
+                                      ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+    const fs::path& dir_ = scratch_.path();
+
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("luxtrace_glare_test_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
         fs::copy_file(fs::path(LUXTRACE_TEST_DATA_DIR) / "glare" / "panel_600.ies", dir_ / "panel_600.ies");
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
     }
     // A grey room with one panel at (3, 2, 2.9) and whatever `extra` adds.
     fs::path write(const std::string& extra) const {
@@ -124,7 +120,6 @@ protected:
             EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
         }
     }
-    fs::path dir_;
 };
 
 TEST_F(ObserverKeys, DefaultsAndTheEyeDetector) {
@@ -220,17 +215,9 @@ fs::path scene(const std::string& name) { return fs::path(LUXTRACE_TEST_DATA_DIR
 
 class GlareRun : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("luxtrace_glare_run_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-    fs::path dir_;
+    test_support::ScratchDir scratch_{std::string("glare_run_") +
+                                      ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+    const fs::path& dir_ = scratch_.path();
 };
 
 // One panel's terms seen from the eye, from first principles: a flat Lambertian 0.6 m

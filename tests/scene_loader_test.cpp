@@ -8,6 +8,8 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/ies.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -276,16 +278,10 @@ std::string cube_obj() { return data("scenes/cube.obj").string(); }
 
 class Loader : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("luxtrace_scene_test_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
+    test_support::ScratchDir scratch_{std::string("scene_test_") +
+                                      ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+    const fs::path& dir_ = scratch_.path();
+
     fs::path write(const std::string& name, const std::string& text) const {
         std::ofstream(dir_ / name) << text;
         return dir_ / name;
@@ -313,7 +309,6 @@ protected:
                 EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
         }
     }
-    fs::path dir_;
 };
 
 TEST_F(Loader, DefaultsOfAMinimalScene) {

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the tests: running the luxtrace binary, chi-square limits.
+// Helpers shared by the tests: scratch directories, running the luxtrace binary,
+// chi-square limits.
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cmath>
@@ -10,6 +11,27 @@
 #include <string>
 
 namespace luxtrace::test_support {
+
+// A scratch directory luxtrace_<tag>_<pid> in the system's temporary folder, empty when
+// made and removed with everything in it at the end of its scope.
+class ScratchDir {
+public:
+    explicit ScratchDir(const std::string& tag)
+        : path_(std::filesystem::temp_directory_path() / ("luxtrace_" + tag + "_" + std::to_string(::getpid()))) {
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
 
 struct CommandOutcome {
     int code;         // exit code, -1 if the process did not exit normally

@@ -9,6 +9,8 @@
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/io/result_file.hpp"
 
+#include "test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,23 +40,9 @@ namespace fs = std::filesystem;
 constexpr double kZMax = 5.0;
 
 // A scratch directory for one test's result file, removed afterwards.
-class TempDir {
+class TempDir : public test_support::ScratchDir {
 public:
-    explicit TempDir(const std::string& tag)
-        : path_(fs::temp_directory_path() / ("luxtrace_validation_" + tag + "_" + std::to_string(::getpid()))) {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
+    explicit TempDir(const std::string& tag) : ScratchDir("validation_" + tag) {}
 };
 
 fs::path scene_file(const std::string& name) {

@@ -377,7 +377,7 @@ TEST_F(Cli, RenderInALeanBuildSaysItHasNoRendering) {
 TEST_F(Cli, ReductionsAtPhotonCountsAreOnePerStep) {
     const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "room.toml";
     for (int i = 0; i < 10; ++i) {
-        const fs::path out = dir / ("r" + std::to_string(i) + ".h5");
+        const fs::path out = dir / (std::to_string(i) + ".h5");
         const Outcome o = run("run " + scene.string() +
                               " --photons 20k --report-every-photons 10k --threads 2 "
                               "--quiet --seed " +

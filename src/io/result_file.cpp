@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 namespace luxtrace {
 
@@ -112,34 +113,20 @@ hid_t group(hid_t parent, const std::string& name) {
     return H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
 }
 
+// The HDF5 types of the numbers luxtrace stores: in memory, and in the file (fixed
+// little-endian, whatever the machine).
 template <class T>
-hid_t native_type();
-template <>
-hid_t native_type<double>() {
-    return H5T_NATIVE_DOUBLE;
+hid_t native_type() {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::uint64_t> || std::is_same_v<T, std::uint32_t>);
+    if constexpr (std::is_same_v<T, double>) return H5T_NATIVE_DOUBLE;
+    else if constexpr (std::is_same_v<T, std::uint64_t>) return H5T_NATIVE_UINT64;
+    else return H5T_NATIVE_UINT32;
 }
-template <>
-hid_t native_type<std::uint64_t>() {
-    return H5T_NATIVE_UINT64;
-}
-template <>
-hid_t native_type<std::uint32_t>() {
-    return H5T_NATIVE_UINT32;
-}
-
 template <class T>
-hid_t file_type();
-template <>
-hid_t file_type<double>() {
-    return H5T_IEEE_F64LE;
-}
-template <>
-hid_t file_type<std::uint64_t>() {
-    return H5T_STD_U64LE;
-}
-template <>
-hid_t file_type<std::uint32_t>() {
-    return H5T_STD_U32LE;
+hid_t file_type() {
+    if constexpr (std::is_same_v<T, double>) return H5T_IEEE_F64LE;
+    else if constexpr (std::is_same_v<T, std::uint64_t>) return H5T_STD_U64LE;
+    else return H5T_STD_U32LE;
 }
 
 template <class T>

@@ -18,6 +18,12 @@ rm -rf "$work"; mkdir -p "$work"
 mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tcp_if_include lo)
 endless=1000000000000
 fail() { echo "FAIL: $*"; exit 1; }
+# An endless run must not outlive the test (a failure or ctest's timeout would leave it
+# tracing): on exit, kill the background job still running and its ranks.
+job=
+cleanup() { [ -n "$job" ] && kill -0 "$job" 2>/dev/null && { pkill -9 -P "$job"; kill -9 "$job"; } 2>/dev/null; true; }
+trap cleanup EXIT
+trap 'exit 143' TERM
 
 # Waits (without a deadline of its own: ctest's timeout is the bound) until the command
 # "$@" succeeds or the job ends; returns 1 if the job ended first.
@@ -36,7 +42,10 @@ covered() { "$lux" info "$1" | sed -n 's/^checkpoint .* below index \([0-9]*\),.
     --report-every-photons 100k --checkpoint-every 0.001 --output "$work/a.h5" --checkpoint "$work/a.ck.h5" &
 job=$!
 wait_for $job test -f "$work/a.ck.h5" || fail "the run ended before writing a checkpoint"
-victim=$(pgrep -f "luxtrace run .*a.ck.h5" | grep -v "^$job$" | tail -1)
+# A rank of this run only: the ranks are mpiexec's children. (A pattern over command lines
+# also matched the other sampler's copy of this test, run at the same time by ctest -j2,
+# and killed a rank of its restart.)
+victim=$(pgrep -P "$job" | tail -1)
 [ -n "$victim" ] || fail "no rank to kill"
 kill -9 "$victim"
 wait $job; echo "killed run exited with $?"

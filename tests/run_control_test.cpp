@@ -201,7 +201,7 @@ std::vector<std::uint64_t> trace_sobol(const Scene& scene, const EmbreeScene& em
     while (!pool.exhausted() && !pool.failed()) std::this_thread::yield();
     pool.stop();
     EXPECT_FALSE(pool.failed());
-    return store.data();
+    return {store.data().begin(), store.data().end()};
 }
 
 // A run of `scene` (its sampler, budget and output as set) on 2 threads into a fresh
@@ -268,7 +268,7 @@ Calibration calibrate_sobol_cells(const std::string& scene_file) {
     std::vector<std::vector<double>> value(cells), var_est(cells), var_eq8(cells);
     for (int seed = 1; seed <= kSeeds; ++seed) {
         TallyStore store{TallyLayout(scene)};
-        store.data() = trace_sobol(scene, embree, N, static_cast<std::uint64_t>(seed) * 7919, 2);
+        store.assign(trace_sobol(scene, embree, N, static_cast<std::uint64_t>(seed) * 7919, 2));
         const DetectorEstimate e = estimate_detector(det, 0, layout, store.data(), 1.0, N);
         EXPECT_TRUE(e.replicate_spread);
         EXPECT_EQ(e.dof, static_cast<int>(scene.run.replicates) - 1);

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <random>
 #include <set>
 #include <thread>
@@ -37,7 +41,9 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
                         EXPECT_GE(i, first);
                         EXPECT_LT(i, first + (repeats ? 3 : 3 * TallyLayout::kCountSlots));
                         EXPECT_LT(i, L.surface_end());
-                        if (!repeats) EXPECT_EQ((i - s) % 4, 0u) << "counts block not 32-byte aligned";
+                        if (!repeats) {
+                            EXPECT_EQ((i - s) % 4, 0u) << "counts block not 32-byte aligned";
+                        }
                     }
         const int cells[] = {4, 9};
         const TallyLayout plain(7, 3, {4, 9});
@@ -90,7 +96,7 @@ TEST(TallyBuffer, ThreadedBuffersGiveExactSerialSums) {
             }
         });
     pool.clear();  // joins; buffers flushed by their destructors
-    EXPECT_EQ(store.data(), expected);
+    EXPECT_EQ(std::vector<std::uint64_t>(store.data().begin(), store.data().end()), expected);
 }
 
 TEST(LitSides, PackingLeavesOutUnlitSidesAndRestoresTheMessageExactly) {
@@ -130,4 +136,36 @@ TEST(LitSides, PackingLeavesOutUnlitSidesAndRestoresTheMessageExactly) {
     std::vector<std::uint64_t> out(a.size(), 12345);  // overwritten everywhere
     unpack_lit_sides(L, mask, sum, out);
     for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(out[i], a[i] + b[i]) << "word " << i;
+}
+
+// The store's memory: zero without being written, cache-line aligned, and untouched pages
+// not resident (a closed room's back sides cost no memory).
+TEST(WordArray, ZeroAlignedAndResidentOnlyWhereWritten) {
+    const long page = sysconf(_SC_PAGESIZE);
+    const std::size_t words = std::size_t{8} << 20;  // 64 MiB
+    WordArray a(words);
+    ASSERT_EQ(a.size(), words);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % 64, 0u);
+    a[12345] = 7;
+    a[words - 1] = 9;
+    const std::size_t pages = (words * 8 + page - 1) / page;
+    std::vector<unsigned char> resident(pages);
+    ASSERT_EQ(mincore(a.data(), pages * page, resident.data()), 0);
+    std::size_t in_memory = 0;
+    for (unsigned char r : resident) in_memory += r & 1u;
+    EXPECT_LE(in_memory, 4u) << "of " << pages << " pages";
+    std::uint64_t sum = 0;
+    for (std::uint64_t w : a) sum += w;
+    EXPECT_EQ(sum, 16u);
+
+    WordArray copy(a);
+    EXPECT_TRUE(std::equal(a.begin(), a.end(), copy.begin(), copy.end()));
+    copy[0] = 1;
+    EXPECT_EQ(a[0], 0u);
+    WordArray moved(std::move(copy));
+    EXPECT_EQ(copy.size(), 0u);
+    EXPECT_EQ(moved[0] + moved[12345], 8u);
+    moved = WordArray(3);
+    EXPECT_EQ(moved.size(), 3u);
+    EXPECT_EQ(moved[0] + moved[1] + moved[2], 0u);
 }

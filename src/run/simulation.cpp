@@ -98,7 +98,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         if (ck.seed != run.seed || ck.sampler != run.sampler)
             throw InputError(opt.restart + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " +
                              ck.sampler + "; restart with the same (drop --seed/--sampler)");
-        if (comm.is_root()) store.data() = ck.tallies;
+        if (comm.is_root()) store.assign(ck.tallies);
         for (std::size_t i = 0; i + 1 < ck.done.size(); i += 2) done_before.push_back({ck.done[i], ck.done[i + 1]});
         // A restart may set a new budget (--photons), but not one below photons it holds.
         std::uint64_t highest = 0;
@@ -229,6 +229,8 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     // The message: this rank's tallies, its progress and its flags. Call only while no
     // thread traces (paused or stopped), so the copy and the progress agree exactly.
     auto fill_snapshot = [&](bool signalled, bool idle) {
+        // One rank: the previous reduction's buffer comes back (start_reduce).
+        if (snapshot.empty()) snapshot.swap(reduced);
         std::copy(store.data().begin(), store.data().end(), snapshot.begin());
         std::fill(snapshot.begin() + static_cast<std::ptrdiff_t>(S), snapshot.end(), 0);
         const RankProgress p = work.progress();
@@ -250,10 +252,11 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
     std::vector<std::uint64_t> side_mask, packed, packed_reduced;
     auto start_reduce = [&]() -> PendingReduce {
         if (R == 1) {
-            // One rank: the sum is the snapshot itself. Hand its buffer over instead of
-            // copying the whole tally array (80 MB on a million triangles) every time.
+            // One rank: the sum is the snapshot itself. Its buffer becomes `reduced`,
+            // and returns to be the next snapshot once the root is done with it: one copy
+            // of the tallies besides the store, not two (80 MB on a million triangles,
+            // and as many page faults at the first reduction).
             reduced.swap(snapshot);
-            snapshot.resize(reduced.size());
             return PendingReduce::completed();
         }
         side_mask = lit_side_mask(layout, snapshot);
@@ -283,7 +286,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         const double due = comm.wtime() + period;
         while (comm.wtime() < due && !pool.exhausted() && !pool.failed() &&
                !(opt.signal != nullptr && opt.signal->load() != 0) && !(fence_step > 0 && work.fence_reached()))
-            std::this_thread::sleep_for(std::chrono::milliseconds(fence_step > 0 ? 1 : 5));
+            pool.wait_for_park(std::min(0.005, std::max(0.0, due - comm.wtime())));
         const double s0 = comm.wtime();
         take_snapshot();
         stall_s = comm.wtime() - s0;
@@ -314,8 +317,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             // With reductions at photon counts, a run that ends there (a target met, the
             // budget traced) keeps exactly that snapshot's photons: the threads' chunks
             // beyond it depend on timing, and the result must not (README: the same on any
-            // machine).
-            const bool keep_snapshot = fence_step > 0 && d.stop && d.exit_code == 0 && !d.checkpoint;
+            // machine). A snapshot taken with every rank out of work holds every photon
+            // already: no second copy of the tallies is needed either.
+            const bool keep_snapshot = (fence_step > 0 || in.all_ranks_idle) && d.stop && d.exit_code == 0 &&
+                                       !d.checkpoint;
             decision = {d.stop ? 1.0 : 0.0, d.checkpoint ? 1.0 : 0.0, static_cast<double>(d.exit_code), d.next_period_s,
                         keep_snapshot ? 1.0 : 0.0};
             summary.stop_reason = d.reason;

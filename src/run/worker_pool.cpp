@@ -3,6 +3,8 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/sampler/sampler.hpp"
 
+#include <chrono>
+
 namespace luxtrace {
 
 WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
@@ -82,6 +84,12 @@ void WorkerPool::pause() {
     std::unique_lock lock(mutex_);
     pause_requested_ = true;
     cv_main_.wait(lock, [&] { return parked_ == static_cast<int>(threads_.size()); });
+}
+
+void WorkerPool::wait_for_park(double max_s) {
+    std::unique_lock lock(mutex_);
+    const int parked = parked_;
+    cv_main_.wait_for(lock, std::chrono::duration<double>(max_s), [&] { return parked_ != parked; });
 }
 
 void WorkerPool::resume() {

@@ -3,6 +3,7 @@
 #include "luxtrace/scene/scene.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace luxtrace {
 
@@ -89,6 +90,11 @@ void unpack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask,
             else std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(r.begin[run]), r.length[run], 0);
         }
     take(L.surface_end(), message.size() - L.surface_end());
+}
+
+void TallyStore::assign(std::span<const std::uint64_t> words) {
+    if (words.size() != data_.size()) throw std::logic_error("TallyStore::assign: the words do not fit the layout");
+    std::copy(words.begin(), words.end(), data_.begin());
 }
 
 TallyBuffer::TallyBuffer(TallyStore& store) : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}

@@ -39,6 +39,9 @@ public:
     void resume();
     // Finish the current chunks and end the threads.
     void stop();
+    // Sleeps until a thread parks (out of work, at the fence, failed) or max_s passes,
+    // so that the main thread learns at once that the work is done.
+    void wait_for_park(double max_s);
     // True once every thread has run out of work.
     bool exhausted() const { return idle_.load() == static_cast<int>(threads_.size()); }
     // Photons traced so far by this rank's threads (for progress; exact when paused).

@@ -6,6 +6,8 @@
 // gives the same bits, which is what makes any rank/thread split bit-identical.
 // Threads do not write the array directly; each fills a small TallyBuffer that merges
 // repeated indices and flushes with atomic adds, so memory does not grow with threads.
+#include "luxtrace/core/word_array.hpp"
+
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -117,23 +119,26 @@ void pack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> ma
 void unpack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> mask,
                       std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
 
-// The rank's shared tallies.
+// The rank's shared tallies. The words live in a WordArray: zero without being written,
+// so the sides a run never reaches take no memory, and in huge pages when large.
 class TallyStore {
 public:
     TallyStore() = default;
-    explicit TallyStore(TallyLayout layout) : layout_(std::move(layout)), data_(layout_.size(), 0) {}
+    explicit TallyStore(TallyLayout layout) : layout_(std::move(layout)), data_(layout_.size()) {}
     const TallyLayout& layout() const { return layout_; }
     void add(std::size_t index, std::uint64_t value) {
         std::atomic_ref<std::uint64_t>(data_[index]).fetch_add(value, std::memory_order_relaxed);
     }
     std::uint64_t operator[](std::size_t i) const { return data_[i]; }
     const std::uint64_t* address(std::size_t i) const { return &data_[i]; }
-    std::vector<std::uint64_t>& data() { return data_; }
-    const std::vector<std::uint64_t>& data() const { return data_; }
+    std::span<std::uint64_t> data() { return data_.span(); }
+    std::span<const std::uint64_t> data() const { return data_.span(); }
+    // Sets every word (a checkpoint's tallies); `words` must have the layout's size.
+    void assign(std::span<const std::uint64_t> words);
 
 private:
     TallyLayout layout_;
-    std::vector<std::uint64_t> data_;
+    WordArray data_;
 };
 
 // A thread's fixed-size write-combining buffer (open addressing on the tally index).

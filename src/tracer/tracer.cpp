@@ -114,11 +114,11 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     const bool front = glm::dot(p.direction, ng) < 0.0;
     const std::size_t side = front ? 0 : 1;
     const bool odd = (p.k & 1u) != 0;
-    out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
-    if (p.bounce == 0)
-        out.add(layout_.surface(hit.triangle, side, p.band, odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven),
-                1);
-    p.arrivals.push_back(layout_.surface(hit.triangle, side, p.band, TallyLayout::kRepeats));
+    const std::size_t side_i = layout_.side_index(hit.triangle, side);
+    const std::size_t counts = layout_.side_slot(side_i, p.band, TallyLayout::kCountOdd);
+    out.add(counts + (odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
+    if (p.bounce == 0) out.add(counts + (odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
+    p.arrivals.push_back(layout_.side_slot(side_i, p.band, TallyLayout::kRepeats));
 
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
@@ -167,7 +167,7 @@ void PhotonTracer::finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out
     const std::size_t R = layout_.replicates();
     const std::size_t replicate = R > 0 ? sampler_.stream_of(p.k) : 0;
     if (R > 0) out.add(layout_.replicate_photons(replicate), 1);
-    add_repeats(p.arrivals, out);
+    if (p.arrivals.size() > 1) add_repeats(p.arrivals, out);  // a photon arriving once repeats nothing
     p.arrivals.clear();
     if (p.regs.empty()) return;
     // E_i of eq. (6): how many times this photon registered in each cell.

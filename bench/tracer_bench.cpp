@@ -446,10 +446,19 @@ int run(const Settings& set, const Communicator& comm) {
     const std::vector<RecordedRay> warm = record_tracer_rays(scene, embree, kWarm, set.seed + 7);
     const double warm_s = seconds_since(t0);
     const double rays_per_photon = double(warm.size()) / double(kWarm);
-    const double photon_rate = double(kWarm) / warm_s;
-    const std::uint64_t photons = set.photons == "auto"
-                                      ? std::max<std::uint64_t>(20000, std::uint64_t(photon_rate * set.seconds))
-                                      : count_arg("--photons", set.photons);
+    std::uint64_t photons = 0;
+    if (set.photons == "auto") {
+        // The recording probe is slow and cold (a third of the tracer's rate on the million
+        // room), so it only sizes a trial run of a third of the time on the production
+        // path, whose rate sizes the measured runs. Sized by the probe alone they were a
+        // third as long as --seconds, and a run's fixed costs weighed three times more.
+        const double probe_rate = double(kWarm) / warm_s;
+        const std::uint64_t trial = std::max<std::uint64_t>(kWarm, std::uint64_t(probe_rate * set.seconds));
+        const Timed t = run_tracer(scene, embree, comm, trial, 1, dir / "trial.h5", nullptr);
+        photons = std::max<std::uint64_t>(kWarm, std::uint64_t(double(trial) / t.seconds * set.seconds));
+    } else {
+        photons = count_arg("--photons", set.photons);
+    }
     // The replayed rays: those of the first photons the tracer runs trace (about the same
     // number of rays as a tracer run, so one replay takes about as long as the raw rate
     // allows for them).

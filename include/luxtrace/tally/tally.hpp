@@ -120,7 +120,7 @@ void unpack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> 
                       std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
 
 // The rank's shared tallies. The words live in a WordArray: zero without being written,
-// so the sides a run never reaches take no memory, and in huge pages when large.
+// so the sides a run never reaches take no memory.
 class TallyStore {
 public:
     TallyStore() = default;

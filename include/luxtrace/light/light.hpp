@@ -32,6 +32,9 @@ struct EmitterSurface {
 struct Light {
     std::string label;  // e.g. "light 2 (spot)" for messages
     LightType type = LightType::point;
+    // Its light group (`group = "NAME"`, issue 22): the index in Scene::light_groups. Every
+    // tally keeps the groups apart, so light scenes recombine them after the run.
+    std::size_t group = 0;
     double flux_lm = 0.0;
     std::vector<double> band_share;  // normalised colour share per band
     // point / spot

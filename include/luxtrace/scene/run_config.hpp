@@ -18,6 +18,9 @@ struct Target {
     double absolute_error = 0.0;
     double photons_received = 0.0;
     Averaging averaging = Averaging::quadratic;
+    // A [[light_scene]] by name: the target is on that combination of the groups. Empty:
+    // every group at full output, the plain run.
+    std::string light_scene;
 };
 
 struct RunConfig {
@@ -34,6 +37,9 @@ struct RunConfig {
     std::string sampler = "random";
     std::uint32_t replicates = 8;  // sobol: independent randomisations (docs/QMC.md)
     int max_bounces = 10000;       // safety bound for lossless mirror traps
+    // Keep the surface map per light group (80 bytes per triangle and band per group);
+    // false keeps one map of all groups together, and light scenes then have detectors only.
+    bool group_maps = true;
     std::vector<Target> targets;
 };
 

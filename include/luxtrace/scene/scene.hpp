@@ -24,6 +24,13 @@ struct Camera {
     int width = 800, height = 600;
 };
 
+// [[light_scene]]: a named linear combination of the light groups (issue 22). Groups the
+// scene does not name are off.
+struct LightScene {
+    std::string name;
+    std::vector<double> weights;  // per light group (Scene::light_groups), 0 = off
+};
+
 struct Scene {
     std::filesystem::path file;
     std::string name;
@@ -37,6 +44,11 @@ struct Scene {
     std::vector<double> triangle_area_m2;
     std::vector<Vec3> triangle_normal;  // unit geometric normal (front side)
     LightSet lights;
+    // The light groups, in order of first appearance; lights without `group` are in
+    // kDefaultLightGroup. A scene without groups has exactly that one.
+    static constexpr const char* kDefaultLightGroup = "default";
+    std::vector<std::string> light_groups{kDefaultLightGroup};
+    std::vector<LightScene> light_scenes;
     std::vector<Detector> detectors;  // the user's, then one eye detector per observer
     std::vector<Observer> observers;
     std::vector<Camera> cameras;

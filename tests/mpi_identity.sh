@@ -30,14 +30,16 @@ for other in r1t2 r2t1 r3t2; do
     else echo "FAIL: r1t1 and $other differ"; status=1; fi
 done
 # The reductions of the 2-rank run left out exactly the sides no rank had hit (a closed
-# room's outer faces): tally words minus 5 slots per band for each unlit side.
+# room's outer faces): tally words minus (5 + R) slots per band for each unlit side (R the
+# sobol replicates, whose arrivals each side keeps too).
 if /usr/bin/python3 - "$work/r2t1.h5" <<'PY'
 import sys, h5py
 f = h5py.File(sys.argv[1], "r")
 a, g = f.attrs, f["global"]
 T, B = g["count_odd"].shape[0], g["count_odd"].shape[2]
+R = int(a["replicates"]) if "replicates" in a else 0
 unlit = 2 * T - int(g.attrs["lit_sides"])
-want = int(a["tally_words"]) - unlit * 5 * B + 2 * 2 + 4  # + progress of 2 ranks, 4 flags
+want = int(a["tally_words"]) - unlit * (5 + R) * B + 2 * 2 + 4  # + progress of 2 ranks, 4 flags
 print(f"reduction message: {int(a['reduction_message_words'])} words, tallies {int(a['tally_words'])}, "
       f"{unlit} of {2 * T} sides unlit, expected {want}")
 sys.exit(0 if unlit > 0 and int(a["reduction_message_words"]) == want else 1)

@@ -10,63 +10,94 @@
 #include <algorithm>
 #include <random>
 #include <set>
+#include <string>
 #include <thread>
 
 using namespace luxtrace;
 
 TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
-    // Without replicates (random) and with R = 4 (sobol): the first slots are the same.
-    for (const std::size_t R : {std::size_t{0}, std::size_t{4}}) {
-        const TallyLayout L(7, 3, {4, 9}, R);
+    // Every combination of the dimensions: replicates (random: 0, sobol: 4), light groups,
+    // and the surface map per group or for all groups together (group_maps = false).
+    struct Case {
+        std::size_t groups, map_groups, replicates;
+    };
+    for (const Case k : {Case{1, 1, 0}, Case{1, 1, 4}, Case{3, 3, 0}, Case{3, 1, 4}, Case{2, 2, 2}}) {
+        const std::size_t B = 3;
+        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates}, {4, 9});
+        const std::string what = "groups " + std::to_string(k.groups) + ", map groups " + std::to_string(k.map_groups) +
+                                 ", R " + std::to_string(k.replicates);
         std::set<std::size_t> seen;
         auto take = [&](std::size_t i) {
-            EXPECT_LT(i, L.size());
-            EXPECT_TRUE(seen.insert(i).second) << "index " << i << " used twice (R = " << R << ")";
+            EXPECT_LT(i, L.size()) << what;
+            EXPECT_TRUE(seen.insert(i).second) << "index " << i << " used twice (" << what << ")";
         };
         for (std::size_t c = 0; c < TallyLayout::kCounters; ++c) take(c);
         for (std::size_t t = 0; t < 7; ++t)
             for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
-                for (std::size_t b = 0; b < 3; ++b)
-                    for (auto s : {TallyLayout::kCountOdd, TallyLayout::kCountEven, TallyLayout::kDirectOdd,
-                                   TallyLayout::kDirectEven, TallyLayout::kRepeats}) {
-                        const std::size_t i = L.surface(t, side, b, s);
-                        take(i);
-                        // Each side's counts are one run, its repeats another (what the
-                        // reduction packs); the counts of a side and band share a 32-byte
-                        // aligned block.
+                for (std::size_t b = 0; b < B; ++b)
+                    for (std::size_t g = 0; g < k.map_groups; ++g) {
                         const std::size_t n = L.side_index(t, side);
                         EXPECT_EQ(L.triangle_of(n), t);
-                        const bool repeats = s == TallyLayout::kRepeats;
-                        const std::size_t first = repeats ? L.repeats_begin(n) : L.counts_begin(n);
-                        EXPECT_GE(i, first);
-                        EXPECT_LT(i, first + (repeats ? 3 : 3 * TallyLayout::kCountSlots));
-                        EXPECT_LT(i, L.surface_end());
-                        if (!repeats) {
-                            EXPECT_EQ((i - s) % 4, 0u) << "counts block not 32-byte aligned";
+                        const std::size_t col = L.map_column(b, g);
+                        for (auto s : {TallyLayout::kCountOdd, TallyLayout::kCountEven, TallyLayout::kDirectOdd,
+                                       TallyLayout::kDirectEven, TallyLayout::kRepeats}) {
+                            const std::size_t i = L.surface(t, side, b, s, g);
+                            take(i);
+                            // Each side's counts are one run, its repeats another, its
+                            // replicate arrivals a third (what the reduction packs); the
+                            // counts of a side and column share a 32-byte aligned block.
+                            const bool repeats = s == TallyLayout::kRepeats;
+                            const std::size_t first = repeats ? L.repeats_begin(n) : L.counts_begin(n);
+                            EXPECT_GE(i, first);
+                            EXPECT_LT(i, first + L.map_columns() * (repeats ? 1 : TallyLayout::kCountSlots));
+                            EXPECT_LT(i, L.surface_end());
+                            if (!repeats) {
+                                EXPECT_EQ((i - s) % 4, 0u) << "counts block not 32-byte aligned";
+                            }
+                        }
+                        for (std::size_t r = 0; r < k.replicates; ++r) {
+                            const std::size_t i = L.map_replicate(n, col, r);
+                            take(i);
+                            EXPECT_GE(i, L.replicas_begin(n));
+                            EXPECT_LT(i, L.replicas_begin(n) + L.map_columns() * k.replicates);
                         }
                     }
+        EXPECT_EQ(L.side_slots(), L.map_columns() * (TallyLayout::kSurfaceSlots + k.replicates));
         const int cells[] = {4, 9};
-        const TallyLayout plain(7, 3, {4, 9});
         for (std::size_t d = 0; d < 2; ++d) {
-            for (int c = 0; c < cells[d]; ++c)
-                for (std::size_t b = 0; b < 3; ++b) {
-                    take(L.detector_n(d, c, b));
-                    take(L.detector_q(d, c, b));
-                    EXPECT_EQ(L.detector_n(d, c, b), plain.detector_n(d, c, b));
-                    for (std::size_t r = 0; r < R; ++r) {
-                        take(L.detector_replicate_n(d, r, c, b));
-                        EXPECT_EQ(L.detector_replicate_of(d, L.detector_n(d, c, b), r),
-                                  L.detector_replicate_n(d, r, c, b));
+            for (std::size_t g = 0; g < k.groups; ++g) {
+                for (int c = 0; c < cells[d]; ++c)
+                    for (std::size_t b = 0; b < B; ++b) {
+                        take(L.detector_n(d, c, b, g));
+                        take(L.detector_q(d, c, b, g));
+                        EXPECT_EQ(L.detector_cell(d, c, L.detector_column(b, g)), L.detector_n(d, c, b, g));
+                        for (std::size_t r = 0; r < k.replicates; ++r) {
+                            take(L.detector_replicate_n(d, r, c, b, g));
+                            EXPECT_EQ(L.detector_replicate_of(d, L.detector_n(d, c, b, g), r),
+                                      L.detector_replicate_n(d, r, c, b, g));
+                        }
                     }
-                }
-            take(L.detector_received(d));
-            take(L.detector_total_n(d));
-            take(L.detector_total_q(d));
-            for (std::size_t r = 0; r < R; ++r) take(L.detector_replicate_total_n(d, r));
+                take(L.detector_received(d, g));
+                take(L.detector_total_n(d, g));
+                take(L.detector_total_q(d, g));
+                for (std::size_t r = 0; r < k.replicates; ++r) take(L.detector_replicate_total_n(d, r, g));
+            }
         }
-        for (std::size_t r = 0; r < R; ++r) take(L.replicate_photons(r));
-        EXPECT_EQ(seen.size(), L.size()) << "the layout has unused slots (R = " << R << ")";
+        for (std::size_t r = 0; r < k.replicates; ++r) take(L.replicate_photons(r));
+        EXPECT_EQ(seen.size(), L.size()) << "the layout has unused slots (" << what << ")";
     }
+}
+
+TEST(TallyLayout, OneGroupWithoutReplicatesKeepsTheRandomLayout) {
+    // The group dimension of one group adds no word: a scene without light groups has the
+    // layout (and so the checkpoints) of before.
+    const TallyLayout one(7, TallyDims{2, 1, 1, 0}, {4});
+    EXPECT_EQ(one.size(), TallyLayout::kCounters + 7 * 2 * 2 * TallyLayout::kSurfaceSlots + (4 * 2 * 2 + 3));
+    // group_maps = false: the map has one column per band whatever the groups.
+    const TallyLayout shared(7, TallyDims{2, 5, 1, 0}, {4});
+    EXPECT_EQ(shared.surface_end(), one.surface_end());
+    EXPECT_EQ(shared.bin(1, 4, 0, true).map_column, 1u);
+    EXPECT_EQ(shared.bin(1, 4, 0, true).detector_column, 1u * 5 + 4);
 }
 
 TEST(TallyBuffer, ThreadedBuffersGiveExactSerialSums) {

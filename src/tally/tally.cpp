@@ -7,21 +7,21 @@
 
 namespace luxtrace {
 
-TallyLayout::TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
-                         std::size_t replicates)
-    : triangles_(triangles), bands_(bands), replicates_(replicates) {
-    size_ = kCounters + triangles * kSides * bands * kSurfaceSlots;  // counts, then repeats
+TallyLayout::TallyLayout(std::size_t triangles, const TallyDims& dims, const std::vector<int>& detector_cells)
+    : triangles_(triangles), dims_(dims) {
+    // Counts, then repeats, then (sobol) replicate arrivals of every side.
+    size_ = kCounters + triangles * kSides * map_columns() * (kSurfaceSlots + dims_.replicates);
     for (int cells : detector_cells) {
         det_offset_.push_back(size_);
         det_cells_.push_back(static_cast<std::size_t>(cells));
-        size_ += static_cast<std::size_t>(cells) * bands * 2 + 3;
+        size_ += static_cast<std::size_t>(cells) * detector_columns() * 2 + 3 * dims_.groups;
     }
     // The replicate slots after all others, so that a random run's layout is unchanged.
-    for (std::size_t d = 0; d < det_cells_.size() && replicates_ > 0; ++d) {
+    for (std::size_t d = 0; d < det_cells_.size() && dims_.replicates > 0; ++d) {
         rep_offset_.push_back(size_);
-        size_ += replicates_ * (det_cells_[d] * bands + 1);
+        size_ += dims_.replicates * (det_cells_[d] * detector_columns() + dims_.groups);
     }
-    size_ += replicates_;  // photons per replicate
+    size_ += dims_.replicates;  // photons per replicate
 }
 
 namespace {
@@ -30,28 +30,38 @@ std::vector<int> cells_of(const Scene& scene) {
     for (const Detector& d : scene.detectors) cells.push_back(d.cells());
     return cells;
 }
+
+TallyDims dims_of(const Scene& scene) {
+    TallyDims d;
+    d.bands = scene.bands.size();
+    d.groups = scene.light_groups.size();
+    d.map_groups = scene.run.group_maps ? d.groups : 1;
+    d.replicates = scene.run.sampler == "sobol" ? scene.run.replicates : 0;
+    return d;
+}
 }  // namespace
 
-TallyLayout::TallyLayout(const Scene& scene)
-    : TallyLayout(scene.triangle_count(), scene.bands.size(), cells_of(scene),
-                  scene.run.sampler == "sobol" ? scene.run.replicates : 0) {}
+TallyLayout::TallyLayout(const Scene& scene) : TallyLayout(scene.triangle_count(), dims_of(scene), cells_of(scene)) {}
 
 namespace {
 bool bit(std::span<const std::uint64_t> mask, std::size_t i) { return ((mask[i / 64] >> (i % 64)) & 1u) != 0; }
 }  // namespace
 
-// A side's two runs of slots, its counts and its repeats (tally.hpp).
+// A side's three runs of slots: its counts, its repeats and its replicate arrivals (tally.hpp).
+constexpr int kRuns = 3;
 struct SideRuns {
-    std::size_t begin[2], length[2];
+    std::size_t begin[kRuns], length[kRuns];
 };
 SideRuns runs_of(const TallyLayout& L, std::size_t i) {
-    return {{L.counts_begin(i), L.repeats_begin(i)}, {L.bands() * TallyLayout::kCountSlots, L.bands()}};
+    const std::size_t c = L.map_columns();
+    return {{L.counts_begin(i), L.repeats_begin(i), L.replicas_begin(i)},
+            {c * TallyLayout::kCountSlots, c, c * L.replicates()}};
 }
 
 std::vector<std::uint64_t> lit_side_mask(const TallyLayout& L, std::span<const std::uint64_t> message) {
-    // A side with repeats has counts: its counts alone tell.
+    // A side with repeats or replicate arrivals has counts: its counts alone tell.
     std::vector<std::uint64_t> mask((L.sides() + 63) / 64, 0);
-    const std::size_t n = L.bands() * TallyLayout::kCountSlots;
+    const std::size_t n = L.map_columns() * TallyLayout::kCountSlots;
     for (std::size_t i = 0; i < L.sides(); ++i) {
         const std::uint64_t* s = message.data() + L.counts_begin(i);
         std::uint64_t any = 0;
@@ -69,7 +79,7 @@ void pack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask, s
         packed.insert(packed.end(), s, s + static_cast<std::ptrdiff_t>(count));
     };
     put(0, L.counts_begin(0));
-    for (int run = 0; run < 2; ++run)
+    for (int run = 0; run < kRuns; ++run)
         for (std::size_t i = 0; i < L.sides(); ++i)
             if (bit(mask, i)) put(runs_of(L, i).begin[run], runs_of(L, i).length[run]);
     put(L.surface_end(), message.size() - L.surface_end());
@@ -83,7 +93,7 @@ void unpack_lit_sides(const TallyLayout& L, std::span<const std::uint64_t> mask,
         in += static_cast<std::ptrdiff_t>(count);
     };
     take(0, L.counts_begin(0));
-    for (int run = 0; run < 2; ++run)
+    for (int run = 0; run < kRuns; ++run)
         for (std::size_t i = 0; i < L.sides(); ++i) {
             const SideRuns r = runs_of(L, i);
             if (bit(mask, i)) take(r.begin[run], r.length[run]);

@@ -18,13 +18,32 @@ namespace luxtrace {
 
 struct Scene;
 
+// The dimensions every score is kept apart by besides its site (a triangle side, a
+// detector cell): the photon's band, its light group (issue 22: light scenes recombine
+// the groups after the run) and, for the sobol sampler, its replicate (docs/QMC.md).
+struct TallyDims {
+    std::size_t bands = 1;
+    std::size_t groups = 1;      // light groups the detectors keep apart
+    std::size_t map_groups = 1;  // light groups the surface map keeps apart: groups, or 1
+    std::size_t replicates = 0;  // sobol's R; 0 for random
+};
+
+// Where one photon's scores go besides the site, fixed when it starts: a column is a
+// (band, group) pair, band-major.
+struct TallyBin {
+    std::size_t map_column = 0;       // band * map_groups + map group
+    std::size_t detector_column = 0;  // band * groups + group
+    std::size_t replicate = 0;        // 0 without replicates
+    bool odd = false;                 // SPEC §3: odd photons feed the odd map
+};
+
 // Where each quantity sits in the flat array.
 class TallyLayout {
 public:
     // Photon fates, counted once per photon: left the scene, absorbed, stopped at the
     // bounce limit.
     enum Counter : std::size_t { kEscaped = 0, kAbsorbed = 1, kTruncated = 2, kCounters = 8 };
-    // Per triangle, side and band (issue 13: two-sided maps). Side 0 is the front, the side
+    // Per triangle side and column (issue 13: two-sided maps). Side 0 is the front, the side
     // the triangle's normal points to (counter-clockwise winding); side 1 the back. kRepeats
     // is the sum over photons of n (n - 1), n the photon's arrivals on that side: with the
     // counts it gives the per-side second moment sum n^2 = count + repeats, which is zero
@@ -39,70 +58,107 @@ public:
     };
     static constexpr std::size_t kSides = 2, kCountSlots = 4;
     TallyLayout() = default;
-    // replicates: R of the sobol sampler (docs/QMC.md), 0 for random; with R > 0 every
-    // detector also keeps per replicate its cells' registrations and its total.
+    TallyLayout(std::size_t triangles, const TallyDims& dims, const std::vector<int>& detector_cells);
+    // One light group: the layout of a scene without groups.
     TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
-                std::size_t replicates = 0);
+                std::size_t replicates = 0)
+        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates}, detector_cells) {}
     explicit TallyLayout(const Scene& scene);
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }
-    std::size_t bands() const { return bands_; }
+    const TallyDims& dims() const { return dims_; }
+    std::size_t bands() const { return dims_.bands; }
+    std::size_t groups() const { return dims_.groups; }
+    std::size_t map_groups() const { return dims_.map_groups; }
+    std::size_t replicates() const { return dims_.replicates; }
     std::size_t detector_count() const { return det_offset_.size(); }
+    std::size_t map_columns() const { return dims_.bands * dims_.map_groups; }
+    std::size_t detector_columns() const { return dims_.bands * dims_.groups; }
+    std::size_t map_column(std::size_t band, std::size_t group) const { return band * dims_.map_groups + group; }
+    std::size_t detector_column(std::size_t band, std::size_t group) const { return band * dims_.groups + group; }
+    // The bin of a photon of `band` and light `group` (of replicate `replicate`, parity `odd`).
+    TallyBin bin(std::size_t band, std::size_t group, std::size_t replicate, bool odd) const {
+        return {map_column(band, dims_.map_groups > 1 ? group : 0), detector_column(band, group), replicate, odd};
+    }
 
     std::size_t counter(Counter c) const { return c; }
-    // Memory layout: the four counts of every side and band first, all front sides, then
-    // all back sides (32 bytes per side and band, aligned: one cache line touched per
-    // arrival, and a closed room's lit fronts lie together as one-sided maps did), then
-    // the repeats of every side and band, touched only when a photon comes back.
-    std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s) const {
-        return side_slot(side_index(tri, side), band, s);
+    // Memory layout: the four counts of every side and column first, all front sides, then
+    // all back sides (32 bytes per side and column, aligned: one cache line touched per
+    // arrival, and a closed room's lit fronts lie together), then the repeats of every
+    // side and column, touched only when a photon comes back, then (sobol) every side's
+    // arrivals per column and replicate.
+    std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s,
+                        std::size_t group = 0) const {
+        return map_slot(side_index(tri, side), map_column(band, group), s);
     }
     // Sides are numbered side * T + tri; `i` below is such a number.
     std::size_t side_index(std::size_t tri, std::size_t side) const { return side * triangles_ + tri; }
     std::size_t triangle_of(std::size_t i) const { return i % triangles_; }
     std::size_t sides() const { return triangles_ * kSides; }
-    std::size_t side_slot(std::size_t i, std::size_t band, SurfaceSlot s) const {
-        return s == kRepeats ? repeats_begin(i) + band : counts_begin(i) + band * kCountSlots + s;
+    std::size_t map_slot(std::size_t i, std::size_t column, SurfaceSlot s) const {
+        return s == kRepeats ? repeats_begin(i) + column : counts_begin(i) + column * kCountSlots + s;
     }
-    // Side i's counts lie in [counts_begin(i), + bands * kCountSlots), its repeats in
-    // [repeats_begin(i), + bands).
-    std::size_t counts_begin(std::size_t i) const { return kCounters + i * bands_ * kCountSlots; }
-    std::size_t repeats_begin(std::size_t i) const { return counts_begin(sides()) + i * bands_; }
-    std::size_t side_slots() const { return bands_ * kSurfaceSlots; }  // per side, both parts
+    std::size_t side_slot(std::size_t i, std::size_t band, SurfaceSlot s, std::size_t group = 0) const {
+        return map_slot(i, map_column(band, group), s);
+    }
+    // Arrivals of replicate r on side i in `column` (sobol only).
+    std::size_t map_replicate(std::size_t i, std::size_t column, std::size_t r) const {
+        return replicas_begin(i) + column * dims_.replicates + r;
+    }
+    // Side i's counts lie in [counts_begin(i), + map_columns * kCountSlots), its repeats in
+    // [repeats_begin(i), + map_columns), its replicate arrivals in [replicas_begin(i),
+    // + map_columns * R): the three runs a reduction packs per lit side.
+    std::size_t counts_begin(std::size_t i) const { return kCounters + i * map_columns() * kCountSlots; }
+    std::size_t repeats_begin(std::size_t i) const { return counts_begin(sides()) + i * map_columns(); }
+    std::size_t replicas_begin(std::size_t i) const {
+        return repeats_begin(sides()) + i * map_columns() * dims_.replicates;
+    }
+    std::size_t side_slots() const { return map_columns() * (kSurfaceSlots + dims_.replicates); }  // per side
     // Everything after the surface map (detectors, replicates) starts here.
-    std::size_t surface_end() const { return repeats_begin(sides()); }
-    // n_c of cell `cell` in `band`; q_c is the next slot.
-    std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band) const {
-        return det_offset_[det] + (cell * bands_ + band) * 2;
+    std::size_t surface_end() const { return replicas_begin(sides()); }
+
+    // n_c of `cell` in a detector column; q_c is the next slot.
+    std::size_t detector_cell(std::size_t det, std::size_t cell, std::size_t column) const {
+        return det_offset_[det] + (cell * detector_columns() + column) * 2;
     }
-    std::size_t detector_q(std::size_t det, std::size_t cell, std::size_t band) const {
-        return detector_n(det, cell, band) + 1;
+    std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band, std::size_t group = 0) const {
+        return detector_cell(det, cell, detector_column(band, group));
     }
-    // Photons that registered at least once in the detector.
-    std::size_t detector_received(std::size_t det) const { return det_offset_[det] + det_cells_[det] * bands_ * 2; }
-    // The whole grid as one cell: sum over photons of E (registrations anywhere in the
+    std::size_t detector_q(std::size_t det, std::size_t cell, std::size_t band, std::size_t group = 0) const {
+        return detector_n(det, cell, band, group) + 1;
+    }
+    // Per light group, photons that registered at least once in the detector, and the
+    // whole grid as one cell: sum over photons of E (registrations anywhere in the
     // detector) and of E^2, for the error of the detector's mean value.
-    std::size_t detector_total_n(std::size_t det) const { return detector_received(det) + 1; }
-    std::size_t detector_total_q(std::size_t det) const { return detector_received(det) + 2; }
+    std::size_t detector_received(std::size_t det, std::size_t group = 0) const {
+        return det_offset_[det] + det_cells_[det] * detector_columns() * 2 + group * 3;
+    }
+    std::size_t detector_total_n(std::size_t det, std::size_t group = 0) const {
+        return detector_received(det, group) + 1;
+    }
+    std::size_t detector_total_q(std::size_t det, std::size_t group = 0) const {
+        return detector_received(det, group) + 2;
+    }
 
     // Per replicate (R > 0 only): n_c of the photons of replicate r, and their sum of E.
-    std::size_t replicates() const { return replicates_; }
-    std::size_t detector_replicate_n(std::size_t det, std::size_t r, std::size_t cell, std::size_t band) const {
-        return rep_offset_[det] + (r * det_cells_[det] + cell) * bands_ + band;
+    std::size_t detector_replicate_n(std::size_t det, std::size_t r, std::size_t cell, std::size_t band,
+                                     std::size_t group = 0) const {
+        return rep_offset_[det] + (r * det_cells_[det] + cell) * detector_columns() + detector_column(band, group);
     }
-    // The replicate-r slot of the cell and band whose n_c sits at `n_index`.
+    // The replicate-r slot of the cell and column whose n_c sits at `n_index`.
     std::size_t detector_replicate_of(std::size_t det, std::size_t n_index, std::size_t r) const {
-        return rep_offset_[det] + r * det_cells_[det] * bands_ + (n_index - det_offset_[det]) / 2;
+        return rep_offset_[det] + r * det_cells_[det] * detector_columns() + (n_index - det_offset_[det]) / 2;
     }
-    std::size_t detector_replicate_total_n(std::size_t det, std::size_t r) const {
-        return rep_offset_[det] + replicates_ * det_cells_[det] * bands_ + r;
+    std::size_t detector_replicate_total_n(std::size_t det, std::size_t r, std::size_t group = 0) const {
+        return rep_offset_[det] + dims_.replicates * det_cells_[det] * detector_columns() + r * dims_.groups + group;
     }
     // Photons traced of replicate r (the last R slots).
-    std::size_t replicate_photons(std::size_t r) const { return size_ - replicates_ + r; }
+    std::size_t replicate_photons(std::size_t r) const { return size_ - dims_.replicates + r; }
 
 private:
-    std::size_t triangles_ = 0, bands_ = 0, size_ = kCounters, replicates_ = 0;
+    std::size_t triangles_ = 0, size_ = kCounters;
+    TallyDims dims_;
     std::vector<std::size_t> det_offset_, rep_offset_;
     std::vector<std::size_t> det_cells_;
 };

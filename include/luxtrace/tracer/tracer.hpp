@@ -1,5 +1,7 @@
 #pragma once
-// The photon path: light (emit) -> Embree (intersect) -> material (scatter) -> tallies.
+// The photon path: light (emit) -> Embree (intersect) -> filters (detectors, the surface
+// map) -> material (scatter), and the scorer (tally/photon_tally.hpp) commits what the
+// filters registered.
 //
 // Random numbers of photon k come in Philox blocks of four (sampler.hpp), one block per
 // group of decisions, always the same block for the same decision:
@@ -16,7 +18,9 @@
 // their steps are taken changes no count.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
+#include "luxtrace/tally/photon_tally.hpp"
 #include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/detector_filters.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
@@ -51,10 +55,6 @@ public:
     static constexpr int kInFlight = 8;
 
 private:
-    struct Registration {
-        std::size_t index;
-        std::uint32_t detector;
-    };
     struct Photon {
         std::uint64_t k = 0;
         int band = 0;
@@ -62,10 +62,8 @@ private:
         Vec3f origin;
         Vec3 direction;
         Hit hit;
-        std::vector<Registration> regs;     // detector registrations, counted at the end
-        std::vector<std::size_t> arrivals;  // kRepeats slot of every surface arrival
+        PhotonTally tally;
     };
-    static void add_repeats(std::vector<std::size_t>& arrivals, TallyBuffer& out);
     // Start photon k with its block 0.
     void start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0);
     // Block 0 of photon k, drawn with those of the next kBatch - 1 photons.
@@ -73,19 +71,18 @@ private:
     // One step after the photon's ray was intersected, with the block of its arrival;
     // false once the photon has ended.
     bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
-    void finish(Photon& p, TallyLayout::Counter fate, TallyBuffer& out);
-    void check_luminance(Photon& p, const Vec3& point);
-    // Cylindrical and semi-cylindrical detectors: the cylinders the free flight enters.
-    void check_cylinders(Photon& p, double t_max);
+    // The flight just intersected, through the detectors it crosses.
+    void fly(Photon& p);
+    // The photon leaves `point` (scene coordinates) along its direction.
+    void depart(Photon& p, const Vec3& point);
+    void end(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) { p.tally.end(layout_, fate, out); }
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     const SurfaceTable& surfaces_;
     const TallyLayout& layout_;
     PhotonSampler sampler_;
-    std::vector<std::uint32_t> illuminance_dets_, luminance_dets_, cylinder_dets_;
-    std::vector<std::uint32_t> indirect_dets_;  // illuminance detectors of indirect light only (observers' eyes)
-    std::vector<int> cylinder_cells_;           // scratch for check_cylinders
+    DetectorFilters detectors_;
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));
     std::array<PhotonSampler::Block, PhiloxSampler::kBatch> start_blocks_{};

@@ -1,0 +1,51 @@
+#pragma once
+// The scorer: one photon's scores, committed into the tally layout (filters x scores, as
+// OpenMC's tallies). Filters on the photon's flight (the surface map's arrivals, the
+// detectors' registrations, tracer/detector_filters.hpp) say *where*; this says *what* is
+// added, in which bin (band, light group, replicate, odd/even: TallyBin).
+//
+// A surface arrival adds its counts at once; what needs the photon's count per site
+// squared (eq. 6's q_c, a side's repeats) is kept until the photon ends.
+#include "luxtrace/tally/tally.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace luxtrace {
+
+// A detector cell the photon registered in.
+struct Registration {
+    std::uint32_t detector = 0;
+    std::uint32_t cell = 0;
+};
+
+class PhotonTally {
+public:
+    PhotonTally();
+    // A new photon, scoring into `bin` of `layout`.
+    void begin(const TallyLayout& layout, const TallyBin& bin);
+    // An arrival on side i (TallyLayout::side_index); `direct`: the photon's first.
+    void arrive(const TallyLayout& layout, std::size_t side, bool direct, TallyBuffer& out) {
+        const std::size_t counts = layout.map_slot(side, bin_.map_column, TallyLayout::kCountOdd);
+        out.add(counts + (bin_.odd ? TallyLayout::kCountOdd : TallyLayout::kCountEven), 1);
+        if (direct) out.add(counts + (bin_.odd ? TallyLayout::kDirectOdd : TallyLayout::kDirectEven), 1);
+        if (layout.replicates() > 0) out.add(layout.map_replicate(side, bin_.map_column, bin_.replicate), 1);
+        arrivals_.push_back(layout.map_slot(side, bin_.map_column, TallyLayout::kRepeats));
+    }
+    // Filters append the cells the photon registers in here.
+    std::vector<Registration>& registrations() { return regs_; }
+    // The photon ended with `fate`: its fate, its replicate's photon count, its repeats and
+    // its detector registrations (eq. 6).
+    void end(const TallyLayout& layout, TallyLayout::Counter fate, TallyBuffer& out);
+
+private:
+    void add_repeats(TallyBuffer& out);
+    void add_registrations(const TallyLayout& layout, TallyBuffer& out);
+
+    TallyBin bin_;
+    std::vector<Registration> regs_;
+    std::vector<std::size_t> arrivals_;  // kRepeats slot of every surface arrival
+    std::vector<std::size_t> indices_;   // scratch: the registrations' n_c slots
+};
+
+}  // namespace luxtrace

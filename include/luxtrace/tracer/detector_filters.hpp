@@ -1,0 +1,36 @@
+#pragma once
+// The detectors as filters on a photon's path: each kind says which of its cells an event
+// of the path registers in, and appends them to the photon's registrations (the scorer,
+// tally/photon_tally.hpp, counts them when the photon ends). Two events exist:
+//   a flight, from a point along a direction up to the next surface (or to infinity):
+//     illuminance planes it crosses, cylinders it enters; planes of indirect light only
+//     skip the flight from the light;
+//   a departure, from a point (a luminaire's surface or a scattering point) along a
+//     direction: luminance detectors that see it leave.
+// A new detector kind adds a list and a loop here, and nothing in the tracer's step.
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/tally/photon_tally.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace luxtrace {
+
+struct Detector;
+
+class DetectorFilters {
+public:
+    explicit DetectorFilters(const std::vector<Detector>& detectors);
+    // `bounce`: surface arrivals before this flight (0: straight from the light).
+    void flight(const Vec3& origin, const Vec3& direction, double t_max, int bounce, std::vector<Registration>& out);
+    void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
+    bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }
+    bool sees_departures() const { return !luminance_.empty(); }
+
+private:
+    const std::vector<Detector>& detectors_;
+    std::vector<std::uint32_t> planes_, indirect_planes_, cylinders_, luminance_;
+    std::vector<int> cells_;  // scratch for cylinder entries
+};
+
+}  // namespace luxtrace

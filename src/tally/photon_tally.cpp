@@ -1,0 +1,87 @@
+#include "luxtrace/tally/photon_tally.hpp"
+
+#include <algorithm>
+
+namespace luxtrace {
+
+PhotonTally::PhotonTally() {
+    regs_.reserve(32);
+    arrivals_.reserve(64);
+    indices_.reserve(32);
+}
+
+void PhotonTally::begin(const TallyLayout&, const TallyBin& bin) {
+    bin_ = bin;
+    regs_.clear();
+    arrivals_.clear();
+}
+
+void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, TallyBuffer& out) {
+    out.add(layout.counter(fate), 1);
+    if (layout.replicates() > 0) out.add(layout.replicate_photons(bin_.replicate), 1);
+    if (arrivals_.size() > 1) add_repeats(out);  // a photon arriving once repeats nothing
+    arrivals_.clear();
+    if (!regs_.empty()) add_registrations(layout, out);
+}
+
+void PhotonTally::add_repeats(TallyBuffer& out) {
+    // Sum over sides of n (n - 1), n this photon's arrivals on the side (kRepeats). Most
+    // paths are short: compare pairs; a long one (a mirror trap) is sorted instead.
+    const std::size_t m = arrivals_.size();
+    if (m > 32) {
+        std::sort(arrivals_.begin(), arrivals_.end());
+        for (std::size_t i = 0; i < m;) {
+            std::size_t j = i + 1;
+            while (j < m && arrivals_[j] == arrivals_[i]) ++j;
+            if (const std::uint64_t n = j - i; n > 1) out.add(arrivals_[i], n * (n - 1));
+            i = j;
+        }
+        return;
+    }
+    // Each pair (i < j) on one side adds 2: sum over pairs of 2 = n (n - 1).
+    for (std::size_t i = 1; i < m; ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (arrivals_[j] == arrivals_[i]) out.add(arrivals_[i], 2);
+}
+
+void PhotonTally::add_registrations(const TallyLayout& layout, TallyBuffer& out) {
+    // E_i of eq. (6): how many times this photon registered in each cell, in its column;
+    // detectors occupy disjoint ascending index ranges, so sorted slots group them.
+    const std::size_t R = layout.replicates();
+    const std::size_t group = bin_.detector_column % layout.groups();
+    indices_.clear();
+    for (const Registration& r : regs_)
+        indices_.push_back(layout.detector_cell(r.detector, r.cell, bin_.detector_column));
+    std::sort(indices_.begin(), indices_.end());
+    std::size_t det = 0;  // detectors are visited in index order
+    std::uint32_t open = UINT32_MAX;
+    std::uint64_t in_detector = 0;  // this photon's registrations in the open detector
+    auto close_detector = [&] {
+        if (open == UINT32_MAX) return;
+        out.add(layout.detector_received(open, group), 1);
+        out.add(layout.detector_total_n(open, group), in_detector);
+        out.add(layout.detector_total_q(open, group), in_detector * in_detector);
+        if (R > 0) out.add(layout.detector_replicate_total_n(open, bin_.replicate, group), in_detector);
+    };
+    for (std::size_t i = 0; i < indices_.size();) {
+        std::size_t j = i;
+        while (j < indices_.size() && indices_[j] == indices_[i]) ++j;
+        const std::uint64_t e = j - i;
+        const std::size_t n_c = indices_[i];
+        while (det + 1 < layout.detector_count() && n_c >= layout.detector_cell(det + 1, 0, 0)) ++det;
+        out.add(n_c, e);          // n_c
+        out.add(n_c + 1, e * e);  // q_c
+        if (R > 0) out.add(layout.detector_replicate_of(det, n_c, bin_.replicate), e);
+        if (det != open) {
+            close_detector();
+            open = static_cast<std::uint32_t>(det);
+            in_detector = 0;
+        }
+        in_detector += e;
+        i = j;
+    }
+    close_detector();
+    regs_.clear();
+}
+
+}  // namespace luxtrace

@@ -265,6 +265,11 @@ void write_surface(hid_t file, const Scene& scene, const TallyLayout& L, const s
     attr(glob, "moment_sigma_lx", g.moment_sigma_lx);
     attr(glob, "moment_sigma_rel_arithmetic", g.moment_sigma_rel_arithmetic);
     attr(glob, "moment_sigma_rel_quadratic", g.moment_sigma_rel_quadratic);
+    if (L.replicates() > 0) {
+        attr(glob, "replicate_sigma_lx", g.replicate_sigma_lx);
+        attr(glob, "replicate_sigma_rel_arithmetic", g.replicate_sigma_rel_arithmetic);
+        attr(glob, "replicate_sigma_rel_quadratic", g.replicate_sigma_rel_quadratic);
+    }
     attr(glob, "error_estimator", g.estimator_name());
     attr(glob, "lit_area_m2", g.lit_area_m2);
     attr(glob, "lit_sides", g.lit_sides);

@@ -10,12 +10,6 @@ PhotonTally::PhotonTally() {
     indices_.reserve(32);
 }
 
-void PhotonTally::begin(const TallyLayout&, const TallyBin& bin) {
-    bin_ = bin;
-    regs_.clear();
-    arrivals_.clear();
-}
-
 void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, TallyBuffer& out) {
     out.add(layout.counter(fate), 1);
     if (layout.replicates() > 0) out.add(layout.replicate_photons(bin_.replicate), 1);

@@ -45,7 +45,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     // The photon's bin: its band, its light's group, its replicate (sobol's stream,
     // photon_sampler.hpp) and its parity (SPEC §3).
     const std::size_t replicate = layout_.replicates() > 0 ? sampler_.stream_of(k) : 0;
-    p.tally.begin(layout_, layout_.bin(static_cast<std::size_t>(p.band), light.group, replicate, (k & 1u) != 0));
+    p.tally.begin(layout_.bin(static_cast<std::size_t>(p.band), light.group, replicate, (k & 1u) != 0));
     double u_pos1 = 0.5, u_pos2 = 0.5;
     if (light.type == LightType::area || light.type == LightType::directional ||
         light.opening.shape != LuminousOpening::Shape::point) {
@@ -67,18 +67,17 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     }
 }
 
-void PhotonTracer::fly(Photon& p) {
-    const double t_max = p.hit.found ? static_cast<double>(p.hit.t) : std::numeric_limits<double>::infinity();
-    detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, p.bounce, p.tally.registrations());
-}
-
 void PhotonTracer::depart(Photon& p, const Vec3& point) {
     if (detectors_.sees_departures()) detectors_.departure(point, p.direction, p.tally.registrations());
 }
 
 bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out) {
-    if (detectors_.sees_flights()) fly(p);
     const Hit& hit = p.hit;
+    // The flight just intersected, through the detectors it crosses.
+    if (detectors_.sees_flights()) {
+        const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
+        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, p.bounce, p.tally.registrations());
+    }
     if (!hit.found) {
         end(p, TallyLayout::kEscaped, out);
         return false;

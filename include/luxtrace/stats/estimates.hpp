@@ -2,6 +2,7 @@
 // Error estimates of SPEC §3 from reduced tallies. Pure functions of the counts: rank 0
 // calls them after every reduction and the result writer stores what they return.
 #include "luxtrace/stats/illuminance_metrics.hpp"
+#include "luxtrace/stats/weighted_tallies.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
@@ -27,33 +28,60 @@ struct GlobalEstimate {
     // From each side's second moment (issue 13): sigma_t^2 = (E0 / A_t)^2 (Q_t - S_t^2 / N),
     // S_t the side's arrivals, Q_t = sum over photons of their arrivals there squared, and
     // sigma = sqrt(sum_t A_t sigma_t^2 / S): about N degrees of freedom. Meaningful for
-    // independent photons (random); sobol's photons are not, and D / 2 serves there.
+    // independent photons (random); sobol's photons are not.
     double moment_sigma_lx = 0.0;
     double moment_sigma_rel_arithmetic = 0.0;
     double moment_sigma_rel_quadratic = 0.0;
-    bool moment_primary = false;  // targets and the history use the moment estimate
-    double lit_area_m2 = 0.0;     // S
+    // sobol (issue 22): sigma_t from the spread of side t's R replicate maps
+    // (replicate_estimate), summed the same way; (R - 1) degrees of freedom per lit side.
+    double replicate_sigma_lx = 0.0;
+    double replicate_sigma_rel_arithmetic = 0.0;
+    double replicate_sigma_rel_quadratic = 0.0;
+    enum class Estimator { odd_even, second_moment, replicate_spread };
+    Estimator primary = Estimator::odd_even;  // what targets and the history use
+    double lit_area_m2 = 0.0;                 // S
     std::uint64_t lit_sides = 0;
 
     // The estimate targets, forecasts and the history use.
-    double target_sigma_lx() const { return moment_primary ? moment_sigma_lx : sigma_lx; }
+    double target_sigma_lx() const {
+        return primary == Estimator::second_moment      ? moment_sigma_lx
+               : primary == Estimator::replicate_spread ? replicate_sigma_lx
+                                                        : sigma_lx;
+    }
     double target_sigma_rel(bool arithmetic) const {
-        if (moment_primary) return arithmetic ? moment_sigma_rel_arithmetic : moment_sigma_rel_quadratic;
+        switch (primary) {
+        case Estimator::second_moment: return arithmetic ? moment_sigma_rel_arithmetic : moment_sigma_rel_quadratic;
+        case Estimator::replicate_spread:
+            return arithmetic ? replicate_sigma_rel_arithmetic : replicate_sigma_rel_quadratic;
+        case Estimator::odd_even: break;
+        }
         return arithmetic ? sigma_rel_arithmetic : sigma_rel_quadratic;
     }
-    const char* estimator_name() const { return moment_primary ? "second_moment" : "odd_even"; }
+    const char* estimator_name() const {
+        return primary == Estimator::second_moment      ? "second_moment"
+               : primary == Estimator::replicate_spread ? "replicate_spread"
+                                                        : "odd_even";
+    }
 };
+
+// Every estimate below reads the tallies of a light scene (WeightedTallies) or, in the
+// overloads taking the layout and the words, of the plain run.
 
 // Band-summed illuminance of every triangle side, [2 t + side] (the result file's order,
 // not the tallies'); E0 = flux per photon (lm).
+std::vector<double> side_illuminance_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0);
 std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                         std::span<const double> area_m2, double e0);
-// Per side [2 t + side]: the standard error of the band-summed illuminance from the second
-// moment (NaN for photons = 0).
+// Per side [2 t + side]: the standard error of the band-summed illuminance, from the
+// second moment (random) or the replicate spread (sobol); NaN for photons = 0.
+std::vector<double> side_sigma_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
+                                  std::uint64_t photons);
 std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                   std::span<const double> area_m2, double e0, std::uint64_t photons);
-// photons = N, the photons emitted so far; the moment estimate is primary for random runs
-// (layout without replicates).
+// photons = N, the photons emitted so far. Primary: the second moment for random runs,
+// the replicate spread for sobol (layout with replicates).
+GlobalEstimate estimate_global(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
+                               std::uint64_t photons);
 GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                std::span<const double> area_m2, double e0, std::uint64_t photons);
 
@@ -101,6 +129,8 @@ struct ReplicateEstimate {
 ReplicateEstimate replicate_estimate(std::span<const double> sums, std::span<const std::uint64_t> photons);
 
 // photons = N, the photons emitted so far.
+DetectorEstimate estimate_detector(const Detector& det, std::size_t det_index, const WeightedTallies& tallies,
+                                   double e0, std::uint64_t photons, CellRange range = {});
 DetectorEstimate estimate_detector(const Detector& det, std::size_t det_index, const TallyLayout& layout,
                                    std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                    CellRange range = {});

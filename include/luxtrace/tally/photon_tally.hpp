@@ -23,7 +23,11 @@ class PhotonTally {
 public:
     PhotonTally();
     // A new photon, scoring into `bin` of `layout`.
-    void begin(const TallyLayout& layout, const TallyBin& bin);
+    void begin(const TallyBin& bin) {
+        bin_ = bin;
+        regs_.clear();
+        arrivals_.clear();
+    }
     // An arrival on side i (TallyLayout::side_index); `direct`: the photon's first.
     void arrive(const TallyLayout& layout, std::size_t side, bool direct, TallyBuffer& out) {
         const std::size_t counts = layout.map_slot(side, bin_.map_column, TallyLayout::kCountOdd);

@@ -9,6 +9,7 @@
 //     direction: luminance detectors that see it leave.
 // A new detector kind adds a list and a loop here, and nothing in the tracer's step.
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/detector/detector.hpp"
 #include "luxtrace/tally/photon_tally.hpp"
 
 #include <cstdint>
@@ -16,18 +17,31 @@
 
 namespace luxtrace {
 
-struct Detector;
-
 class DetectorFilters {
 public:
     explicit DetectorFilters(const std::vector<Detector>& detectors);
     // `bounce`: surface arrivals before this flight (0: straight from the light).
-    void flight(const Vec3& origin, const Vec3& direction, double t_max, int bounce, std::vector<Registration>& out);
+    // Inline: it runs for every flight of every photon.
+    void flight(const Vec3& origin, const Vec3& direction, double t_max, int bounce, std::vector<Registration>& out) {
+        cross(planes_, origin, direction, t_max, out);
+        if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, out);
+        // Indirect only: the flight from the light (bounce 0) is the direct one.
+        if (bounce > 0) cross(indirect_planes_, origin, direction, t_max, out);
+    }
     void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
     bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }
     bool sees_departures() const { return !luminance_.empty(); }
 
 private:
+    void cross(const std::vector<std::uint32_t>& planes, const Vec3& o, const Vec3& d, double t_max,
+               std::vector<Registration>& out) const {
+        for (std::uint32_t di : planes) {
+            const int cell = detectors_[di].crossing(o, d, t_max);
+            if (cell >= 0) out.push_back({di, static_cast<std::uint32_t>(cell)});
+        }
+    }
+    void enter_cylinders(const Vec3& o, const Vec3& d, double t_max, std::vector<Registration>& out);
+
     const std::vector<Detector>& detectors_;
     std::vector<std::uint32_t> planes_, indirect_planes_, cylinders_, luminance_;
     std::vector<int> cells_;  // scratch for cylinder entries

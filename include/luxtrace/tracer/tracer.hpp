@@ -71,8 +71,6 @@ private:
     // One step after the photon's ray was intersected, with the block of its arrival;
     // false once the photon has ended.
     bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
-    // The flight just intersected, through the detectors it crosses.
-    void fly(Photon& p);
     // The photon leaves `point` (scene coordinates) along its direction.
     void depart(Photon& p, const Vec3& point);
     void end(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) { p.tally.end(layout_, fate, out); }

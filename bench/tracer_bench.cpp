@@ -96,7 +96,7 @@ int run(const Settings& set, const Communicator& comm) {
 
     auto t0 = Clock::now();
     Scene scene = load_scene(set.scene_file);
-    scene.run.sampler = set.sampler;  // the tracer's; sobol before the CLI offers it (issue 11)
+    scene.run.sampler = set.sampler;  // --sampler: the tracer runs' sampler
     const double t_load = seconds_since(t0);
     t0 = Clock::now();
     const EmbreeScene embree(scene);
@@ -114,8 +114,7 @@ int run(const Settings& set, const Communicator& comm) {
     if (set.photons == "auto") {
         // The recording probe is slow and cold (a third of the tracer's rate on the million
         // room), so it only sizes a trial run of a third of the time on the production
-        // path, whose rate sizes the measured runs. Sized by the probe alone they were a
-        // third as long as --seconds, and a run's fixed costs weighed three times more.
+        // path, whose rate sizes the measured runs: each then lasts about --seconds.
         const double probe_rate = double(kWarm) / warm_s;
         const std::uint64_t trial = std::max<std::uint64_t>(kWarm, std::uint64_t(probe_rate * set.seconds));
         const Timed t = run_tracer(scene, embree, comm, trial, 1, dir / "trial.h5", nullptr);

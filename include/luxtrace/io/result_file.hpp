@@ -1,11 +1,12 @@
 #pragma once
-// The result file of SPEC §4. This module is the only code that knows the HDF5 layout.
+// The result file of SPEC §4 (docs/REFERENCE.md): writing it, reading it back by HDF5
+// path (info's summary, tests), and a checkpoint's state. The writer's parts are in
+// src/io/result_parts.hpp; other C++ readers use the typed ResultFile (result_data.hpp).
 #include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 

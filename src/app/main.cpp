@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/reduction/communicator.hpp"
@@ -82,21 +83,19 @@ void apply_overrides(Scene& scene, const RunArgs& a) {
     if (!a.restart.empty()) {
         // A restart continues the checkpoint's photon sequence: same seed and sampler, and
         // by default the same budget.
-        const ResultReader ck(a.restart);
-        if (ck.attr_str("/", "format") != "luxtrace-checkpoint")
-            throw InputError(a.restart + ": not a checkpoint (a result file cannot be continued)");
-        const std::uint64_t seed = ck.attr_u64("/", "seed");
+        const ResultFile ck(a.restart);
+        if (!ck.is_checkpoint()) throw InputError(a.restart + ": not a checkpoint (a result file cannot be continued)");
+        const std::uint64_t seed = ck.run_info().seed;
         if (!a.seed.empty() && run.seed != seed)
             throw InputError("--seed: the checkpoint " + a.restart + " was made with seed " + std::to_string(seed));
         run.seed = seed;
-        run.sampler = ck.attr_str("/", "sampler");
+        run.sampler = ck.run_info().sampler;
         // The checkpoint's R unless --replicates names one; run_simulation refuses a
         // different one, as it does a different seed or sampler.
-        if (!a.replicates && ck.has_attr("/", "replicates") && ck.attr_u64("/", "replicates") > 0)
-            run.replicates = static_cast<std::uint32_t>(ck.attr_u64("/", "replicates"));
+        if (!a.replicates && ck.replicates() > 0) run.replicates = static_cast<std::uint32_t>(ck.replicates());
         if (const std::string why = sampler_unavailable(run.sampler); !why.empty())
             throw InputError(a.restart + ": the checkpoint's sampler: " + why);
-        if (a.photons.empty()) run.photons = ck.attr_u64("/checkpoint", "budget");
+        if (a.photons.empty()) run.photons = ck.checkpoint_budget();
     }
     const fs::path out(run.output);
     const fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();

@@ -56,8 +56,9 @@ private:
     bool released_ = false;
 };
 
-}  // namespace
-
+// Temporaries `.NAME.tmp.PID` left beside `path` by writers that died (kill -9, a
+// crash) before their rename: removed when their PID is no longer a live process.
+// Only that exact pattern for this NAME is touched; returns how many were removed.
 int remove_stale_temporaries(const fs::path& path) {
     const std::string prefix = temporary_prefix(path);
     std::error_code ec;
@@ -74,6 +75,8 @@ int remove_stale_temporaries(const fs::path& path) {
     }
     return removed;
 }
+
+}  // namespace
 
 void check_writable(const fs::path& path, const std::string& what) {
     remove_stale_temporaries(path);

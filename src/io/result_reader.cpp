@@ -1,9 +1,8 @@
-// Reading result files back (luxtrace info, tests, later the renderer).
+// Reading result files back by HDF5 path, and checkpoints for a restart.
+#include "hdf5_file.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/io/result_file.hpp"
-
-#include <hdf5.h>
 
 #include <cmath>
 #include <cstdint>
@@ -12,82 +11,10 @@
 
 namespace luxtrace {
 
-namespace {
-
-struct Closer {
-    hid_t id;
-    herr_t (*fn)(hid_t);
-    ~Closer() {
-        if (id >= 0) fn(id);
-    }
-};
-
-// Every error of a reader names the file: a missing or damaged object is bad input.
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
-    throw InputError(path.string() + ": " + what);
-}
-
-// A dataset's elements come from its stored bytes: uncompressed one for one, deflated
-// (large datasets) at most about 1032 to 1 (zlib's limit). A claim of more than that is
-// damage, and must not allocate gigabytes.
-constexpr std::size_t kMaxUnbackedBytes = std::size_t{64} << 20;
-constexpr std::size_t kMaxDeflateRatio = 1100;
-
-template <class T>
-std::vector<T> read_dataset(const std::filesystem::path& path, hid_t file, const std::string& name, hid_t mem_type,
-                            std::vector<std::size_t>* shape) {
-    Closer ds{-1, H5Dclose};
-    H5E_BEGIN_TRY { ds.id = H5Dopen2(file, name.c_str(), H5P_DEFAULT); }
-    H5E_END_TRY;
-    if (ds.id < 0) fail(path, "result file has no dataset " + name + " (or it is damaged)");
-    Closer space{H5Dget_space(ds.id), H5Sclose};
-    if (space.id < 0) fail(path, "cannot read the shape of dataset " + name);
-    const int rank = H5Sget_simple_extent_ndims(space.id);
-    if (rank < 0 || rank > 8) fail(path, "dataset " + name + " has a damaged shape");
-    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
-    if (H5Sget_simple_extent_dims(space.id, dims.data(), nullptr) < 0)
-        fail(path, "dataset " + name + " has a damaged shape");
-    std::size_t total = 1;
-    for (hsize_t d : dims) {
-        if (d != 0 && total > SIZE_MAX / sizeof(T) / d) fail(path, "dataset " + name + " is impossibly large");
-        total *= d;
-    }
-    if (total * sizeof(T) > kMaxUnbackedBytes) {
-        hsize_t stored = 0;
-        H5E_BEGIN_TRY { stored = H5Dget_storage_size(ds.id); }
-        H5E_END_TRY;
-        if (stored * kMaxDeflateRatio < total * sizeof(T))
-            fail(path, "dataset " + name + " claims " + std::to_string(total) + " elements but stores " +
-                           std::to_string(stored) + " bytes");
-    }
-    if (shape != nullptr) shape->assign(dims.begin(), dims.end());
-    std::vector<T> out(total);
-    herr_t ok = 0;
-    if (total > 0) {
-        H5E_BEGIN_TRY { ok = H5Dread(ds.id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()); }
-        H5E_END_TRY;
-    }
-    if (ok < 0) fail(path, "cannot read dataset " + name + " (damaged or not numbers)");
-    return out;
-}
-
-hid_t open_attr(const std::filesystem::path& path, hid_t file, const std::string& object, const std::string& name) {
-    hid_t a = -1;
-    H5E_BEGIN_TRY { a = H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT); }
-    H5E_END_TRY;
-    if (a < 0) fail(path, "result file has no attribute " + object + "@" + name + " (or it is damaged)");
-    return a;
-}
-
-// Elements of an attribute, refused when damaged or absurd (an attribute lives in an
-// object header, which is at most 64 KiB per message).
-std::size_t attr_points(const std::filesystem::path& path, hid_t space, const std::string& what) {
-    const hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
-    if (n < 0 || n > (hssize_t{1} << 24)) fail(path, "attribute " + what + " has a damaged shape");
-    return static_cast<std::size_t>(n);
-}
-
-}  // namespace
+using hdf5::attr_points;
+using hdf5::fail;
+using hdf5::Held;
+using hdf5::open_attr;
 
 ResultReader::ResultReader(const std::filesystem::path& path) : path_(path) {
     if (!std::filesystem::is_regular_file(path)) throw InputError(path.string() + ": no such result file");
@@ -125,11 +52,11 @@ bool ResultReader::has_attr(const std::string& object, const std::string& name) 
 }
 
 std::vector<std::uint64_t> ResultReader::u64(const std::string& name, std::vector<std::size_t>* shape) const {
-    return read_dataset<std::uint64_t>(path_, file_, name, H5T_NATIVE_UINT64, shape);
+    return hdf5::read_dataset<std::uint64_t>(path_, file_, name, shape);
 }
 
 std::vector<double> ResultReader::f64(const std::string& name, std::vector<std::size_t>* shape) const {
-    return read_dataset<double>(path_, file_, name, H5T_NATIVE_DOUBLE, shape);
+    return hdf5::read_dataset<double>(path_, file_, name, shape);
 }
 
 double ResultReader::attr_f64(const std::string& object, const std::string& name) const {
@@ -138,8 +65,8 @@ double ResultReader::attr_f64(const std::string& object, const std::string& name
 }
 
 std::vector<double> ResultReader::f64_attr_array(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(path_, file_, object, name), H5Aclose};
-    Closer space{H5Aget_space(a.id), H5Sclose};
+    Held a{open_attr(path_, file_, object, name), H5Aclose};
+    Held space{H5Aget_space(a.id), H5Sclose};
     std::vector<double> v(attr_points(path_, space.id, object + "@" + name));
     herr_t ok = 0;
     if (!v.empty()) {
@@ -151,8 +78,8 @@ std::vector<double> ResultReader::f64_attr_array(const std::string& object, cons
 }
 
 std::uint64_t ResultReader::attr_u64(const std::string& object, const std::string& name) const {
-    Closer a{open_attr(path_, file_, object, name), H5Aclose};
-    Closer space{H5Aget_space(a.id), H5Sclose};
+    Held a{open_attr(path_, file_, object, name), H5Aclose};
+    Held space{H5Aget_space(a.id), H5Sclose};
     // Read every element (an array attribute must not overrun a scalar), return the first.
     std::vector<std::uint64_t> v(std::max<std::size_t>(1, attr_points(path_, space.id, object + "@" + name)));
     herr_t ok = 0;
@@ -164,9 +91,9 @@ std::uint64_t ResultReader::attr_u64(const std::string& object, const std::strin
 
 std::vector<std::string> ResultReader::attr_strs(const std::string& object, const std::string& name) const {
     const std::string what = object + "@" + name;
-    Closer a{open_attr(path_, file_, object, name), H5Aclose};
-    Closer type{H5Aget_type(a.id), H5Tclose};
-    Closer space{H5Aget_space(a.id), H5Sclose};
+    Held a{open_attr(path_, file_, object, name), H5Aclose};
+    Held type{H5Aget_type(a.id), H5Tclose};
+    Held space{H5Aget_space(a.id), H5Sclose};
     const std::size_t n = attr_points(path_, space.id, what);
     if (type.id < 0 || H5Tget_class(type.id) != H5T_STRING) fail(path_, "attribute " + what + " is not text");
     std::vector<std::string> out;
@@ -214,10 +141,6 @@ std::vector<std::string> ResultReader::children(const std::string& group) const 
     if (ok < 0) fail(path_, "cannot list group " + group + " (damaged)");
     return names;
 }
-
-}  // namespace luxtrace
-
-namespace luxtrace {
 
 CheckpointState read_checkpoint(const std::filesystem::path& path) {
     const ResultReader r(path);

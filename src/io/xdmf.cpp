@@ -9,7 +9,7 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/atomic_file.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_data.hpp"
 
 #include <unistd.h>
 #include <fstream>
@@ -99,19 +99,15 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
     std::error_code ec;
     if (fs::exists(xdmf, ec) && fs::equivalent(result, xdmf, ec))
         throw InputError(xdmf.string() + ": the XDMF file would replace the result file");
-    const ResultReader r(result);
-    std::vector<std::size_t> vshape, tshape, eshape;
-    // Only small datasets are read, for their shapes: the maps stay where they are.
-    r.f64("/mesh/vertices", &vshape);
-    r.f64("/mesh/area", &tshape);
-    if (!r.has("/global/illuminance") || !r.has("/global/illuminance_direct") || vshape.size() != 2 ||
-        tshape.size() != 1)
+    const ResultFile r(result);
+    const MeshShape mesh = r.mesh_shape();
+    if (!r.has_surface_illuminance())
         throw InputError(result.string() + ": not a complete luxtrace result (mesh or /global maps missing)");
-    const std::size_t V = vshape[0], T = tshape[0];
-    std::vector<std::string> bands = r.attr_strs("/", "bands");
+    const std::size_t V = mesh.vertices, T = mesh.triangles;
+    std::vector<std::string> bands = r.bands();
     if (bands.empty()) bands.push_back("Y");
     const std::size_t B = bands.size();
-    std::string scene = r.has_attr("/", "scene_name") ? r.attr_str("/", "scene_name") : std::string();
+    std::string scene = r.scene_name();
     if (scene.empty()) scene = result.stem().string();
 
     // Same folder: the bare file name, so the pair can be moved together; otherwise absolute.
@@ -121,7 +117,7 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
                                ? rabs.filename().string()
                                : rabs.lexically_normal().string();
 
-    const bool two_sided = r.has_attr("/", "format_version") && r.attr_u64("/", "format_version") >= 2;
+    const bool two_sided = r.surface_sides() == 2;
     std::ostringstream out;
     XdmfWriter w(out, h5, T, B, two_sided);
     out << "<?xml version=\"1.0\" ?>\n"
@@ -129,9 +125,9 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
         << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
         << "  <Domain>\n"
         << "    <Grid Name=\"" << xml_escape(scene) << "\" GridType=\"Uniform\">\n";
-    if (r.has("/mesh/material_names")) {
+    if (const auto material_names = r.material_names()) {
         std::string names;
-        for (const std::string& n : r.attr_strs("/mesh", "material_names")) {
+        for (const std::string& n : *material_names) {
             if (!names.empty()) names += ',';
             names += n;
         }
@@ -173,7 +169,7 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
                 w.side_column(in, "/global/" + std::string(map) + "_lx", side);
                 w.close_attribute();
             }
-    } else if (r.has("/global/odd_even_difference_lx")) {  // older result files lack it
+    } else if (r.has_odd_even_difference()) {
         w.open_attribute("odd_even_difference_lx");
         w.hdf(in, "/global/odd_even_difference_lx", std::to_string(T), "Float", 8);
         w.close_attribute();

@@ -1,7 +1,7 @@
 #include "luxtrace/render/renderer.hpp"
 
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_data.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
@@ -309,43 +309,36 @@ LuminanceImage Renderer::render(const PinholeCamera& camera, const RenderOptions
 }
 
 RenderInput load_render_input(const fs::path& result) {
-    const ResultReader r(result);
+    const ResultFile r(result);
     const std::string name = result.string();
-    if (!r.has_attr("/", "scene_file") || r.attr_str("/", "scene_file").empty())
+    if (r.run_info().scene_file.empty())
         throw InputError(name + ": the result names no scene file (root attribute scene_file), so its scene "
                                 "cannot be reloaded for rendering");
-    const fs::path scene_file = r.attr_str("/", "scene_file");
+    const fs::path scene_file = r.run_info().scene_file;
     if (!fs::is_regular_file(scene_file))
         throw InputError(name + ": its scene file " + scene_file.string() + " does not exist any more");
-    for (const char* ds : {"/global/illuminance", "/global/illuminance_direct", "/mesh/vertices"})
-        if (!r.has(ds)) throw InputError(name + ": has no dataset " + std::string(ds));
+    const SurfaceIlluminance map = r.surface_illuminance();
+    const std::vector<double> vertices = r.vertices();
     RenderInput in{load_scene(scene_file), {}};
     const Scene& s = in.scene;
-    std::vector<std::size_t> shape, vshape;
-    const std::vector<double> all = r.f64("/global/illuminance", &shape);
-    const std::vector<double> direct = r.f64("/global/illuminance_direct");
-    const std::vector<double> vertices = r.f64("/mesh/vertices", &vshape);
-    // Format 1 has [T, B] for both sides together; format 2 [T, 2, B].
-    const bool one_sided = shape.size() == 2;
-    bool same = (one_sided || (shape.size() == 3 && shape[1] == TallyLayout::kSides)) &&
-                shape[0] == s.triangle_count() && shape.back() == s.bands.size() && direct.size() == all.size() &&
-                vshape.size() == 2 && vshape[0] == s.vertices.size() && vshape[1] == 3;
+    bool same = map.shape.triangles == s.triangle_count() && map.shape.bands == s.bands.size() &&
+                vertices.size() == 3 * s.vertices.size();
     for (std::size_t v = 0; same && v < s.vertices.size(); ++v)
         for (int k = 0; k < 3; ++k)
             same = same && std::abs(vertices[3 * v + k] - static_cast<double>(s.vertices[v][k])) <=
                                1e-5 * (1.0 + std::abs(vertices[3 * v + k]));
-    if (same && r.has_attr("/", "bands")) same = r.attr_strs("/", "bands") == s.bands;
+    if (same && !r.bands().empty()) same = r.bands() == s.bands;
     if (!same)
         throw InputError(name + ": the scene file " + scene_file.string() +
                          " has changed since the run (its mesh or bands differ from the result's)");
-    // A format-1 map serves both sides, as it did when it was written.
     const std::size_t T = s.triangle_count(), B = s.bands.size();
     in.secondary_lx.resize(T * TallyLayout::kSides * B);
     for (std::size_t t = 0; t < T; ++t)
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
             for (std::size_t b = 0; b < B; ++b) {
-                const std::size_t from = one_sided ? t * B + b : (t * TallyLayout::kSides + side) * B + b;
-                in.secondary_lx[(t * TallyLayout::kSides + side) * B + b] = std::max(0.0, all[from] - direct[from]);
+                const std::size_t from = map.shape.index(t, side, b);
+                in.secondary_lx[(t * TallyLayout::kSides + side) * B + b] = std::max(0.0, map.total_lx[from] -
+                                                                                              map.direct_lx[from]);
             }
     return in;
 }

@@ -158,10 +158,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         const std::uint64_t n = count_photons(done);
         const std::vector<std::uint64_t> tallies(msg.begin(), msg.begin() + static_cast<std::ptrdiff_t>(S));
         const double e0 = n > 0 ? scene.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
-        const GlobalEstimate g = estimate_global(layout, tallies, scene.triangle_area_m2, e0, n);
-        std::vector<DetectorEstimate> dets;
-        for (std::size_t d = 0; d < scene.detectors.size(); ++d)
-            dets.push_back(estimate_detector(scene.detectors[d], d, layout, tallies, e0, n));
+        ResultEstimates est = estimate_result(scene, layout, tallies, e0, n);
         RunInfo i = info;
         i.photons = n;
         i.flux_per_photon_lm = e0;
@@ -174,10 +171,10 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
             for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
             ck.budget = run.photons;
         }
-        write_result(path, scene, layout, tallies, i, g, dets, control->history(), as_checkpoint ? &ck : nullptr);
+        write_result(path, scene, layout, tallies, i, est, control->history(), as_checkpoint ? &ck : nullptr);
         summary.photons = n;
-        summary.global = g;
-        summary.detectors = dets;
+        summary.global = est.global;
+        summary.detectors = std::move(est.detectors);
     };
 
     // The latest checkpoint written by this run (root only), for messages after a failed write.

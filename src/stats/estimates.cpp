@@ -75,6 +75,38 @@ std::vector<double> side_sigma_lx(const WeightedTallies& w, std::span<const doub
     return sigma;
 }
 
+SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area, double e0, std::uint64_t photons) {
+    const TallyLayout& L = w.layout();
+    const std::size_t T = L.triangles(), B = L.bands();
+    constexpr std::size_t kS = TallyLayout::kSides;
+    auto slot_of = [&](std::size_t t, std::size_t side, std::size_t b, TallyLayout::SurfaceSlot s) {
+        return w.side(L.side_index(t, side), b, s);
+    };
+    SurfaceMaps m;
+    m.illuminance_lx.resize(T * kS * B);
+    m.illuminance_direct_lx.resize(T * kS * B);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t side = 0; side < kS; ++side)
+            for (std::size_t b = 0; b < B; ++b) {
+                const double k = e0 / area[t];
+                const std::size_t i = (t * kS + side) * B + b;
+                m.illuminance_lx[i] =
+                    k * (slot_of(t, side, b, TallyLayout::kCountOdd) + slot_of(t, side, b, TallyLayout::kCountEven));
+                m.illuminance_direct_lx[i] =
+                    k * (slot_of(t, side, b, TallyLayout::kDirectOdd) + slot_of(t, side, b, TallyLayout::kDirectEven));
+            }
+    m.odd_even_difference_lx.resize(T * kS);
+    for (std::size_t t = 0; t < T; ++t)
+        for (std::size_t side = 0; side < kS; ++side) {
+            double d = 0.0;
+            for (std::size_t b = 0; b < B; ++b)
+                d += slot_of(t, side, b, TallyLayout::kCountOdd) - slot_of(t, side, b, TallyLayout::kCountEven);
+            m.odd_even_difference_lx[t * kS + side] = 2.0 * d * e0 / area[t];
+        }
+    m.sigma_lx = side_sigma_lx(w, area, e0, photons);
+    return m;
+}
+
 GlobalEstimate estimate_global(const WeightedTallies& w, std::span<const double> area, double e0,
                                std::uint64_t photons) {
     // Eqs. (4)-(5) on the band-summed map of the lit sides: E_odd,t = 2 n_odd E0 / A_t,
@@ -139,6 +171,10 @@ std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std
 GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                std::span<const double> area, double e0, std::uint64_t photons) {
     return estimate_global(WeightedTallies(layout, data), area, e0, photons);
+}
+SurfaceMaps surface_maps(const TallyLayout& layout, std::span<const std::uint64_t> data, std::span<const double> area,
+                         double e0, std::uint64_t photons) {
+    return surface_maps(WeightedTallies(layout, data), area, e0, photons);
 }
 DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const TallyLayout& layout,
                                    std::span<const std::uint64_t> data, double e0, std::uint64_t photons,

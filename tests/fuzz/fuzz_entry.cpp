@@ -2,6 +2,7 @@
 #include "fuzz_entry.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/ies.hpp"
 #include "luxtrace/light/luminaire_file.hpp"
@@ -428,11 +429,8 @@ int fuzz_result(const std::uint8_t* data, std::size_t size) {
     // luxtrace run --restart: main.cpp's checks, then the simulation's read_checkpoint.
     expect_input_error_only([&] {
         {
-            const ResultReader ck(file);
-            (void)ck.attr_str("/", "format");
-            (void)ck.attr_u64("/", "seed");
-            (void)ck.attr_str("/", "sampler");
-            (void)ck.attr_u64("/checkpoint", "budget");
+            const ResultFile ck(file);
+            if (ck.is_checkpoint()) (void)ck.checkpoint_budget();
         }
         const CheckpointState s = read_checkpoint(file);
         if (s.tallies.size() != s.layout_size || s.done.size() % 2 != 0) broken("checkpoint sizes");

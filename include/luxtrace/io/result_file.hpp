@@ -1,11 +1,12 @@
 #pragma once
-// The result file of SPEC §4. This module is the only code that knows the HDF5 layout.
-#include "luxtrace/stats/estimates.hpp"
+// The result file of SPEC §4 (docs/REFERENCE.md): writing it, reading it back by HDF5
+// path (info's summary, tests), and a checkpoint's state. The writer's parts are in
+// src/io/result_parts.hpp; other C++ readers use the typed ResultFile (result_data.hpp).
+#include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -69,16 +70,18 @@ struct CheckpointState {
     std::vector<HistoryRow> history;
 };
 
-// Writes `path` atomically (a temporary file in the same directory, then rename).
+// Writes `path` atomically (a temporary file in the same directory, then rename):
+// `tallies` rearranged into the file's arrays, and `estimates` (estimate_result on the same
+// tallies) as they are.
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const GlobalEstimate& global,
-                  const std::vector<DetectorEstimate>& detectors, const std::vector<HistoryRow>& history,
-                  const CheckpointData* checkpoint = nullptr);
+                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const ResultEstimates& estimates,
+                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);
 
 // Reads a checkpoint written by write_result with CheckpointData; throws InputError.
 CheckpointState read_checkpoint(const std::filesystem::path& path);
 
-// Reading back, for `luxtrace info` and for tests.
+// Reading back by HDF5 path, for `luxtrace info` and for tests; other readers use the typed
+// ResultFile (result_data.hpp), which reads through this class.
 class ResultReader {
 public:
     explicit ResultReader(const std::filesystem::path& path);  // throws InputError

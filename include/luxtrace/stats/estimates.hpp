@@ -78,6 +78,17 @@ std::vector<double> side_sigma_lx(const WeightedTallies& tallies, std::span<cons
                                   std::uint64_t photons);
 std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                   std::span<const double> area_m2, double e0, std::uint64_t photons);
+// The surface map's illuminance as the result stores it, per triangle side (front 0).
+struct SurfaceMaps {
+    std::vector<double> illuminance_lx;          // [T][2][B]: E0 / A_t (n_odd + n_even)
+    std::vector<double> illuminance_direct_lx;   // [T][2][B]: first arrivals only
+    std::vector<double> odd_even_difference_lx;  // [T][2], band-summed E_odd - E_even (the terms of eq. 5)
+    std::vector<double> sigma_lx;                // [T][2], side_sigma_lx
+};
+SurfaceMaps surface_maps(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
+                         std::uint64_t photons);
+SurfaceMaps surface_maps(const TallyLayout& layout, std::span<const std::uint64_t> data,
+                         std::span<const double> area_m2, double e0, std::uint64_t photons);
 // photons = N, the photons emitted so far. Primary: the second moment for random runs,
 // the replicate spread for sobol (layout with replicates).
 GlobalEstimate estimate_global(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,

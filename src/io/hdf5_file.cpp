@@ -1,0 +1,258 @@
+#include "hdf5_file.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/file_seal.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+namespace luxtrace::hdf5 {
+
+Id::Id(hid_t id, Closer close, const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5: " + what + " failed");
+}
+
+void Id::close() {
+    if (id_ >= 0 && close_(id_) < 0) {
+        id_ = -1;
+        throw std::runtime_error("HDF5: close failed");
+    }
+    id_ = -1;
+}
+
+void check(herr_t status, const std::string& what) {
+    if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+}
+
+Id create_group(hid_t parent, const std::string& name, const std::string& what) {
+    return Id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, what);
+}
+
+void write_dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, hid_t file_type,
+                   hid_t mem_type, const void* data) {
+    Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "dataspace");
+    // Large maps are chunked and compressed: counts compress well.
+    Id plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "property list");
+    hsize_t total = 1;
+    for (hsize_t d : dims) total *= d;
+    if (total >= 4096 && !dims.empty()) {
+        std::vector<hsize_t> chunk = dims;
+        chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, total / dims[0])));
+        check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "chunk");
+        check(H5Pset_shuffle(plist), "shuffle");
+        check(H5Pset_deflate(plist, 1), "deflate");
+        check(H5Pset_fletcher32(plist), "checksum");  // a damaged chunk fails to read
+    }
+    Id ds(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
+          "create dataset " + name);
+    check(H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+namespace {
+
+Id utf8_string_type() {
+    Id type(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
+    check(H5Tset_size(type, H5T_VARIABLE), "string size");
+    check(H5Tset_cset(type, H5T_CSET_UTF8), "string cset");
+    return type;
+}
+
+std::vector<const char*> c_strings(const std::vector<std::string>& values) {
+    std::vector<const char*> ptrs;
+    for (const std::string& s : values) ptrs.push_back(s.c_str());
+    return ptrs;
+}
+
+}  // namespace
+
+void string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values) {
+    const Id type = utf8_string_type();
+    const hsize_t n = values.size();
+    Id space(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
+    Id ds(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose, name);
+    const std::vector<const char*> ptrs = c_strings(values);
+    check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), name);
+}
+
+void write_attr(hid_t obj, const std::string& name, std::size_t n, hid_t file_type, hid_t mem_type,
+                const void* values) {
+    const hsize_t dim = n;
+    Id space(n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &dim, nullptr), H5Sclose, "attr space");
+    Id a(H5Acreate2(obj, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "attr " + name);
+    check(H5Awrite(a, mem_type, values), "write attr " + name);
+}
+
+void attr_strings(hid_t obj, const std::string& name, const std::vector<std::string>& values, bool scalar) {
+    const Id type = utf8_string_type();
+    const hsize_t n = values.size();
+    Id space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose, "attr space");
+    Id a(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, "attr " + name);
+    const std::vector<const char*> ptrs = c_strings(values);
+    check(H5Awrite(a, type, ptrs.data()), "write attr " + name);
+}
+
+void attr(hid_t obj, const std::string& name, const std::string& value) { attr_strings(obj, name, {value}, true); }
+void attr(hid_t obj, const std::string& name, const char* value) { attr(obj, name, std::string(value)); }
+
+namespace {
+
+// The core driver's buffer, kept when HDF5 lets go of it at file close.
+struct MemoryImage {
+    void* ptr = nullptr;
+    std::size_t size = 0;
+    std::vector<char> bytes;
+
+    static H5FD_file_image_callbacks_t callbacks(MemoryImage* m) {
+        H5FD_file_image_callbacks_t c{};
+        c.image_malloc = [](std::size_t n, H5FD_file_image_op_t, void* u) -> void* {
+            auto* self = static_cast<MemoryImage*>(u);
+            self->ptr = std::malloc(n);
+            self->size = n;
+            return self->ptr;
+        };
+        c.image_memcpy = [](void* dst, const void* src, std::size_t n, H5FD_file_image_op_t, void*) -> void* {
+            return std::memcpy(dst, src, n);
+        };
+        c.image_realloc = [](void* p, std::size_t n, H5FD_file_image_op_t, void* u) -> void* {
+            auto* self = static_cast<MemoryImage*>(u);
+            void* q = std::realloc(p, n);
+            if (q != nullptr) {
+                self->ptr = q;
+                self->size = n;
+            }
+            return q;
+        };
+        c.image_free = [](void* p, H5FD_file_image_op_t op, void* u) -> herr_t {
+            auto* self = static_cast<MemoryImage*>(u);
+            if (p != nullptr && p == self->ptr && op == H5FD_FILE_IMAGE_OP_FILE_CLOSE) {
+                const char* b = static_cast<const char*>(p);
+                self->bytes.assign(b, b + self->size);
+            }
+            if (p == self->ptr) self->ptr = nullptr;
+            std::free(p);
+            return 0;
+        };
+        // The property list is copied into the file: all copies share this one object.
+        c.udata_copy = [](void* u) -> void* { return u; };
+        c.udata_free = [](void*) -> herr_t { return 0; };
+        c.udata = m;
+        return c;
+    }
+};
+
+// Length of the HDF5 file in `image`: the user block plus the "end of file address" of
+// its version 2/3 superblock (HDF5 File Format Specification, section II.A), which
+// H5F_LIBVER_V18 selects: signature (8 bytes), versions and sizes (4), base address (8),
+// extension address (8), end of file address (8, little-endian, from the superblock on).
+std::size_t file_length(const std::vector<char>& image, std::size_t userblock) {
+    const char* sb = image.data() + userblock;
+    if (image.size() < userblock + 48 || std::memcmp(sb, kHdf5Signature, 8) != 0 || (sb[8] != 2 && sb[8] != 3) ||
+        sb[9] != 8)
+        throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
+    std::uint64_t eof = 0;
+    for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(sb[28 + i]);
+    if (eof < 48 || eof > image.size() - userblock)
+        throw std::runtime_error("HDF5: the in-memory file image is incomplete");
+    return userblock + static_cast<std::size_t>(eof);
+}
+
+}  // namespace
+
+std::vector<char> file_image(const std::filesystem::path& name, std::size_t userblock,
+                             const std::function<void(hid_t file)>& fill) {
+    std::vector<char> image;
+    H5E_BEGIN_TRY {
+        Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access list");
+        check(H5Pset_fapl_core(fapl, 1 << 20, 0), "core driver");
+        // The image is taken when HDF5 frees it at close, after the superblock is final
+        // (H5Fget_file_image on an open file has stale checksums in this format).
+        MemoryImage captured;
+        H5FD_file_image_callbacks_t callbacks = MemoryImage::callbacks(&captured);
+        check(H5Pset_file_image_callbacks(fapl, &callbacks), "file image callbacks");
+        // Format of HDF5 1.8 and later: every metadata block carries a checksum, so a
+        // damaged file is refused by the reader instead of being misread.
+        check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST), "format bounds");
+        Id fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation list");
+        check(H5Pset_userblock(fcpl, userblock), "user block");
+        Id file(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
+        fill(file);
+        check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
+        file.close();
+        image = std::move(captured.bytes);
+        image.resize(file_length(image, userblock));  // the driver's buffer grows in whole increments
+    }
+    H5E_END_TRY;
+    return image;
+}
+
+// ---- Reading ----
+
+void fail(const std::filesystem::path& path, const std::string& what) { throw InputError(path.string() + ": " + what); }
+
+// A dataset's elements come from its stored bytes: uncompressed one for one, deflated
+// (large datasets) at most about 1032 to 1 (zlib's limit). A claim of more than that is
+// damage, and must not allocate gigabytes.
+constexpr std::size_t kMaxUnbackedBytes = std::size_t{64} << 20;
+constexpr std::size_t kMaxDeflateRatio = 1100;
+
+template <class T>
+std::vector<T> read_dataset(const std::filesystem::path& path, hid_t file, const std::string& name,
+                            std::vector<std::size_t>* shape) {
+    Held ds{-1, H5Dclose};
+    H5E_BEGIN_TRY { ds.id = H5Dopen2(file, name.c_str(), H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (ds.id < 0) fail(path, "result file has no dataset " + name + " (or it is damaged)");
+    Held space{H5Dget_space(ds.id), H5Sclose};
+    if (space.id < 0) fail(path, "cannot read the shape of dataset " + name);
+    const int rank = H5Sget_simple_extent_ndims(space.id);
+    if (rank < 0 || rank > 8) fail(path, "dataset " + name + " has a damaged shape");
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+    if (H5Sget_simple_extent_dims(space.id, dims.data(), nullptr) < 0)
+        fail(path, "dataset " + name + " has a damaged shape");
+    std::size_t total = 1;
+    for (hsize_t d : dims) {
+        if (d != 0 && total > SIZE_MAX / sizeof(T) / d) fail(path, "dataset " + name + " is impossibly large");
+        total *= d;
+    }
+    if (total * sizeof(T) > kMaxUnbackedBytes) {
+        hsize_t stored = 0;
+        H5E_BEGIN_TRY { stored = H5Dget_storage_size(ds.id); }
+        H5E_END_TRY;
+        if (stored * kMaxDeflateRatio < total * sizeof(T))
+            fail(path, "dataset " + name + " claims " + std::to_string(total) + " elements but stores " +
+                           std::to_string(stored) + " bytes");
+    }
+    if (shape != nullptr) shape->assign(dims.begin(), dims.end());
+    std::vector<T> out(total);
+    herr_t ok = 0;
+    if (total > 0) {
+        H5E_BEGIN_TRY { ok = H5Dread(ds.id, native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()); }
+        H5E_END_TRY;
+    }
+    if (ok < 0) fail(path, "cannot read dataset " + name + " (damaged or not numbers)");
+    return out;
+}
+
+template std::vector<double> read_dataset<double>(const std::filesystem::path&, hid_t, const std::string&,
+                                                  std::vector<std::size_t>*);
+template std::vector<std::uint64_t> read_dataset<std::uint64_t>(const std::filesystem::path&, hid_t, const std::string&,
+                                                                std::vector<std::size_t>*);
+
+hid_t open_attr(const std::filesystem::path& path, hid_t file, const std::string& object, const std::string& name) {
+    hid_t a = -1;
+    H5E_BEGIN_TRY { a = H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT); }
+    H5E_END_TRY;
+    if (a < 0) fail(path, "result file has no attribute " + object + "@" + name + " (or it is damaged)");
+    return a;
+}
+
+// An attribute lives in an object header, which is at most 64 KiB per message.
+std::size_t attr_points(const std::filesystem::path& path, hid_t space, const std::string& what) {
+    const hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+    if (n < 0 || n > (hssize_t{1} << 24)) fail(path, "attribute " + what + " has a damaged shape");
+    return static_cast<std::size_t>(n);
+}
+
+}  // namespace luxtrace::hdf5

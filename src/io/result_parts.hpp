@@ -1,0 +1,40 @@
+#pragma once
+// The parts of a result file (docs/REFERENCE.md), one writer each; write_result
+// (result_file.cpp) calls them in the file's order. Each writes numbers it is given: the
+// counts, rearranged from the tally layout into the file's [.., B] arrays, and the
+// estimates of stats/result_estimates.hpp. A new group of datasets (e.g. per light group)
+// is one more writer here, called from write_result, and read in result_data.cpp.
+#include "hdf5_file.hpp"
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/stats/result_estimates.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace luxtrace {
+
+struct Scene;
+
+namespace result_parts {
+
+// Root attributes: the format, how the run was made, and the run's totals.
+void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
+                    const std::vector<std::uint64_t>& tallies, const RunInfo& info, bool checkpoint);
+// /mesh: vertices, triangles, areas, materials.
+void write_mesh(hid_t file, const Scene& scene);
+// /global: the surface map's counts per triangle side and band, its illuminance and errors.
+void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& layout,
+                       const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
+// /detectors/NAME: counts, values, errors, metrics, task areas and cylinders.
+void write_detectors(hid_t file, const Scene& scene, const TallyLayout& layout,
+                     const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
+// /observers/NAME: UGR and the luminaires in view, with the eye detector's counts.
+void write_observers(hid_t file, const Scene& scene, const TallyLayout& layout,
+                     const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
+// /history: one row per reduction.
+void write_history(hid_t file, const std::vector<HistoryRow>& history, const RunInfo& info);
+// /checkpoint: the state a restart continues from.
+void write_checkpoint(hid_t file, const TallyLayout& layout, const CheckpointData& checkpoint);
+
+}  // namespace result_parts
+}  // namespace luxtrace

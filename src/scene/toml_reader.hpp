@@ -22,11 +22,8 @@ public:
     TableReader(const toml::table& table, std::string file, std::string context, std::string_view schema_path);
 
     const std::string& context() const { return context_; }
-    void set_context(std::string c) { context_ = std::move(c); }
     bool has(const std::string& key) const;
     int line(const std::string& key) const;  // line of the key's value, or of the table
-    // "FILE:LINE: CONTEXT" for messages about the whole entry.
-    std::string where() const;
     [[noreturn]] void fail(const std::string& key, const std::string& what) const;
     [[noreturn]] void fail_entry(const std::string& what) const;
 
@@ -49,6 +46,8 @@ public:
     void finish() const;
 
 private:
+    // "FILE:LINE: CONTEXT" for messages about the whole entry.
+    std::string where() const;
     const toml::node* get(const std::string& key);
     void check_schema(const std::string& key) const;  // std::logic_error: the loader reads an unlisted key
     const toml::table& table_;

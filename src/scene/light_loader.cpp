@@ -22,6 +22,19 @@ struct LightReader : StepReader {
     // By canonical file path and lamp set.
     std::map<std::string, std::pair<std::shared_ptr<const Photometry>, std::shared_ptr<const PhotometryDistribution>>>
         photometry_cache;
+    std::vector<std::string> groups;  // in order of first appearance
+
+    // `group`: the index of the entry's light group. Without the key the light is in the
+    // default group, which therefore exists only if some light has no `group`.
+    std::size_t group_of(TableReader& r) {
+        const auto name = r.string("group");
+        if (name) check_group_name(r, "group", *name);
+        const std::string group = name.value_or(Scene::kDefaultLightGroup);
+        const auto it = std::find(groups.begin(), groups.end(), group);
+        if (it != groups.end()) return static_cast<std::size_t>(it - groups.begin());
+        groups.push_back(group);
+        return groups.size() - 1;
+    }
 
     // The light's positions: `position`, a list `positions`, or a `grid` (first point,
     // spacing along scene x and y, counts) - one photometry shared by all of them.
@@ -98,6 +111,7 @@ struct LightReader : StepReader {
         Light l;
         const std::string type = r.string("type").value_or("");
         l.label = "light " + std::to_string(i + 1) + " (" + type + ")";
+        l.group = group_of(r);  // shared by every copy at `positions` or on the `grid`
         auto flux = [&](const char* key) {
             const auto f = r.number(key);
             if (!f) r.fail_entry("type '" + type + "' needs '" + key + "'");
@@ -255,6 +269,14 @@ void place_directional_beams(const Scene& scene, std::vector<Light>& lights) {
 
 }  // namespace
 
+void check_group_name(const TableReader& r, const std::string& key, const std::string& name) {
+    if (name.empty()) r.fail(key, "must not be empty");
+    for (const char c : name)
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+              c == '.'))
+            r.fail(key, "'" + name + "' may contain only letters, digits, '_', '-' and '.'");
+}
+
 void read_lights(SceneLoad& load, TableReader& root) {
     LightReader reader(load);
     std::vector<Light> lights;
@@ -272,6 +294,7 @@ void read_lights(SceneLoad& load, TableReader& root) {
     }
     Scene& scene = load.scene;
     scene.lights = LightSet(std::move(lights));
+    scene.light_groups = std::move(reader.groups);
     if (!scene.lights.maintenance_factor_uniform())
         scene.warnings.push_back("maintenance factors differ between lights: results are initial values, and the "
                                  "maintained ones luxtrace reports use the flux-weighted mean factor (" +

@@ -45,6 +45,7 @@ struct RunReader : StepReader {
             if (*mb < 1 || *mb > 1000000) r.fail("max_bounces", "must lie in [1, 1000000]");
             run.max_bounces = static_cast<int>(*mb);
         }
+        run.group_maps = r.boolean("group_maps").value_or(run.group_maps);
         if (const toml::array* targets = r.array("target"))
             for (std::size_t i = 0; i < targets->size(); ++i) {
                 const toml::table* tt = (*targets)[i].as_table();
@@ -112,6 +113,17 @@ struct RunReader : StepReader {
         if (avg == "quadratic") g.averaging = Averaging::quadratic;
         else if (avg == "arithmetic") g.averaging = Averaging::arithmetic;
         else r.fail("averaging", "expected 'quadratic' or 'arithmetic'");
+        if (const auto ls = r.string("scene")) {
+            const auto& scenes = scene.light_scenes;
+            if (std::none_of(scenes.begin(), scenes.end(), [&](const LightScene& s) { return s.name == *ls; })) {
+                std::string names;
+                for (const LightScene& s : scenes) names += (names.empty() ? "" : ", ") + s.name;
+                r.fail("scene", "no [[light_scene]] is named '" + *ls + "'" +
+                                    (names.empty() ? std::string(" (the scene has none)")
+                                                   : " (the light scenes: " + names + ")"));
+            }
+            g.light_scene = *ls;
+        }
         r.finish();
         return g;
     }

@@ -1,7 +1,7 @@
 #pragma once
 // Internal to load_scene(): the state its steps share and the steps themselves, one file
-// per concept (geometry_loader.cpp, light_loader.cpp, detector_loader.cpp,
-// camera_loader.cpp, run_loader.cpp). load_scene() (scene_loader.cpp)
+// per concept (geometry_loader.cpp, light_loader.cpp, light_scene_loader.cpp,
+// detector_loader.cpp, camera_loader.cpp, run_loader.cpp). load_scene() (scene_loader.cpp)
 // calls them in the order below; a step may rely on what the steps before it have put
 // into the scene.
 #include "luxtrace/scene/scene.hpp"
@@ -45,18 +45,25 @@ Vec3 unit_vector(TableReader& r, const std::string& key, Vec3 v);
 // A number as the user would write it (up to 15 significant digits).
 std::string fmt_number(double v);
 
+// Light group and light scene names go into the result's HDF5 group names and into
+// `--scene "a=0.5,b=1"`: not empty, and only letters, digits, '_', '-' and '.'.
+void check_group_name(const TableReader& r, const std::string& key, const std::string& name);
+
 // The steps of load_scene(), in order.
 void read_scene_table(SceneLoad& load, TableReader& root);  // scene_loader.cpp
 // [[material]], [[mesh]], [[shape]]; the scene's bounds. Refuses a scene without surfaces.
 void read_geometry(SceneLoad& load, TableReader& root);
-// [[light]]: Scene::lights (directional beams need the bounds). Refuses a scene without lights.
+// [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
+// Refuses a scene without lights.
 void read_lights(SceneLoad& load, TableReader& root);
+// [[light_scene]]: Scene::light_scenes, weights per light group.
+void read_light_scenes(SceneLoad& load, TableReader& root);
 // [[detector]] with their task areas and cylinders.
 void read_detectors(SceneLoad& load, TableReader& root);
 // [[observer]]: each with its eye detector appended after the user's detectors (needs the lights).
 void read_observers(SceneLoad& load, TableReader& root);
 void read_cameras(SceneLoad& load, TableReader& root);
-// [run] and its [[run.target]] (needs the detectors and observers).
+// [run] and its [[run.target]] (needs the light scenes, detectors and observers).
 void read_run(SceneLoad& load, TableReader& root);
 
 }  // namespace luxtrace::detail

@@ -26,6 +26,9 @@ public:
     int line(const std::string& key) const;  // line of the key's value, or of the table
     [[noreturn]] void fail(const std::string& key, const std::string& what) const;
     [[noreturn]] void fail_entry(const std::string& what) const;
+    // For a key of a table inside this one whose keys the user chooses (e.g. the group names
+    // of `dimming`): `key` is its dotted name ("dimming.desk"), `node` its value.
+    [[noreturn]] void fail_nested(const std::string& key, const toml::node& node, const std::string& what) const;
 
     std::optional<std::string> string(const std::string& key);
     std::optional<double> number(const std::string& key);

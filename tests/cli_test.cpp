@@ -161,6 +161,40 @@ flux_lm = 250
     EXPECT_NE(o.out.find("triangles"), std::string::npos) << o.out;
     EXPECT_NE(o.out.find("light 1 (point): every probe ray hits a black surface"), std::string::npos) << o.out;
     EXPECT_EQ(o.out.find("light 2 (spot): every probe ray"), std::string::npos) << o.out;
+    EXPECT_EQ(o.out.find("light group"), std::string::npos) << "one default group is not listed\n" << o.out;
+}
+
+// With light groups `check` lists each group's lights and flux (the sum of its lights') and
+// each light scene's weights, the groups it does not name off.
+TEST_F(Cli, CheckListsLightGroupsAndLightScenes) {
+    const fs::path scene = write("groups.toml", R"(
+[[material]]
+name = "white"
+reflectance = 0.8
+[[shape]]
+type = "box"
+size = [6, 6, 3]
+inward = true
+material = "white"
+[[light]]
+type = "point"
+positions = [[0, 0, 2], [1, 0, 2], [2, 0, 2]]
+flux_lm = 400
+group = "desk"
+[[light]]
+type = "point"
+position = [0, 1, 2]
+flux_lm = 250
+[[light_scene]]
+name = "work"
+dimming = { desk = 0.5 }
+)");
+    const Outcome o = run("check " + scene.string());
+    EXPECT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("2 light group(s)"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("desk              3 light(s), 1200 lm"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("default           1 light(s), 250 lm"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("work              desk 0.5, default off"), std::string::npos) << o.out;
 }
 
 // `luxtrace photometry` reads either format (by content) and prints the table's flux beside

@@ -839,5 +839,125 @@ TEST_F(Loader, BadTaskAreasAreRefused) {
                "task_area", {"key 'task_area'", "illuminance detectors", "no uniformity"});
 }
 
+// ---------------------------------------------------------------------------------
+// Light groups and light scenes (issue 22).
+
+std::string lamp_in(const std::string& group, double z = 1.0) {
+    return "[[light]]\ntype = \"point\"\nposition = [0, 0, " + std::to_string(z) + "]\nflux_lm = 100\n" +
+           (group.empty() ? "" : "group = \"" + group + "\"\n");
+}
+
+std::vector<std::size_t> groups_of(const Scene& s) {
+    std::vector<std::size_t> out;
+    for (const Light& l : s.lights.lights()) out.push_back(l.group);
+    return out;
+}
+
+TEST_F(Loader, LightGroupsAreNumberedInOrderOfFirstAppearance) {
+    // Without any `group` every light is in the one default group.
+    const Scene plain = load(kMat + kFloor + kLamp + kLamp);
+    EXPECT_EQ(plain.light_groups, std::vector<std::string>{Scene::kDefaultLightGroup});
+    EXPECT_EQ(groups_of(plain), (std::vector<std::size_t>{0, 0}));
+    // The default group takes its place where the first light without `group` stands.
+    const Scene mixed = load(kMat + kFloor + lamp_in("b") + lamp_in("") + lamp_in("a.1") + lamp_in("b") + lamp_in(""));
+    EXPECT_EQ(mixed.light_groups, (std::vector<std::string>{"b", "default", "a.1"}));
+    EXPECT_EQ(groups_of(mixed), (std::vector<std::size_t>{0, 1, 2, 0, 1}));
+    // Every light named: no default group. Naming "default" is that group.
+    const Scene named = load(kMat + kFloor + lamp_in("desk") + lamp_in("window-row_2"));
+    EXPECT_EQ(named.light_groups, (std::vector<std::string>{"desk", "window-row_2"}));
+    const Scene explicit_default = load(kMat + kFloor + lamp_in("default") + lamp_in("x") + lamp_in(""));
+    EXPECT_EQ(explicit_default.light_groups, (std::vector<std::string>{"default", "x"}));
+    EXPECT_EQ(groups_of(explicit_default), (std::vector<std::size_t>{0, 1, 0}));
+}
+
+TEST_F(Loader, EveryCopyOfALightEntryIsInItsGroup) {
+    const Scene s = load(kMat + kFloor + lamp_in("first") +
+                         "[[light]]\ntype = \"point\"\npositions = [[0, 0, 1], [1, 0, 1], [2, 0, 1]]\nflux_lm = 10\n"
+                         "group = \"row\"\n"
+                         "[[light]]\ntype = \"spot\"\nhalf_angle_deg = 30\nflux_lm = 10\ngroup = \"grid\"\n"
+                         "grid = { first = [0, 0, 2], spacing = [1, 1], count = [2, 2] }\n");
+    EXPECT_EQ(s.light_groups, (std::vector<std::string>{"first", "row", "grid"}));
+    EXPECT_EQ(groups_of(s), (std::vector<std::size_t>{0, 1, 1, 1, 2, 2, 2, 2}));
+}
+
+TEST_F(Loader, LightScenesWeighTheGroupsTheyNameAndTurnTheOthersOff) {
+    const Scene s = load(kMat + kFloor + lamp_in("desk") + lamp_in("") + lamp_in("window.row") +
+                         "[[light_scene]]\nname = \"evening\"\ndimming = { desk = 0.3, \"window.row\" = 1 }\n"
+                         "[[light_scene]]\nname = \"boost\"\n[light_scene.dimming]\ndefault = 2.5\n");
+    ASSERT_EQ(s.light_scenes.size(), 2u);
+    EXPECT_EQ(s.light_scenes[0].name, "evening");
+    EXPECT_EQ(s.light_scenes[0].weights, (std::vector<double>{0.3, 0.0, 1.0}));  // desk, default, window.row
+    EXPECT_EQ(s.light_scenes[1].name, "boost");
+    EXPECT_EQ(s.light_scenes[1].weights, (std::vector<double>{0.0, 2.5, 0.0}));  // a weight above 1 boosts
+    EXPECT_TRUE(load(kMat + kFloor + kLamp).light_scenes.empty());
+}
+
+TEST_F(Loader, GroupMapsAndTargetsOnALightScene) {
+    EXPECT_TRUE(load(kMat + kFloor + kLamp).run.group_maps);  // the default
+    EXPECT_FALSE(load(kMat + kFloor + kLamp + "[run]\ngroup_maps = false\n").run.group_maps);
+    const Scene s = load(kMat + kFloor + lamp_in("a") + kDesk +
+                         "[[observer]]\nname = \"eye\"\nposition = [0, -1, 1.2]\nview_direction = [0, 1, 0]\n"
+                         "[[light_scene]]\nname = \"half\"\ndimming = { a = 0.5 }\n"
+                         "[[run.target]]\nrelative_error = 0.1\nscene = \"half\"\n"
+                         "[[run.target]]\non = \"detector:desk[0:2,0:1]\"\nrelative_error = 0.1\nscene = \"half\"\n"
+                         "[[run.target]]\non = \"observer:eye\"\nrelative_error = 0.1\nscene = \"half\"\n"
+                         "[[run.target]]\nrelative_error = 0.1\n");
+    ASSERT_EQ(s.run.targets.size(), 4u);
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(s.run.targets[i].light_scene, "half") << i;
+    EXPECT_EQ(s.run.targets[1].detector, "desk");
+    EXPECT_EQ(s.run.targets[2].detector, "observer:eye");
+    EXPECT_TRUE(s.run.targets[3].light_scene.empty());  // the plain run
+}
+
+TEST_F(Loader, BadLightGroupsAreRefused) {
+    const std::string base = kMat + kFloor + kLamp;
+    expect_bad(base + lamp_in("", 2) + "group = \"\"\n", "group = \"\"",
+               {"[[light]] #2", "key 'group'", "not be empty"});
+    for (const std::string name : {"a b", "a/b", "a=b", "a,b", "a:b", "\u00e9t\u00e9"})
+        expect_bad(base + lamp_in(name), "group = ", {"key 'group'", "only letters, digits, '_', '-' and '.'"});
+    expect_bad(base + "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 1\ngroup = 3\n", "group = 3",
+               {"key 'group'", "expected a string"});
+}
+
+TEST_F(Loader, BadLightScenesAreRefused) {
+    const std::string base = kMat + kFloor + lamp_in("desk") + lamp_in("");
+    const std::string ls = "[[light_scene]]\n";
+    expect_bad(base + ls + "dimming = { desk = 1 }\n", "[[light_scene]]", {"[[light_scene]] #1", "needs a 'name'"});
+    expect_bad(base + ls + "name = \"x y\"\ndimming = { desk = 1 }\n", "name = \"x y", {"key 'name'", "only letters"});
+    expect_bad(base + ls + "name = \"\"\ndimming = { desk = 1 }\n", "name = \"\"", {"key 'name'", "not be empty"});
+    expect_bad(base + ls + "name = \"e\"\ndimming = { desk = 1 }\n" + ls +
+                   "name = \"e\" # again\ndimming = { desk = 1 }\n",
+               "# again", {"[[light_scene]] #2 'e'", "key 'name'", "light scene 'e' is defined twice"});
+    expect_bad(base + ls + "name = \"e\"\n", "[[light_scene]]", {"needs 'dimming'"});
+    expect_bad(base + ls + "name = \"e\"\ndimming = 1\n", "dimming", {"key 'dimming'", "expected a table"});
+    // A key that is no group names the key and lists the groups.
+    expect_bad(base + ls + "name = \"e\"\n[light_scene.dimming]\ndesk = 1\nwindow = 0.5\n", "window",
+               {"[[light_scene]] #1 'e'", "key 'dimming.window'", "no light group is named 'window'",
+                "the groups: desk, default"});
+    expect_bad(base + ls + "name = \"e\"\n[light_scene.dimming]\ndesk = -0.5\n", "desk = -0.5",
+               {"key 'dimming.desk'", "a number >= 0"});
+    for (const std::string w : {"\"full\"", "true", "inf", "nan", "[1]"})
+        expect_bad(base + ls + "name = \"e\"\n[light_scene.dimming]\ndesk = " + w + "\n", "desk = " + w,
+                   {"key 'dimming.desk'", "expected a weight"});
+    expect_bad(base + ls + "name = \"e\"\n[light_scene.dimming]\ndesk.lamp = 1\n", "desk.lamp",
+               {"key 'dimming.desk'", "quote a group name with '.'"});
+    // All groups off.
+    expect_bad(base + ls + "name = \"e\"\ndimming = { desk = 0, default = 0 }\n",
+               "dimming =", {"key 'dimming'", "the light scene would be dark"});
+    expect_bad(base + ls + "name = \"e\"\ndimming = {}\n", "dimming =", {"key 'dimming'", "would be dark"});
+    expect_bad(base + ls + "name = \"e\"\ndimming = { desk = 1 }\nbrightness = 2\n", "brightness",
+               {"unknown key 'brightness'"});
+}
+
+TEST_F(Loader, BadRunGroupKeysAreRefused) {
+    const std::string base = kMat + kFloor + lamp_in("desk");
+    expect_bad(base + "[run]\ngroup_maps = 1\n", "group_maps", {"[run]", "key 'group_maps'", "expected true or false"});
+    expect_bad(base + "[[run.target]]\nrelative_error = 0.1\nscene = \"evening\"\n",
+               "scene =", {"[[run.target]] #1", "key 'scene'", "no [[light_scene]] is named 'evening'", "has none"});
+    expect_bad(base + "[[light_scene]]\nname = \"day\"\ndimming = { desk = 1 }\n"
+                      "[[run.target]]\nrelative_error = 0.1\nscene = \"evening\"\n",
+               "scene =", {"key 'scene'", "no [[light_scene]] is named 'evening'", "the light scenes: day"});
+}
+
 }  // namespace
 }  // namespace luxtrace

@@ -18,6 +18,32 @@ const char* type_name(MaterialType t) {
     }
     return "?";
 }
+
+// Only when the scene has more than the one default group, or light scenes.
+void print_light_groups(const Scene& s, std::ostream& out) {
+    const bool only_default = s.light_groups.size() == 1 && s.light_groups[0] == Scene::kDefaultLightGroup;
+    if (only_default && s.light_scenes.empty()) return;
+    std::vector<std::size_t> lights(s.light_groups.size(), 0);
+    std::vector<double> flux_lm(s.light_groups.size(), 0.0);
+    for (const Light& l : s.lights.lights()) {
+        ++lights[l.group];
+        flux_lm[l.group] += l.flux_lm;
+    }
+    out << "groups     " << s.light_groups.size() << " light group(s)\n";
+    for (std::size_t g = 0; g < s.light_groups.size(); ++g)
+        out << "  " << std::left << std::setw(16) << s.light_groups[g] << std::right << "  " << lights[g]
+            << " light(s), " << std::setprecision(6) << flux_lm[g] << " lm\n";
+    out << "scenes     " << s.light_scenes.size() << " light scene(s)\n";
+    for (const LightScene& ls : s.light_scenes) {
+        out << "  " << std::left << std::setw(16) << ls.name << std::right << " ";
+        for (std::size_t g = 0; g < s.light_groups.size(); ++g) {
+            out << (g == 0 ? " " : ", ") << s.light_groups[g] << ' ';
+            if (ls.weights[g] == 0.0) out << "off";
+            else out << std::setprecision(6) << ls.weights[g];
+        }
+        out << '\n';
+    }
+}
 }  // namespace
 
 void print_scene_summary(const Scene& s, const std::vector<std::string>& warnings, std::ostream& out) {
@@ -58,6 +84,7 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
         out << '\n';
     }
+    print_light_groups(s, out);
     out << "detectors  " << s.detectors.size() - s.observers.size() << '\n';
     for (const Detector& d : s.detectors) {
         if (d.observer >= 0) continue;  // an observer's eye detector: listed with the observer

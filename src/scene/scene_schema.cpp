@@ -15,7 +15,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
     // unit). Kept as a table, one scene table per entry, not one key per line:
     // clang-format off
     static const std::vector<SceneTableSchema> schema = {
-        {"", {"scene", "material", "mesh", "shape", "light", "detector", "camera", "run", "observer"}},
+        {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer"}},
         {"scene", {"name", "bands", "maintenance_factor"}},
         {"material",
          {"name", "type", "reflectance", "specular_reflectance", "ior", "transmittance", "diffuse_reflectance",
@@ -26,8 +26,9 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"light",
          {"type", "position", "positions", "grid", "flux_lm", "photometry", "ies", "multiplier", "lamp_factor",
           "lamp_set", "emission", "aim", "direction", "c0", "rotation_deg", "tilt_deg", "roll_deg", "spin_deg",
-          "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour"}},
+          "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour", "group"}},
         {"light.grid", {"first", "spacing", "count"}},
+        {"light_scene", {"name", "dimming"}},
         {"detector",
          {"name", "type", "center", "normal", "up", "size", "cells", "view_direction", "half_angle_deg", "radius",
           "height", "facing", "horizontal", "task_area"}},
@@ -36,8 +37,8 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"camera", {"name", "position", "target", "up", "fov_deg", "size"}},
         {"run",
          {"seed", "photons", "time_limit_s", "report_every_s", "report_every_photons", "output", "checkpoint",
-          "checkpoint_every_s", "sampler", "replicates", "max_bounces", "target"}},
-        {"run.target", {"on", "relative_error", "absolute_error", "photons_received", "averaging"}},
+          "checkpoint_every_s", "sampler", "replicates", "max_bounces", "group_maps", "target"}},
+        {"run.target", {"on", "relative_error", "absolute_error", "photons_received", "averaging", "scene"}},
     };
     // clang-format on
     return schema;

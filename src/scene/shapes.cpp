@@ -5,14 +5,6 @@
 
 namespace luxtrace {
 
-void TriangleMesh::append(const TriangleMesh& other) {
-    const auto base = static_cast<unsigned>(vertices.size());
-    vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
-    for (const glm::uvec3& t : other.triangles) triangles.push_back(t + glm::uvec3(base));
-    material_names.insert(material_names.end(), other.material_names.begin(), other.material_names.end());
-    material_names.resize(triangles.size());
-}
-
 Vec3 default_up(const Vec3& normal) {
     const Vec3 n = glm::normalize(normal);
     return std::abs(n.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(0, 1, 0);

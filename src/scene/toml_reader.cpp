@@ -37,6 +37,11 @@ void TableReader::fail(const std::string& key, const std::string& what) const {
 
 void TableReader::fail_entry(const std::string& what) const { throw InputError(where() + ": " + what); }
 
+void TableReader::fail_nested(const std::string& key, const toml::node& node, const std::string& what) const {
+    throw InputError(file_ + ":" + std::to_string(node.source().begin.line) + ": " + context_ + ": key '" + key +
+                     "': " + what);
+}
+
 const toml::node* TableReader::get(const std::string& key) {
     check_schema(key);
     const toml::node* n = table_.get(key);

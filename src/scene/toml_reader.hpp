@@ -22,13 +22,13 @@ public:
     TableReader(const toml::table& table, std::string file, std::string context, std::string_view schema_path);
 
     const std::string& context() const { return context_; }
-    void set_context(std::string c) { context_ = std::move(c); }
     bool has(const std::string& key) const;
     int line(const std::string& key) const;  // line of the key's value, or of the table
-    // "FILE:LINE: CONTEXT" for messages about the whole entry.
-    std::string where() const;
     [[noreturn]] void fail(const std::string& key, const std::string& what) const;
     [[noreturn]] void fail_entry(const std::string& what) const;
+    // For a key of a table inside this one whose keys the user chooses (e.g. the group names
+    // of `dimming`): `key` is its dotted name ("dimming.desk"), `node` its value.
+    [[noreturn]] void fail_nested(const std::string& key, const toml::node& node, const std::string& what) const;
 
     std::optional<std::string> string(const std::string& key);
     std::optional<double> number(const std::string& key);
@@ -49,6 +49,8 @@ public:
     void finish() const;
 
 private:
+    // "FILE:LINE: CONTEXT" for messages about the whole entry.
+    std::string where() const;
     const toml::node* get(const std::string& key);
     void check_schema(const std::string& key) const;  // std::logic_error: the loader reads an unlisted key
     const toml::table& table_;

@@ -39,7 +39,7 @@ struct Detector {
     double plane_tolerance_m = 1e-3;  // how far from the plane a scattering point may lie
     // cylindrical, semicylindrical: the small cylinder at every cell centre, and the
     // illuminance detector on the same grid whose values give the modelling ratio.
-    double radius_m = 0.01, height_m = 0.2;  // the loader's defaults (scene_loader.cpp says why)
+    double radius_m = 0.01, height_m = 0.2;  // the loader's defaults (detector_loader.cpp says why)
     Vec3 facing{1, 0, 0};                    // semicylindrical: the curved half faces this way
     std::string horizontal;                  // name of that detector, or empty
     int horizontal_index = -1;               // its index in Scene::detectors, or -1

@@ -4,7 +4,8 @@
 // listed is a programming error, so this list is the truth docs/REFERENCE.md is checked
 // against (tests/reference_test.cpp, both directions).
 //
-// To add a key: list it here, read it in scene_loader.cpp, document it in docs/REFERENCE.md.
+// To add a key: list it here, read it in its table's loader (src/scene/*_loader.cpp, the steps
+// in scene_loader.hpp), document it in docs/REFERENCE.md.
 #include <string_view>
 #include <vector>
 

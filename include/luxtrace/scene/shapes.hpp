@@ -12,8 +12,6 @@ struct TriangleMesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles;
     std::vector<std::string> material_names;  // per triangle; empty string = none given
-
-    void append(const TriangleMesh& other);
 };
 
 // Default `up` for a plane with normal n: +z unless n is close to +-z, then +y.

@@ -1,0 +1,236 @@
+// [[material]], [[mesh]] and [[shape]] -> the scene's materials and triangles
+// (docs/REFERENCE.md §2).
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/scene/mesh_loader.hpp"
+#include "luxtrace/scene/shapes.hpp"
+#include "scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+
+namespace luxtrace::detail {
+
+namespace {
+
+// Limits that keep an absurd scene from allocating gigabytes before anything is traced:
+// triangles of one built-in shape, triangles of the whole scene (each costs about 300
+// bytes in the scene, the BVH and the tallies), and vertex coordinates (no lighting scene
+// spans a million kilometres; huge values would overflow areas and Embree's floats).
+constexpr std::uint64_t kMaxShapeTriangles = std::uint64_t{1} << 22;  // 4,194,304
+constexpr std::uint64_t kMaxSceneTriangles = std::uint64_t{1} << 25;  // 33,554,432
+constexpr double kMaxCoordinate = 1e9;                                // metres
+
+// Triangles make_rectangle/box/sphere/disk produce for `subdivisions` (shapes.cpp).
+std::uint64_t shape_triangles(const std::string& type, std::uint64_t s) {
+    if (type == "rectangle") return 2 * s * s;
+    if (type == "box") return 12 * s * s;
+    if (type == "sphere") {
+        const std::uint64_t stacks = std::max<std::uint64_t>(3, s);
+        return 4 * stacks * (stacks - 1);
+    }
+    if (type == "disk") return std::max<std::uint64_t>(12, 8 * s) * (2 * s - 1);
+    return 0;
+}
+
+struct GeometryReader : StepReader {
+    using StepReader::StepReader;
+    std::map<std::string, std::uint32_t> material_index;
+
+    void parse_material(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("material", i, t), "material");
+        Material m;
+        const auto name = r.string("name");
+        if (!name || name->empty()) r.fail_entry("needs a 'name'");
+        m.name = *name;
+        if (material_index.count(m.name)) r.fail("name", "material '" + m.name + "' is defined twice");
+        const std::string type = r.string("type").value_or("diffuse");
+        const std::size_t nb = scene.bands.size();
+        auto required = [&](const std::string& key) {
+            auto v = r.per_band(key, nb);
+            if (!v) r.fail_entry("type '" + type + "' needs '" + key + "'");
+            return *v;
+        };
+        if (type == "diffuse") {
+            m.type = MaterialType::diffuse;
+            m.diffuse_reflectance = required("reflectance");
+        } else if (type == "mirror") {
+            m.type = MaterialType::mirror;
+            m.specular_reflectance = required("specular_reflectance");
+        } else if (type == "glass") {
+            m.type = MaterialType::glass;
+            m.ior = r.number("ior").value_or(1.5);
+            if (!(m.ior >= 1.0 && m.ior <= 4.0)) r.fail("ior", "must lie in [1, 4]");
+            m.transmittance = r.per_band("transmittance", nb).value_or(std::vector<double>(nb, 1.0));
+        } else if (type == "general") {
+            m.type = MaterialType::general;
+            const std::vector<double> zero(nb, 0.0);
+            m.diffuse_reflectance = r.per_band("diffuse_reflectance", nb).value_or(zero);
+            m.specular_reflectance = r.per_band("specular_reflectance", nb).value_or(zero);
+            m.diffuse_transmittance = r.per_band("diffuse_transmittance", nb).value_or(zero);
+            m.specular_transmittance = r.per_band("specular_transmittance", nb).value_or(zero);
+            for (std::size_t b = 0; b < nb; ++b) {
+                const double sum = m.diffuse_reflectance[b] + m.specular_reflectance[b] + m.diffuse_transmittance[b] +
+                                   m.specular_transmittance[b];
+                if (sum > 1.0 + 1e-12)
+                    r.fail_entry("reflectances and transmittances sum to " + std::to_string(sum) + " > 1 in band '" +
+                                 scene.bands[b] + "'");
+            }
+        } else if (type == "black") {
+            m.type = MaterialType::black;
+        } else {
+            r.fail("type", "unknown material type '" + type + "' (expected diffuse, mirror, glass, general or black)");
+        }
+        r.finish();
+        material_index[m.name] = static_cast<std::uint32_t>(scene.materials.size());
+        scene.materials.push_back(std::move(m));
+    }
+
+    std::uint32_t material_ref(TableReader& r, const std::string& key, bool required) {
+        const auto name = r.string(key);
+        if (!name) {
+            if (required) r.fail_entry("needs a '" + key + "'");
+            return UINT32_MAX;
+        }
+        const auto it = material_index.find(*name);
+        if (it == material_index.end()) r.fail(key, "no [[material]] is named '" + *name + "'");
+        return it->second;
+    }
+
+    void add_triangles(const TriangleMesh& mesh, std::uint32_t default_material, TableReader& r) {
+        if (scene.triangles.size() + mesh.triangles.size() > kMaxSceneTriangles)
+            r.fail_entry("the scene would have " + std::to_string(scene.triangles.size() + mesh.triangles.size()) +
+                         " triangles; a scene may have at most " + std::to_string(kMaxSceneTriangles));
+        for (const Vec3& v : mesh.vertices)
+            if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
+                  std::abs(v.z) <= kMaxCoordinate))
+                r.fail_entry("a vertex at (" + fmt_number(v.x) + ", " + fmt_number(v.y) + ", " + fmt_number(v.z) +
+                             ") lies outside the +-" + fmt_number(kMaxCoordinate) + " m that luxtrace can place");
+        const auto base = static_cast<unsigned>(scene.vertices.size());
+        for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            std::uint32_t mat = default_material;
+            const std::string& usemtl = mesh.material_names[t];
+            if (!usemtl.empty()) {
+                const auto it = material_index.find(usemtl);
+                if (it != material_index.end()) mat = it->second;
+            }
+            if (mat == UINT32_MAX)
+                r.fail_entry("triangles with file material '" + usemtl +
+                             "' match no [[material]] and no default 'material' is given");
+            const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
+            const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
+            const Vec3 cr = glm::cross(b - a, c - a);
+            const double area = 0.5 * glm::length(cr);
+            if (!(area > 0.0)) continue;  // degenerate triangles carry no light and no map entry
+            scene.triangles.push_back(tri);
+            scene.triangle_material.push_back(mat);
+            scene.triangle_area_m2.push_back(area);
+            scene.triangle_normal.push_back(cr / (2.0 * area));
+        }
+    }
+
+    void parse_mesh(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("mesh", i, t), "mesh");
+        const auto f = r.string("file");
+        if (!f) r.fail_entry("needs a 'file'");
+        const std::uint32_t mat = material_ref(r, "material", false);
+        Transform tr;
+        if (const toml::table* tt = r.table("transform")) {
+            TableReader tx(*tt, fname, r.context() + " transform", "mesh.transform");
+            tr.translate = tx.vec3("translate").value_or(Vec3(0.0));
+            tr.rotate_deg = tx.vec3("rotate_deg").value_or(Vec3(0.0));
+            if (tx.has("scale")) {
+                if (t["transform"]["scale"].is_array()) tr.scale = *tx.vec3("scale");
+                else tr.scale = Vec3(*tx.number("scale"));
+                if (!(tr.scale.x != 0.0 && tr.scale.y != 0.0 && tr.scale.z != 0.0))
+                    tx.fail("scale", "must be non-zero");
+            }
+            tx.finish();
+        }
+        r.finish();
+        TriangleMesh mesh = load_mesh(load.resolve(*f), tr,
+                                      fname + ":" + std::to_string(r.line("file")) + ": " + r.context());
+        if (tr.scale.x * tr.scale.y * tr.scale.z < 0.0)  // a mirroring scale flips the winding
+            for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
+        add_triangles(mesh, mat, r);
+    }
+
+    void parse_shape(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("shape", i, t), "shape");
+        const std::string type = r.string("type").value_or("");
+        const std::uint32_t mat = material_ref(r, "material", true);
+        const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
+        const auto name = r.string("name");
+        const std::int64_t subdiv64 = r.integer("subdivisions").value_or(type == "sphere" ? 16 : 1);
+        if (subdiv64 < 1 || subdiv64 > 4096) r.fail("subdivisions", "must lie in [1, 4096]");
+        const int subdiv = static_cast<int>(subdiv64);
+        if (const std::uint64_t n = shape_triangles(type, static_cast<std::uint64_t>(subdiv)); n > kMaxShapeTriangles)
+            r.fail("subdivisions", std::to_string(subdiv) + " gives " + std::to_string(n) + " triangles; a " + type +
+                                       " may have at most " + std::to_string(kMaxShapeTriangles) +
+                                       " (split it into several shapes or use a mesh)");
+        auto positive = [&](const std::string& key) {
+            const auto v = r.number(key);
+            if (!v) r.fail_entry("type '" + type + "' needs '" + key + "'");
+            if (!(*v > 0.0)) r.fail(key, "must be positive");
+            return *v;
+        };
+        TriangleMesh mesh;
+        if (type == "rectangle" || type == "disk") {
+            const Vec3 n = unit_vector(r, "normal", r.vec3("normal").value_or(Vec3(0, 0, 1)));
+            if (type == "rectangle") {
+                const Vec3 up = unit_vector(r, "up", r.vec3("up").value_or(default_up(n)));
+                if (glm::length(glm::cross(up, n)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
+                const auto size = r.numbers("size", 2);
+                if (!size) r.fail_entry("type 'rectangle' needs 'size' = [w, h]");
+                if (!((*size)[0] > 0.0 && (*size)[1] > 0.0)) r.fail("size", "must be positive");
+                mesh = make_rectangle(center, n, up, (*size)[0], (*size)[1], subdiv);
+            } else {
+                mesh = make_disk(center, n, positive("radius"), subdiv);
+            }
+        } else if (type == "box") {
+            const auto size = r.vec3("size");
+            if (!size) r.fail_entry("type 'box' needs 'size' = [x, y, z]");
+            if (!(size->x > 0.0 && size->y > 0.0 && size->z > 0.0)) r.fail("size", "must be positive");
+            mesh = make_box(center, *size, subdiv, r.boolean("inward").value_or(false));
+        } else if (type == "sphere") {
+            mesh = make_sphere(center, positive("radius"), subdiv, r.boolean("inward").value_or(false));
+        } else {
+            r.fail("type", "unknown shape type '" + type + "' (expected rectangle, box, sphere or disk)");
+        }
+        r.finish();
+        const std::size_t first = scene.triangles.size();
+        add_triangles(mesh, mat, r);
+        if (name) {
+            if (load.named_shapes.count(*name)) r.fail("name", "shape '" + *name + "' is defined twice");
+            load.named_shapes[*name] = {first, scene.triangles.size()};
+        }
+    }
+
+    void finish_geometry() {
+        if (scene.triangles.empty()) throw InputError(fname + ": the scene has no surfaces");
+        scene.bounds_min = scene.bounds_max = Vec3(scene.vertices[scene.triangles[0].x]);
+        for (const glm::uvec3& t : scene.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 v(scene.vertices[t[k]]);
+                scene.bounds_min = glm::min(scene.bounds_min, v);
+                scene.bounds_max = glm::max(scene.bounds_max, v);
+            }
+    }
+};
+
+}  // namespace
+
+void read_geometry(SceneLoad& load, TableReader& root) {
+    GeometryReader g(load);
+    const auto materials = tables_of(root, "material");
+    for (std::size_t i = 0; i < materials.size(); ++i) g.parse_material(*materials[i], i);
+    const auto meshes = tables_of(root, "mesh");
+    for (std::size_t i = 0; i < meshes.size(); ++i) g.parse_mesh(*meshes[i], i);
+    const auto shapes = tables_of(root, "shape");
+    for (std::size_t i = 0; i < shapes.size(); ++i) g.parse_shape(*shapes[i], i);
+    g.finish_geometry();
+}
+
+}  // namespace luxtrace::detail

@@ -1,0 +1,69 @@
+#pragma once
+// Internal to load_scene(): the state its steps share and the steps themselves, one file
+// per concept (geometry_loader.cpp, light_loader.cpp, light_scene_loader.cpp,
+// detector_loader.cpp, camera_loader.cpp, run_loader.cpp). load_scene() (scene_loader.cpp)
+// calls them in the order below; a step may rely on what the steps before it have put
+// into the scene.
+#include "luxtrace/scene/scene.hpp"
+#include "toml_reader.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace luxtrace::detail {
+
+struct SceneLoad {
+    std::filesystem::path file;
+    std::string fname;  // the file as given, for messages
+    Scene scene;
+    // [[shape]] name -> its triangles [first, last) in scene.triangles, for area lights.
+    std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;
+
+    // A path in the scene file, relative to the scene file's folder unless absolute.
+    std::filesystem::path resolve(const std::string& path) const;
+};
+
+// What each step's reader holds: the load it adds to, and short names for its scene and file.
+struct StepReader {
+    explicit StepReader(SceneLoad& l) : load(l), scene(l.scene), fname(l.fname) {}
+
+    SceneLoad& load;
+    Scene& scene;
+    const std::string& fname;
+};
+
+// The tables of a top-level array of tables ([[key]]); none if the key is absent.
+std::vector<const toml::table*> tables_of(TableReader& root, const std::string& key);
+// "[[kind]] #i 'name'" for messages (i from 0; shown from 1).
+std::string entry_name(const std::string& kind, std::size_t i, const toml::table& t);
+// The key's vector normalised; an error if it is (about) zero.
+Vec3 unit_vector(TableReader& r, const std::string& key, Vec3 v);
+// A number as the user would write it (up to 15 significant digits).
+std::string fmt_number(double v);
+
+// Light group and light scene names go into the result's HDF5 group names and into
+// `--scene "a=0.5,b=1"`: not empty, and only letters, digits, '_', '-' and '.'.
+void check_group_name(const TableReader& r, const std::string& key, const std::string& name);
+
+// The steps of load_scene(), in order.
+void read_scene_table(SceneLoad& load, TableReader& root);  // scene_loader.cpp
+// [[material]], [[mesh]], [[shape]]; the scene's bounds. Refuses a scene without surfaces.
+void read_geometry(SceneLoad& load, TableReader& root);
+// [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
+// Refuses a scene without lights.
+void read_lights(SceneLoad& load, TableReader& root);
+// [[light_scene]]: Scene::light_scenes, weights per light group.
+void read_light_scenes(SceneLoad& load, TableReader& root);
+// [[detector]] with their task areas and cylinders.
+void read_detectors(SceneLoad& load, TableReader& root);
+// [[observer]]: each with its eye detector appended after the user's detectors (needs the lights).
+void read_observers(SceneLoad& load, TableReader& root);
+void read_cameras(SceneLoad& load, TableReader& root);
+// [run] and its [[run.target]] (needs the light scenes, detectors and observers).
+void read_run(SceneLoad& load, TableReader& root);
+
+}  // namespace luxtrace::detail

@@ -16,7 +16,7 @@ V1_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "room
 
 def test_format1_in_format2_shape():
     """room_v1.h5: room.toml, 20k photons, seed 7, written by luxtrace 0.2 in format 1
-    (kept so that format 1 stays tested once the binary writes format 2)."""
+    (kept so that format 1 stays tested: the binary writes format 2)."""
     r = luxtrace.open(V1_FILE)
     assert r.format == "luxtrace-result" and r.format_version == 1 and r.photons == 20000 and r.seed == 7
     s = r.surface
@@ -41,7 +41,7 @@ def test_format1_in_format2_shape():
 
 
 def test_the_binarys_format_reads(room_runs):
-    """Whatever format the binary writes today: maps [T,2,B] equal to the stored counts,
+    """Whatever format the binary writes: maps [T,2,B] equal to the stored counts,
     E = (n_odd + n_even) E0 / A, every attribute there."""
     path = room_runs["random", 1]
     r = luxtrace.open(path)
@@ -186,13 +186,10 @@ def test_checkpoint_reads_like_a_result():
     assert c.surface.sigma_rel_quadratic == pytest.approx(r.surface.sigma_rel_quadratic, rel=1e-10)
 
 
-def test_history_target_columns(binary, tmp_path):
+def test_history_target_columns(target_run):
     """A run stopped by a global target: its column in the history fell to the goal at the
     last reduction and not before, and the last row is the state the file ends in."""
-    from conftest import ROOM, run_luxtrace
-    path = run_luxtrace(binary, ROOM, tmp_path / "target.h5", "--photons", "10M", "--target", "0.05",
-                        "--report-every-photons", "20k")
-    r = luxtrace.open(path)
+    r = luxtrace.open(target_run)
     h = r.history
     t = h.target(0)
     assert h.target(t.label).label == t.label == h.target_labels[0] and t.goal == 0.05

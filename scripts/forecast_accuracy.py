@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Forecast accuracy of finished luxtrace runs (Debian's /usr/bin/python3 with h5py).
+"""Forecast accuracy of finished luxtrace runs (Debian's /usr/bin/python3; the files are
+read through the repository's python/luxtrace).
 
 For each result file of a run that stopped on a target, compare the forecast finishing
 time made at 5%, 10%, 25% and 50% of the run with the time the target was actually met
@@ -11,38 +12,36 @@ sigma_rel = C / sqrt(N), measured over independent seeds by scripts/global_calib
 then a noisy estimate's own final value does not set the yardstick it is judged by.
 Usage: scripts/forecast_accuracy.py [--c-true C] RESULT.h5 [...]
 """
+import os
 import sys
 
-import h5py
 import numpy as np
+
+# The package of this checkout, also when another version of it is installed.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import luxtrace  # noqa: E402
 
 
 def accuracy(path, fractions=(0.05, 0.10, 0.25, 0.50), c_true=None):
-    with h5py.File(path, "r") as f:
-        h = f["history"]
-        t = h["time_s"][:]
-        forecast = h["target_forecast_s"][:, 0]
-        photons = h["photons"][:]
-        fphotons = h["target_forecast_photons"][:, 0] if "target_forecast_photons" in h else None
-        label = np.atleast_1d(h.attrs["target_labels"])[0]
-        reason = f.attrs["stop_reason"]
+    r = luxtrace.open(path)
+    h = r.history
+    target = h.target(0)
+    t, photons = h.time_s, h.photons
     actual = t[-1]
     # Photons the target needed, from the final (best) constant of sigma = C/sqrt(N).
-    with h5py.File(path, "r") as f:
-        h = f["history"]
-        v = h["target_value"][:, 0]
-        goal = np.atleast_1d(h.attrs["target_goals"])[0]
-    c = c_true if c_true is not None else v[-1] * np.sqrt(photons[-1])
-    n_needed = (c / goal) ** 2
+    c = c_true if c_true is not None else target.value[-1] * np.sqrt(photons[-1])
+    n_needed = (c / target.goal) ** 2
     rows = []
     for frac in fractions:
         i = int(np.searchsorted(t, frac * actual))
-        if i >= len(t) - 1 or not np.isfinite(forecast[i]):
+        if i >= len(t) - 1 or not np.isfinite(target.forecast_s[i]):
             rows.append((frac, float("nan"), float("nan"), float("nan"), float("nan")))
             continue
-        perr = (fphotons[i] - n_needed) / n_needed if fphotons is not None else float("nan")
-        rows.append((frac, t[i], forecast[i], (forecast[i] - actual) / actual, perr))
-    return label, reason, actual, len(t), rows
+        fc = target.forecast_s[i]
+        fp = target.forecast_photons
+        perr = (fp[i] - n_needed) / n_needed if fp is not None else float("nan")
+        rows.append((frac, t[i], fc, (fc - actual) / actual, perr))
+    return target.label, r.stop_reason, actual, len(t), rows
 
 
 def main(argv):

@@ -10,36 +10,40 @@ standard error (leave one run out). Also prints C = sigma_rel_obs * sqrt(N) (qua
 mean), the constant of the true error, from which the photons a relative target needs
 follow as (C / goal)^2 (scripts/forecast_accuracy.py --c-true).
 
-Usage (Debian's /usr/bin/python3 with h5py and numpy):
+Usage (Debian's /usr/bin/python3; the files are read through the repository's python/luxtrace):
   scripts/global_calibration.py LUXTRACE SCENE.toml [--seeds 20] [--photons 262144]
                                 [--first-seed 1001] [--work DIR] [--threads 2]
 """
 import argparse
 import os
 import subprocess
+import sys
 import tempfile
 
-import h5py
 import numpy as np
+
+# The package of this checkout, also when another version of it is installed.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import luxtrace  # noqa: E402
 
 
 def run_seeds(args):
-    maps, moment2, odd_even2, area, mean_q = [], [], [], None, []
+    """Per run: the band-summed illuminance of every triangle side, the two global error
+    estimates squared and the quadratic mean; and the sides' areas."""
+    maps, moment2, odd_even2, side_area, mean_q = [], [], [], None, []
     for k in range(args.seeds):
         seed = args.first_seed + k
         out = os.path.join(args.work, f"seed{seed}.h5")
         subprocess.run([args.luxtrace, "run", args.scene, "--output", out, "--quiet", "--threads",
                         str(args.threads), "--photons", str(args.photons), "--seed", str(seed)],
                        check=True, stdout=subprocess.DEVNULL)
-        with h5py.File(out, "r") as f:
-            e = f["global/illuminance"][()]
-            maps.append(e.reshape(e.shape[0], -1, e.shape[-1]).sum(axis=2).ravel())  # band-summed, per side
-            area = f["mesh/area"][()]
-            g = f["global"].attrs
-            moment2.append(float(g["moment_sigma_lx"]) ** 2)
-            odd_even2.append(float(g["sigma_lx"]) ** 2)
-            mean_q.append(float(g["mean_quadratic_lx"]))
-    return np.array(maps), np.array(moment2), np.array(odd_even2), area, np.array(mean_q)
+        s = luxtrace.open(out).surface
+        maps.append(s.side_illuminance_lx.ravel())
+        side_area = s.side_area_m2.ravel()
+        moment2.append(float(s.moment_sigma_lx) ** 2)
+        odd_even2.append(float(s.odd_even_sigma_lx) ** 2)
+        mean_q.append(float(s.mean_quadratic_lx))
+    return np.array(maps), np.array(moment2), np.array(odd_even2), side_area, np.array(mean_q)
 
 
 def observed_sigma(maps, side_area):
@@ -67,8 +71,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         args.work = args.work or tmp
         os.makedirs(args.work, exist_ok=True)
-        maps, moment2, odd_even2, area, mean_q = run_seeds(args)
-    side_area = np.repeat(area, maps.shape[1] // area.shape[0])
+        maps, moment2, odd_even2, side_area, mean_q = run_seeds(args)
     r_m, r_oe, obs = ratios(maps, moment2, odd_even2, side_area)
     n = len(maps)
     jack = np.array([ratios(np.delete(maps, i, 0), np.delete(moment2, i), np.delete(odd_even2, i), side_area)[:2]

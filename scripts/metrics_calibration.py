@@ -11,17 +11,22 @@ task area "side" with their analytic values, in units of their stored errors:
   z_max = (E_max - E_max_bias - ref_max) / E_max_sigma
   z_U0 = (U0 - U0_bias - ref_min / ref_avg) / U0_sigma
 
-Needs Debian's /usr/bin/python3 (numpy, h5py).
+Needs Debian's /usr/bin/python3 (numpy, h5py); the results are read through the
+repository's python/luxtrace.
 
   /usr/bin/python3 scripts/metrics_calibration.py build/src/luxtrace [--seeds 20] [--first 100] [--sampler random]
 """
 import argparse
 import os
 import subprocess
+import sys
 import tempfile
 
-import h5py
 import numpy as np
+
+# The package of this checkout, also when another version of it is installed.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import luxtrace  # noqa: E402
 
 SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "validation",
                      "point_floor_metrics.toml")
@@ -48,23 +53,23 @@ def main():
     ap.add_argument("--first", type=int, default=100)
     ap.add_argument("--sampler", default="random")
     a = ap.parse_args()
-    areas = {"whole grid": ("/detectors/floor_E", reference(0, 10, 0, 10)),
-             "task area": ("/detectors/floor_E/task_areas/side", reference(6, 10, 2, 5))}
+    areas = {"whole grid": (None, reference(0, 10, 0, 10)),  # None: the detector's own metrics
+             "task area": ("side", reference(6, 10, 2, 5))}
     z = {k: [] for k in areas}
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "run.h5")
         for seed in range(a.first, a.first + a.seeds):
             subprocess.run([a.luxtrace, "run", SCENE, "--output", out, "--quiet", "--threads", "2", "--seed",
                             str(seed), "--sampler", a.sampler], check=True, stdout=subprocess.DEVNULL)
-            with h5py.File(out) as f:
-                for name, (group, (avg, lo, hi)) in areas.items():
-                    m = f[group].attrs
-                    z[name].append([(m["E_avg_lx"] - avg) / m["E_avg_sigma_lx"],
-                                    (m["E_min_lx"] - lo) / m["E_min_sigma_lx"],
-                                    (m["E_min_lx"] - m["E_min_bias_lx"] - lo) / m["E_min_sigma_lx"],
-                                    (m["E_max_lx"] - m["E_max_bias_lx"] - hi) / m["E_max_sigma_lx"],
-                                    (m["U0"] - m["U0_bias"] - lo / avg) / m["U0_sigma"],
-                                    m["U0_unreliable"]])
+            d = luxtrace.open(out).detector("floor_E")
+            for name, (area, (avg, lo, hi)) in areas.items():
+                m = d.attrs if area is None else d.task_areas[area].attrs
+                z[name].append([(m["E_avg_lx"] - avg) / m["E_avg_sigma_lx"],
+                                (m["E_min_lx"] - lo) / m["E_min_sigma_lx"],
+                                (m["E_min_lx"] - m["E_min_bias_lx"] - lo) / m["E_min_sigma_lx"],
+                                (m["E_max_lx"] - m["E_max_bias_lx"] - hi) / m["E_max_sigma_lx"],
+                                (m["U0"] - m["U0_bias"] - lo / avg) / m["U0_sigma"],
+                                m["U0_unreliable"]])
     cols = ["Eavg", "Emin plain", "Emin - bias", "Emax - bias", "U0 - U0_bias"]
     print(f"{a.seeds} seeds from {a.first}, sampler {a.sampler}")
     for name, rows in z.items():

@@ -14,11 +14,9 @@ the brightest, with +-1 sigma bands) into DIR (default: beside the result). The 
 import os
 import sys
 
-try:
-    import luxtrace.plot  # installed with pip install ./python
-except ImportError:  # run from the repository
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-    import luxtrace.plot
+# The package of this checkout, also when another version of it is installed.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import luxtrace.plot  # noqa: E402
 
 
 if __name__ == "__main__":

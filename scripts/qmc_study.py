@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Time to a true error, and calibration of the error estimates, random against sobol.
 
-The study of docs/QMC.md (issue 11). Needs Debian's /usr/bin/python3 (numpy, h5py).
+The study of docs/QMC.md (issue 11). Needs Debian's /usr/bin/python3 (numpy, h5py); the
+runs are read through the repository's python/luxtrace.
 
   /usr/bin/python3 scripts/qmc_study.py converge  [--work DIR] [--scenes ...] [--seeds 5]
   /usr/bin/python3 scripts/qmc_study.py calibrate [--work DIR] [--scenes ...] [--seeds 20]
@@ -24,7 +25,9 @@ luxtrace reports (eq. 9 for a detector, eq. 4-5's area weighting for the global 
   detector  e^2 = mean_c (L_c - Lref_c)^2 / mean_c(Lref_c)^2
   global    e^2 = sum_t A_t (E_t - Eref_t)^2 / sum_t A_t / (sum_t A_t Eref_t / sum_t A_t)^2
 each minus the reference's own estimated variance in the same form (its eq. 9 sigma_abs^2,
-its (D/2)^2), since the reference's noise adds to the difference.
+its (D/2)^2), since the reference's noise adds to the difference. t runs over the triangle
+sides the reference lit (E_t band-summed, A_t the side's area), as D/2 runs over the lit
+sides; a format-1 file has its map on the front sides only.
 """
 import argparse
 import json
@@ -33,10 +36,13 @@ import subprocess
 import sys
 import time
 
-import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The package of this checkout, also when another version of it is installed.
+sys.path.insert(0, os.path.join(ROOT, "python"))
+import luxtrace  # noqa: E402
+
 SCENES = {
     # name: (scene file, detector, reference photons as a power of two, first k)
     "office": ("examples/office/office.toml", "desk", 28, 20),
@@ -75,28 +81,30 @@ class Maps:
     """The band-summed detector cells and global map of one result, with its estimates."""
 
     def __init__(self, path, detector):
-        with h5py.File(path, "r") as f:
-            d = f["detectors"][detector]
-            self.cells = d["value"][()].sum(axis=-1).ravel()
-            self.det_sigma_abs = d.attrs["sigma_rel_arithmetic"] * d.attrs["mean_arithmetic"]
-            self.det_sigma_rel = d.attrs["sigma_rel_arithmetic"]
-            # per-cell relative errors, band-summed cells only (every scene here has 1 band)
-            self.cell_sigma_rel = d["sigma_rel"][()][..., 0].ravel()
-            self.area = f["mesh/area"][()]
-            self.tri = f["global/illuminance"][()].sum(axis=-1)
-            g = f["global"].attrs
-            self.glob_sigma_lx = g["sigma_lx"]
-            self.glob_sigma_rel = g["sigma_rel_arithmetic"]
-            self.elapsed_s = float(f.attrs["elapsed_s"])  # tracing and reductions, no start-up
+        r = luxtrace.open(path)
+        d = r.detector(detector)
+        value, rel = d.band_sum()
+        self.cells = value.ravel()
+        self.cell_sigma_rel = rel.ravel()
+        self.det_sigma_abs = d.sigma_rel_arithmetic * d.mean_arithmetic
+        self.det_sigma_rel = d.sigma_rel_arithmetic
+        s = r.surface
+        self.area = s.side_area_m2  # [T, 2]
+        self.tri = s.side_illuminance_lx  # [T, 2]
+        self.glob_sigma_lx = s.odd_even_sigma_lx
+        self.glob_sigma_rel = s.sigma_rel_arithmetic
+        self.elapsed_s = float(r.elapsed_s)  # tracing and reductions, no start-up
 
     def det_error(self, ref):
         e2 = np.mean((self.cells - ref.cells) ** 2) - ref.det_sigma_abs ** 2
         return np.sqrt(max(e2, 0.0)) / np.mean(ref.cells)
 
     def glob_error(self, ref):
-        s = self.area.sum()
-        mean = np.sum(self.area * ref.tri) / s
-        e2 = np.sum(self.area * (self.tri - ref.tri) ** 2) / s - ref.glob_sigma_lx ** 2
+        lit = ref.tri > 0
+        a, e, e_ref = self.area[lit], self.tri[lit], ref.tri[lit]
+        s = a.sum()
+        mean = np.sum(a * e_ref) / s
+        e2 = np.sum(a * (e - e_ref) ** 2) / s - ref.glob_sigma_lx ** 2
         return np.sqrt(max(e2, 0.0)) / mean
 
 
@@ -258,7 +266,7 @@ def report_calibration(args, scene, out):
     """The files' own estimates against the scatter of the same quantities over seeds:
     per cell (relative errors, pooled: mean_c sigma_rel,c^2 against mean_c var(L_c / Lbar_c)),
     eq. (9)'s sigma_abs^2 = mean_c sigma_c^2 against mean_c var(L_c), and the global
-    (D/2)^2 against sum_t A_t var(E_t) / sum_t A_t."""
+    (D/2)^2 against sum_t A_t var(E_t) / sum_t A_t over the triangle sides lit in every run."""
     det = SCENES[scene][1]
     for sampler in SAMPLERS:
         ms = []
@@ -276,9 +284,10 @@ def report_calibration(args, scene, out):
                              cells / cells.mean(axis=0), np.full(k, 1.0 / k))
         eq9 = with_interval(np.array([m.det_sigma_abs ** 2 for m in ms]) * lit.size / k,
                              cells, np.full(k, 1.0 / k))
-        area = ms[0].area
-        glob = with_interval(np.array([m.glob_sigma_lx ** 2 for m in ms]), np.array([m.tri for m in ms]),
-                              area / area.sum())
+        sides = np.array([m.tri for m in ms])
+        lit_sides = np.all(sides > 0, axis=0)
+        area = ms[0].area[lit_sides]
+        glob = with_interval(np.array([m.glob_sigma_lx ** 2 for m in ms]), sides[:, lit_sides], area / area.sum())
         print(f"| {scene} | {sampler} | {len(ms)} | {rel} | {eq9} | {glob} |", file=out)
 
 

@@ -20,7 +20,7 @@ echo
 "$lux" render "$out/office.h5" --view overview -o "$out/office_view.png"
 /usr/bin/python3 "$root/scripts/plot_detector.py" "$out/office.h5" --detector desk --detector west_wall -o "$out"
 echo
-echo "Result file:   $out/office.h5   (luxtrace info $out/office.h5; read it with h5py)"
+echo "Result file:   $out/office.h5   (luxtrace info $out/office.h5; in Python: python/luxtrace)"
 echo "ParaView:      $out/office.xdmf"
 echo "Rendered view: $out/office_view.png (luminance in $out/office_view.exr)"
 echo "Desk pictures: $out/desk_value.png, desk_error.png, desk_error_hist.png, desk_sections.png"

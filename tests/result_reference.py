@@ -7,7 +7,8 @@ Every group, dataset and attribute in the files must be documented, and every do
 one must occur in at least one of the files (so give a result and a checkpoint of a run
 with a sobol sampler, targets, every detector type, a task area and an observer). The
 groups named by the scene are matched as /detectors/NAME, /detectors/NAME/task_areas/AREA
-and /observers/NAME. Exit 1 listing the differences.
+and /observers/NAME. Exit 1 listing the differences. The files are read with h5py, not
+through python/luxtrace: the raw layout is what is checked.
 """
 import re
 import sys

@@ -13,8 +13,8 @@ Needs numpy and h5py (Debian: python3-numpy, python3-h5py); pictures need matplo
 from .combine import MismatchError, combine
 from .result_file import write
 from .result import (BACK, FRONT, NEWEST_FORMAT_VERSION, Detector, Group, History, Mesh, Result, ResultError,
-                     SurfaceMap, check_seal, open)
+                     SurfaceMap, TargetHistory, check_seal, open)
 
 __version__ = "0.2.0"
 __all__ = ["open", "combine", "write", "check_seal", "Result", "Mesh", "SurfaceMap", "Detector", "Group", "History",
-           "ResultError", "MismatchError", "FRONT", "BACK", "NEWEST_FORMAT_VERSION"]
+           "TargetHistory", "ResultError", "MismatchError", "FRONT", "BACK", "NEWEST_FORMAT_VERSION"]

@@ -82,7 +82,7 @@ def _combine_surface(rs, e0, photons, notes):
     first = rs[0]
     area = first.mesh.area_m2
     version = first.format_version
-    ds = {k: sum(r.surface.datasets[k] for r in rs) for k in SurfaceMap._COUNTS}
+    ds = {k: sum(r.surface.datasets[k] for r in rs) for k in SurfaceMap.TALLIES if k in first.surface.datasets}
     odd, even = ds["count_odd"], ds["count_even"]
     per_area = (e0 / area)[:, None, None]
     ds["illuminance"] = (odd + even).astype(float) * per_area
@@ -91,7 +91,6 @@ def _combine_surface(rs, e0, photons, notes):
     attrs = {}
     band_odd, band_even = odd.sum(axis=2), even.sum(axis=2)
     if version >= 2:
-        ds["sumsq"] = sum(r.surface.datasets["sumsq"] for r in rs)
         ds["sigma_lx"] = statistics.side_sigma_lx(band_odd + band_even, ds["sumsq"].sum(axis=2), area, e0, photons)
         attrs.update(statistics.global_estimate(band_odd, band_even, area, e0, ds["sigma_lx"], lit_sides_only=True))
         attrs["error_estimator"] = first.surface.attrs.get("error_estimator", "second_moment")
@@ -142,6 +141,10 @@ def _combine_detector(name, rs, photons, rep_photons, notes):
     if dropped:
         notes.append(f"detector '{name}': attributes that differ between the runs and have no combination rule "
                      f"were left out: {', '.join(sorted(dropped))}")
+    areas = sorted({a for d in ds0 for a in d.task_areas})
+    if areas:
+        notes.append(f"detector '{name}': task areas left out (their metrics have no combination rule here): "
+                     f"{', '.join(areas)}")
     out = Detector(name, data, attrs, photons, rep_photons)
     value, rel = out.band_sum()
     g = statistics.grid_summary(value, rel)
@@ -174,8 +177,8 @@ def combine(results):
     (R + R' - 1 degrees of freedom).
 
     Raises MismatchError when the runs differ in mesh, bands, detectors, flux, sampler or
-    format, or share a seed. Observers (UGR) and attributes without a combination rule
-    are left out; ``Result.notes`` lists them. The result has no history.
+    format, or share a seed. Observers (UGR), task areas and attributes without a
+    combination rule are left out; ``Result.notes`` lists them. The result has no history.
     """
     rs = list(results)
     if not rs:

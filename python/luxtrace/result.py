@@ -138,12 +138,6 @@ class Mesh:
     def triangle_count(self):
         return len(self.area_m2)
 
-    def normals(self):
-        """Unit normal of every triangle [T,3]: the front side (counter-clockwise winding)."""
-        v = self.vertices[self.triangles]
-        n = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
-        return n / np.linalg.norm(n, axis=1, keepdims=True)
-
     def same_as(self, other):
         return (self.vertices.shape == other.vertices.shape and self.triangles.shape == other.triangles.shape
                 and np.array_equal(self.vertices, other.vertices) and np.array_equal(self.triangles, other.triangles)
@@ -159,7 +153,9 @@ class SurfaceMap(_AttrAccess):
     store (``sumsq``, ``sigma_lx``) is None or NaN. ``attrs`` holds every /global attribute.
     """
 
-    _COUNTS = ("count_odd", "count_even", "direct_odd", "direct_even")
+    #: The integer tallies every figure of the map is computed from (``sumsq`` from format 2
+    #: on); :func:`_read_tallies` reads them, a combination adds them up.
+    TALLIES = ("count_odd", "count_even", "direct_odd", "direct_even", "sumsq")
 
     def __init__(self, datasets, attrs, area_m2, format_version):
         self.datasets = dict(datasets)
@@ -195,9 +191,16 @@ class SurfaceMap(_AttrAccess):
         return self.datasets["sigma_lx"]
 
     @property
-    def total_illuminance_lx(self):
-        """float64 [T]: both sides and all bands summed (what format 1 stored per triangle)."""
-        return self.illuminance_lx.sum(axis=(1, 2))
+    def side_illuminance_lx(self):
+        """float64 [T,2]: each side's illuminance, bands summed (what ``sigma_lx`` is the
+        error of, and what the global figures of eqs. 4-5 average)."""
+        return self.illuminance_lx.sum(axis=2)
+
+    @property
+    def side_area_m2(self):
+        """float64 [T,2]: the area of each triangle side (A_t on both), the weights of the
+        global figures."""
+        return np.repeat(self.area_m2[:, None], 2, axis=1)
 
     # ------------------------------------------------------------------ summaries
     def _attr(self, name, default=float("nan")):
@@ -230,12 +233,19 @@ class Detector(_AttrAccess):
     added after this package was written); the properties below name the known ones.
     """
 
-    def __init__(self, name, datasets, attrs, photons, replicate_photons=None):
+    #: The integer tallies of a grid (``replicate_count`` for sobol only); values and errors
+    #: are computed from them. :func:`_read_tallies` reads them.
+    TALLIES = ("count", "sumsq", "replicate_count")
+
+    def __init__(self, name, datasets, attrs, photons, replicate_photons=None, task_areas=None):
         self.name = name
         self.datasets = dict(datasets)
         self.attrs = dict(attrs)
         self.photons = int(photons)
         self.replicate_photons = None if replicate_photons is None else np.asarray(replicate_photons)
+        #: ``/detectors/NAME/task_areas``: a :class:`Group` per task area, by name, whose
+        #: ``attrs`` hold the area's ``cell_range`` and illuminance metrics (``E_avg_lx``, ...)
+        self.task_areas = dict(task_areas or {})
 
     def __repr__(self):
         return f"<Detector {self.name}: {self.type}, {self.nx} x {self.ny} cells, {self.bands} band(s)>"
@@ -346,12 +356,30 @@ class Detector(_AttrAccess):
         return path
 
 
+class TargetHistory:
+    """One target's history: its ``label`` and ``goal``, and per reduction its ``value``
+    (the error or count the goal is for), ``forecast_s`` (forecast time to the goal) and
+    ``forecast_photons`` (forecast photons to it), arrays [rows]; a column the file lacks
+    is None."""
+
+    def __init__(self, label, goal, value, forecast_s, forecast_photons):
+        self.label = label
+        self.goal = goal
+        self.value = value
+        self.forecast_s = forecast_s
+        self.forecast_photons = forecast_photons
+
+    def __repr__(self):
+        return f"<TargetHistory {self.label}: goal {self.goal:g}, {0 if self.value is None else len(self.value)} rows>"
+
+
 class History:
     """The convergence history (``/history``): one row per reduction.
 
     time_s, photons, sigma_rel_global, forecast_s [rows]; with targets also
     target_value, target_forecast_s, target_forecast_photons [rows, targets] and
-    target_labels, target_goals. Absent datasets are None.
+    target_labels, target_goals; one target's columns: :meth:`target`. Absent datasets
+    are None.
     """
 
     def __init__(self, datasets, attrs):
@@ -375,6 +403,20 @@ class History:
     @property
     def target_goals(self):
         return list(np.atleast_1d(self.attrs.get("target_goals", [])))
+
+    def target(self, key=0):
+        """The columns of one ``[[run.target]]`` as a :class:`TargetHistory`: ``key`` is its
+        index in ``target_labels`` or its label. KeyError naming the targets otherwise."""
+        labels = self.target_labels
+        k = labels.index(key) if isinstance(key, str) and key in labels else key
+        if not isinstance(k, (int, np.integer)) or not 0 <= k < len(labels):
+            raise KeyError(f"no target {key!r} in the history (targets: {', '.join(labels) or 'none'})")
+
+        def column(name):
+            a = self.datasets.get(name)
+            return None if a is None else a[:, k]
+        return TargetHistory(labels[k], float(self.target_goals[k]), column("target_value"),
+                             column("target_forecast_s"), column("target_forecast_photons"))
 
     def __len__(self):
         t = self.datasets.get("time_s")
@@ -452,8 +494,23 @@ class Result(_AttrAccess):
         return "\n".join(lines)
 
 
-def _read_datasets(group):
-    return {k: v[()] for k, v in group.items() if isinstance(v, h5py.Dataset)}
+def _read_datasets(group, skip=()):
+    return {k: v[()] for k, v in group.items() if isinstance(v, h5py.Dataset) and k not in skip}
+
+
+def _read_tallies(f, version):
+    """The integer tallies of an open file: ``(surface, detectors)``, the surface map's
+    :attr:`SurfaceMap.TALLIES` (format 1's [T,B] as [T,2,B]) and, by detector name, each
+    grid's :attr:`Detector.TALLIES`. The one place the raw counts are read: every value and
+    error is computed from them, so a layout that splits them further (a light group or
+    replicate dimension) is taken apart here."""
+    g = f["global"]
+    surface = {k: g[k][()] for k in SurfaceMap.TALLIES if k in g}
+    if version == 1:
+        surface = {k: _with_sides(a) for k, a in surface.items()}
+    detectors = {name: {k: grp[k][()] for k in Detector.TALLIES if k in grp}
+                 for name, grp in (f["detectors"].items() if "detectors" in f else ())}
+    return surface, detectors
 
 
 def _with_sides(a):
@@ -504,21 +561,22 @@ def _read(f, path):
     m = f["mesh"]
     names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
     mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
-    g = _read_datasets(f["global"])
-    gattrs = _attrs(f["global"])
+    surface_tallies, detector_tallies = _read_tallies(f, version)
+    g = _read_datasets(f["global"], skip=SurfaceMap.TALLIES)
     if version == 1:
-        for k in ("count_odd", "count_even", "direct_odd", "direct_even", "illuminance", "illuminance_direct"):
+        for k in ("illuminance", "illuminance_direct", "odd_even_difference_lx"):
             g[k] = _with_sides(g[k])
-        g["odd_even_difference_lx"] = _with_sides(g["odd_even_difference_lx"])
         g["sigma_lx"] = np.full((mesh.triangle_count, 2), np.nan)
-    surface = SurfaceMap(g, gattrs, mesh.area_m2, version)
+    surface = SurfaceMap({**surface_tallies, **g}, _attrs(f["global"]), mesh.area_m2, version)
     photons = int(attrs.get("photons", 0))
     rep_photons = attrs.get("replicate_photons")
     detectors = {}
-    if "detectors" in f:
-        for name, grp in f["detectors"].items():
-            detectors[name] = Detector(name, _read_datasets(grp), _attrs(grp), photons,
-                                       None if rep_photons is None else np.atleast_1d(rep_photons))
+    for name, tallies in detector_tallies.items():
+        grp = f["detectors"][name]
+        areas = grp["task_areas"].items() if "task_areas" in grp else ()
+        detectors[name] = Detector(name, {**tallies, **_read_datasets(grp, skip=Detector.TALLIES)}, _attrs(grp),
+                                   photons, None if rep_photons is None else np.atleast_1d(rep_photons),
+                                   {a: Group(a, _attrs(t), _read_datasets(t)) for a, t in areas})
     observers = {}
     if "observers" in f:
         for name, grp in f["observers"].items():
@@ -538,7 +596,7 @@ def _validate(r, path):
         bad("the /mesh arrays do not agree in size")
     if T and (m.triangles.min() < 0 or m.triangles.max() >= len(m.vertices)):
         bad("/mesh/triangles names vertices that do not exist")
-    known = SurfaceMap._COUNTS + ("illuminance", "illuminance_direct", "sumsq", "sigma_lx", "odd_even_difference_lx")
+    known = SurfaceMap.TALLIES + ("illuminance", "illuminance_direct", "sigma_lx", "odd_even_difference_lx")
     for k in known:  # datasets a newer luxtrace adds are passed on unchecked
         if k not in r.surface.datasets:
             if k == "sumsq" and r.format_version == 1:

@@ -85,6 +85,8 @@ def write(result, path):
                 for k, a in d.datasets.items():
                     dg[k] = a
                 _set_attrs(dg, d.attrs)
+                for area, t in d.task_areas.items():
+                    _set_attrs(dg.require_group("task_areas").create_group(area), t.attrs)
             for name, o in result.observers.items():
                 og = f.require_group("observers").create_group(name)
                 for k, a in o.datasets.items():

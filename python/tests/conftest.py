@@ -1,5 +1,5 @@
-"""Fixtures: result files made by the real luxtrace binary (format 1 today), and format-2
-files written here with h5py from simulated per-photon arrivals, whose statistics are
+"""Fixtures: result files made by the real luxtrace binary (in the format it writes), and
+format-2 files written here with h5py from simulated per-photon arrivals, whose statistics are
 computed from their definitions (per-photon variances), not from the package's formulas."""
 import os
 import shutil
@@ -53,6 +53,15 @@ def room_runs(binary, tmp_path_factory):
         runs[sampler, 3] = run_luxtrace(binary, ROOM, d / f"{sampler}3.h5", "--photons", "400k", "--seed", "3",
                                         "--sampler", sampler)
     return runs
+
+
+@pytest.fixture(scope="session")
+def target_run(binary, tmp_path_factory):
+    """room.toml stopped by a global target of 5 %, reduced every 20k photons (a history of
+    a few rows, the same on any machine)."""
+    d = tmp_path_factory.mktemp("target")
+    return run_luxtrace(binary, ROOM, d / "target.h5", "--photons", "10M", "--target", "0.05",
+                        "--report-every-photons", "20k")
 
 
 @pytest.fixture(scope="session")

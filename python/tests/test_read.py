@@ -16,7 +16,7 @@ V1_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "room
 
 def test_format1_in_format2_shape():
     """room_v1.h5: room.toml, 20k photons, seed 7, written by luxtrace 0.2 in format 1
-    (kept so that format 1 stays tested once the binary writes format 2)."""
+    (kept so that format 1 stays tested: the binary writes format 2)."""
     r = luxtrace.open(V1_FILE)
     assert r.format == "luxtrace-result" and r.format_version == 1 and r.photons == 20000 and r.seed == 7
     s = r.surface
@@ -41,7 +41,7 @@ def test_format1_in_format2_shape():
 
 
 def test_the_binarys_format_reads(room_runs):
-    """Whatever format the binary writes today: maps [T,2,B] equal to the stored counts,
+    """Whatever format the binary writes: maps [T,2,B] equal to the stored counts,
     E = (n_odd + n_even) E0 / A, every attribute there."""
     path = room_runs["random", 1]
     r = luxtrace.open(path)
@@ -184,3 +184,65 @@ def test_checkpoint_reads_like_a_result():
         np.testing.assert_allclose(c.detectors[name].sigma_rel, d.sigma_rel, rtol=1e-10)
         assert c.detectors[name].mean_sigma_rel == pytest.approx(d.mean_sigma_rel, rel=1e-10)
     assert c.surface.sigma_rel_quadratic == pytest.approx(r.surface.sigma_rel_quadratic, rel=1e-10)
+
+
+def test_history_target_columns(target_run):
+    """A run stopped by a global target: its column in the history fell to the goal at the
+    last reduction and not before, and the last row is the state the file ends in."""
+    r = luxtrace.open(target_run)
+    h = r.history
+    t = h.target(0)
+    assert h.target(t.label).label == t.label == h.target_labels[0] and t.goal == 0.05
+    assert r.stop_reason == f"target {t.label}"
+    assert len(t.value) == len(t.forecast_s) == len(t.forecast_photons) == len(h) >= 2
+    assert t.value[-1] <= t.goal and (t.value[:-1] > t.goal).all()
+    assert h.photons[-1] == r.photons
+    assert t.value[-1] == pytest.approx(r.surface.moment_sigma_rel_quadratic, rel=1e-12)
+    with pytest.raises(KeyError, match="global rel"):
+        h.target("desk abs")
+    with pytest.raises(KeyError):
+        h.target(1)
+
+
+def test_side_maps_give_the_global_figures(tmp_path):
+    """The global figures are area-weighted over the lit triangle sides (SPEC §3): computed
+    again from side_illuminance_lx, side_area_m2 and the per-side sigmas, they are the
+    stored ones."""
+    r = luxtrace.open(write_v2(tmp_path / "v2.h5", [(4, simulate(4, 3000))]))
+    s = r.surface
+    e, a = s.side_illuminance_lx, s.side_area_m2
+    assert e.shape == a.shape == (2, 2) and np.array_equal(a[:, luxtrace.BACK], AREA)
+    np.testing.assert_allclose(e, s.illuminance_lx[:, :, 0] + s.illuminance_lx[:, :, 1])
+    lit = e > 0
+    area = a[lit].sum()
+    assert area == pytest.approx(s.lit_area_m2)
+    assert (a[lit] * e[lit]).sum() / area == pytest.approx(s.mean_arithmetic_lx, rel=1e-12)
+    assert np.sqrt((a[lit] * s.sigma_lx[lit] ** 2).sum() / area) == pytest.approx(s.moment_sigma_lx, rel=1e-12)
+    d = s.odd_even_difference_lx[lit]
+    assert np.sqrt((a[lit] * d * d).sum() / area) / 2 == pytest.approx(s.odd_even_sigma_lx, rel=1e-12)
+
+
+def test_task_areas(binary, tmp_path):
+    """point_floor_metrics.toml's task area "side" (cells 6 <= i < 10, 2 <= j < 5): its
+    Eavg, Emin and Emax are the mean, least and largest band-summed value of those cells of
+    the detector; written again by luxtrace.write it reads back the same; a combination
+    leaves it out and says so."""
+    from conftest import run_luxtrace
+    scene = os.path.join(REPO, "tests", "data", "validation", "point_floor_metrics.toml")
+    runs = [luxtrace.open(run_luxtrace(binary, scene, tmp_path / f"m{seed}.h5", "--photons", "20k", "--seed",
+                                       str(seed))) for seed in (1, 2)]
+    d = runs[0].detector("floor_E")
+    assert list(d.task_areas) == ["side"]
+    side = d.task_areas["side"]
+    i0, i1, j0, j1 = (int(x) for x in side.cell_range)
+    assert (i0, i1, j0, j1) == (6, 10, 2, 5)
+    cells = d.band_sum()[0][j0:j1, i0:i1]
+    assert side.E_avg_lx == pytest.approx(cells.mean(), rel=1e-12)
+    assert side.E_min_lx == pytest.approx(cells.min(), rel=1e-12)
+    assert side.E_max_lx == pytest.approx(cells.max(), rel=1e-12)
+    assert d.E_avg_lx == pytest.approx(d.band_sum()[0].mean(), rel=1e-12), "the grid's own metrics"
+    again = luxtrace.open(luxtrace.write(runs[0], str(tmp_path / "again.h5")))
+    assert again.detector("floor_E").task_areas["side"].attrs.keys() == side.attrs.keys()
+    assert again.detector("floor_E").task_areas["side"].E_min_lx == side.E_min_lx
+    both = luxtrace.combine(runs)
+    assert not both.detector("floor_E").task_areas and any("task areas" in n for n in both.notes)

@@ -62,6 +62,21 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, con
     // Per side, band-summed: float maps the XDMF companion can show as they are.
     dataset(glob, "odd_even_difference_lx", {T, kS}, m.odd_even_difference_lx.data());
     dataset(glob, "sigma_lx", {T, kS}, m.sigma_lx.data());
+    if (L.replicates() > 0) {
+        // sobol: each side's arrivals per replicate (all groups), and the side's error
+        // from their spread.
+        const std::size_t R = L.replicates();
+        std::vector<std::uint64_t> rep(T * kS * B * R, 0);
+        for (std::size_t t = 0; t < T; ++t)
+            for (std::size_t side = 0; side < kS; ++side)
+                for (std::size_t b = 0; b < B; ++b)
+                    for (std::size_t g = 0; g < L.map_groups(); ++g)
+                        for (std::size_t r = 0; r < R; ++r)
+                            rep[((t * kS + side) * B + b) * R + r] +=
+                                data[L.map_replicate(L.side_index(t, side), L.map_column(b, g), r)];
+        dataset(glob, "replicate_count", {T, kS, B, R}, rep.data());
+        dataset(glob, "replicate_sigma_lx", {T, kS}, m.replicate_sigma_lx.data());
+    }
     const GlobalEstimate& g = est.global;
     attr(glob, "sigma_lx", g.sigma_lx);
     attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);

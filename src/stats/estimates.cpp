@@ -63,15 +63,28 @@ std::vector<double> side_sigma_lx(const WeightedTallies& w, std::span<const doub
     std::vector<double> sigma(L.sides(), kNaN);
     if (photons == 0) return sigma;
     const double n = static_cast<double>(photons);
-    const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
-    std::vector<double> sums(L.replicates());
     for (std::size_t t = 0; t < L.triangles(); ++t)
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side) {
             const std::size_t i = L.side_index(t, side);
-            const double counts = L.replicates() > 0 ? side_replicate_sigma_counts(w, i, sums, rep_photons, n)
-                                                     : side_sigma_counts(side_count(w, i), side_sumsq(w, i), n);
-            sigma[t * TallyLayout::kSides + side] = counts * e0 / area[t];
+            sigma[t * TallyLayout::kSides + side] = side_sigma_counts(side_count(w, i), side_sumsq(w, i), n) * e0 /
+                                                    area[t];
         }
+    return sigma;
+}
+
+std::vector<double> side_replicate_sigma_lx(const WeightedTallies& w, std::span<const double> area, double e0,
+                                            std::uint64_t photons) {
+    const TallyLayout& L = w.layout();
+    if (L.replicates() == 0) return {};
+    std::vector<double> sigma(L.sides(), kNaN);
+    if (photons == 0) return sigma;
+    const double n = static_cast<double>(photons);
+    const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
+    std::vector<double> sums(L.replicates());
+    for (std::size_t t = 0; t < L.triangles(); ++t)
+        for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
+            sigma[t * TallyLayout::kSides + side] =
+                side_replicate_sigma_counts(w, L.side_index(t, side), sums, rep_photons, n) * e0 / area[t];
     return sigma;
 }
 
@@ -90,10 +103,10 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
             for (std::size_t b = 0; b < B; ++b) {
                 const double k = e0 / area[t];
                 const std::size_t i = (t * kS + side) * B + b;
-                m.illuminance_lx[i] =
-                    k * (slot_of(t, side, b, TallyLayout::kCountOdd) + slot_of(t, side, b, TallyLayout::kCountEven));
-                m.illuminance_direct_lx[i] =
-                    k * (slot_of(t, side, b, TallyLayout::kDirectOdd) + slot_of(t, side, b, TallyLayout::kDirectEven));
+                m.illuminance_lx[i] = k * (slot_of(t, side, b, TallyLayout::kCountOdd) +
+                                           slot_of(t, side, b, TallyLayout::kCountEven));
+                m.illuminance_direct_lx[i] = k * (slot_of(t, side, b, TallyLayout::kDirectOdd) +
+                                                  slot_of(t, side, b, TallyLayout::kDirectEven));
             }
     m.odd_even_difference_lx.resize(T * kS);
     for (std::size_t t = 0; t < T; ++t)
@@ -104,6 +117,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
             m.odd_even_difference_lx[t * kS + side] = 2.0 * d * e0 / area[t];
         }
     m.sigma_lx = side_sigma_lx(w, area, e0, photons);
+    m.replicate_sigma_lx = side_replicate_sigma_lx(w, area, e0, photons);
     return m;
 }
 

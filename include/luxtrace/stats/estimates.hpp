@@ -72,18 +72,22 @@ struct GlobalEstimate {
 std::vector<double> side_illuminance_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0);
 std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                         std::span<const double> area_m2, double e0);
-// Per side [2 t + side]: the standard error of the band-summed illuminance, from the
-// second moment (random) or the replicate spread (sobol); NaN for photons = 0.
+// Per side [2 t + side]: the standard error of the band-summed illuminance from the second
+// moment (NaN for photons = 0); side_replicate_sigma_lx: from the spread of the side's
+// replicate maps (sobol; empty without replicates).
 std::vector<double> side_sigma_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                                   std::uint64_t photons);
 std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                   std::span<const double> area_m2, double e0, std::uint64_t photons);
+std::vector<double> side_replicate_sigma_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
+                                            std::uint64_t photons);
 // The surface map's illuminance as the result stores it, per triangle side (front 0).
 struct SurfaceMaps {
     std::vector<double> illuminance_lx;          // [T][2][B]: E0 / A_t (n_odd + n_even)
     std::vector<double> illuminance_direct_lx;   // [T][2][B]: first arrivals only
     std::vector<double> odd_even_difference_lx;  // [T][2], band-summed E_odd - E_even (the terms of eq. 5)
     std::vector<double> sigma_lx;                // [T][2], side_sigma_lx
+    std::vector<double> replicate_sigma_lx;      // [T][2], side_replicate_sigma_lx (sobol only)
 };
 SurfaceMaps surface_maps(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                          std::uint64_t photons);

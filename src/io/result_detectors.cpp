@@ -28,9 +28,27 @@ void write_cylinders(hid_t g, const Detector& d, std::size_t bands, const std::o
     attr(g, "modelling_ratio_max", m.max);
 }
 
+// Sobol's replicates: each replicate's counts and photons received (docs/QMC.md).
+void write_replicates(hid_t g, const Detector& d, std::size_t di, std::size_t bands, const TallyLayout& L,
+                      const std::vector<std::uint64_t>& data) {
+    const std::size_t R = L.replicates(), B = bands;
+    std::vector<std::uint64_t> rn(R * d.cells() * B), rt(R);
+    for (std::size_t r = 0; r < R; ++r)
+        for (std::size_t lg = 0; lg < L.groups(); ++lg) {
+            rt[r] += data[L.detector_replicate_total_n(di, r, lg)];
+            for (int c = 0; c < d.cells(); ++c)
+                for (std::size_t b = 0; b < B; ++b)
+                    rn[(r * d.cells() + c) * B + b] += data[L.detector_replicate_n(di, r, c, b, lg)];
+        }
+    dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
+    attr(g, "replicate_total", rt);
+}
+
+}  // namespace
+
 // Eavg, Emin, Emax, U0 of a grid or task area (illuminance_metrics.hpp), initial and
 // maintained.
-void write_metrics(hid_t g, const IlluminanceMetrics& initial, const IlluminanceMetrics& maint) {
+static void write_metrics(hid_t g, const IlluminanceMetrics& initial, const IlluminanceMetrics& maint) {
     attr(g, "metrics_cells", initial.cells);
     using Named = std::pair<std::string, const IlluminanceMetrics&>;
     for (const auto& [suffix, m] : {Named{"", initial}, Named{"_maintained", maint}}) {
@@ -76,24 +94,6 @@ void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceM
         write_metrics(a, m, maint[k]);
     }
 }
-
-// Sobol's replicates: each replicate's counts and photons received (docs/QMC.md).
-void write_replicates(hid_t g, const Detector& d, std::size_t di, std::size_t bands, const TallyLayout& L,
-                      const std::vector<std::uint64_t>& data) {
-    const std::size_t R = L.replicates(), B = bands;
-    std::vector<std::uint64_t> rn(R * d.cells() * B), rt(R);
-    for (std::size_t r = 0; r < R; ++r)
-        for (std::size_t lg = 0; lg < L.groups(); ++lg) {
-            rt[r] += data[L.detector_replicate_total_n(di, r, lg)];
-            for (int c = 0; c < d.cells(); ++c)
-                for (std::size_t b = 0; b < B; ++b)
-                    rn[(r * d.cells() + c) * B + b] += data[L.detector_replicate_n(di, r, c, b, lg)];
-        }
-    dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
-    attr(g, "replicate_total", rt);
-}
-
-}  // namespace
 
 void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
                      const ResultEstimates& est) {

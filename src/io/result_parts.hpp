@@ -14,6 +14,7 @@
 namespace luxtrace {
 
 struct Scene;
+struct Detector;
 
 namespace result_parts {
 
@@ -31,6 +32,15 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& layout,
 // /observers/NAME: UGR and the luminaires in view, with the eye detector's counts.
 void write_observers(hid_t file, const Scene& scene, const TallyLayout& layout,
                      const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
+// The whole grid's metrics (Eavg, Emin, Emax, U0; initial and maintained) as attributes
+// of `g`, each task area's in g/task_areas/AREA.
+void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceMetrics>& initial,
+                      const std::vector<IlluminanceMetrics>& maintained);
+// /light_groups/NAME (scenes with more than one light group): each group's own counts.
+void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& layout,
+                        const std::vector<std::uint64_t>& tallies);
+// /light_scenes/NAME: each [[light_scene]]'s maps, detectors and observers with their errors.
+void write_light_scenes(hid_t file, const Scene& scene, const ResultEstimates& est);
 // /history: one row per reduction.
 void write_history(hid_t file, const std::vector<HistoryRow>& history, const RunInfo& info);
 // /checkpoint: the state a restart continues from.

@@ -6,11 +6,56 @@ namespace luxtrace {
 
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,
                                 double e0, std::uint64_t photons) {
+    ResultEstimates r = estimate_result(scene, WeightedTallies(layout, data), e0, photons);
+    for (const LightScene& ls : scene.light_scenes)
+        r.light_scenes.push_back(estimate_light_scene(scene, ls, layout, data, e0, photons));
+    return r;
+}
+
+namespace {
+// The observer as a light scene sees it: each luminaire's luminance times its group's
+// weight, the luminaires switched off left out.
+Observer dimmed(const Observer& o, const Scene& scene, std::span<const double> weights) {
+    Observer d = o;
+    d.sources.clear();
+    for (GlareSource s : o.sources) {
+        const double w = weights[scene.lights.lights()[s.light].group];
+        if (w <= 0.0) continue;
+        s.luminance_cd_m2 *= w;
+        s.intensity_cd *= w;
+        d.sources.push_back(s);
+    }
+    return d;
+}
+}  // namespace
+
+std::vector<double> light_group_flux_lm(const Scene& scene) {
+    std::vector<double> flux(scene.light_groups.size(), 0.0);
+    for (const Light& l : scene.lights.lights()) flux[l.group] += l.flux_lm;
+    return flux;
+}
+
+LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& ls, const TallyLayout& layout,
+                                         std::span<const std::uint64_t> data, double e0, std::uint64_t photons) {
+    LightSceneEstimates e;
+    e.name = ls.name;
+    e.weights = ls.weights;
+    const std::vector<double> flux = light_group_flux_lm(scene);
+    for (std::size_t g = 0; g < flux.size(); ++g) e.flux_lm += ls.weights[g] * flux[g];
+    const WeightedTallies w(layout, data, ls.weights);
+    e.surface_available = w.map_available();
+    e.estimates = estimate_result(scene, w, e0, photons);
+    return e;
+}
+
+ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, double e0, std::uint64_t photons) {
     ResultEstimates r;
-    r.global = estimate_global(layout, data, scene.triangle_area_m2, e0, photons);
-    r.surface = surface_maps(layout, data, scene.triangle_area_m2, e0, photons);
+    if (w.map_available()) {
+        r.global = estimate_global(w, scene.triangle_area_m2, e0, photons);
+        r.surface = surface_maps(w, scene.triangle_area_m2, e0, photons);
+    }
     for (std::size_t d = 0; d < scene.detectors.size(); ++d)
-        r.detectors.push_back(estimate_detector(scene.detectors[d], d, layout, data, e0, photons));
+        r.detectors.push_back(estimate_detector(scene.detectors[d], d, w, e0, photons));
     const double mf = scene.lights.maintenance_factor();
     for (const DetectorEstimate& e : r.detectors) {
         std::vector<IlluminanceMetrics> m;
@@ -25,9 +70,11 @@ ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, s
                                                      scene.bands.size()));
         else r.modelling.emplace_back();
     }
+    std::vector<double> weights(scene.light_groups.size(), 1.0);
+    for (std::size_t g = 0; g < weights.size() && !w.plain(); ++g) weights[g] = w.weight(g);
     for (const Observer& o : scene.observers)
-        r.observers.push_back(
-            estimate_observer(o, r.detectors[o.eye_detector], mf, scene.lights.maintenance_factor_uniform()));
+        r.observers.push_back(estimate_observer(w.plain() ? o : dimmed(o, scene, weights), r.detectors[o.eye_detector],
+                                                mf, scene.lights.maintenance_factor_uniform()));
     return r;
 }
 

@@ -11,11 +11,14 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace luxtrace {
 
 struct Scene;
+struct LightScene;
+struct LightSceneEstimates;
 
 struct ResultEstimates {
     GlobalEstimate global;
@@ -26,11 +29,32 @@ struct ResultEstimates {
     std::vector<std::vector<IlluminanceMetrics>> maintained_metrics;
     // Per detector: cylindrical detectors with a `horizontal` detector only.
     std::vector<std::optional<ModellingRatio>> modelling;
-    std::vector<ObserverEstimate> observers;  // per Scene::observers
+    std::vector<ObserverEstimate> observers;        // per Scene::observers
+    std::vector<LightSceneEstimates> light_scenes;  // per Scene::light_scenes (the plain run's only)
 };
+
+// A [[light_scene]]'s estimates (issue 22): the same as the plain run's, on the groups'
+// tallies weighted by the scene's dimming. `surface_available` is false when the run kept
+// one surface map for all groups (group_maps = false): then only detectors and observers.
+struct LightSceneEstimates {
+    std::string name;
+    std::vector<double> weights;  // per light group
+    double flux_lm = 0.0;         // sum over groups of weight x the group's flux
+    bool surface_available = true;
+    ResultEstimates estimates;
+};
+
+// Every light group's flux (lm), per Scene::light_groups.
+std::vector<double> light_group_flux_lm(const Scene& scene);
 
 // e0 = flux per photon (lm), photons = N, the photons emitted so far.
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,
                                 double e0, std::uint64_t photons);
+// The same on a light scene's weights (one per group; empty: the plain run). UGR takes each
+// luminaire's luminance times its group's weight; the maintenance factors stay the plain
+// run's.
+ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& tallies, double e0, std::uint64_t photons);
+LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& light_scene, const TallyLayout& layout,
+                                         std::span<const std::uint64_t> data, double e0, std::uint64_t photons);
 
 }  // namespace luxtrace

@@ -26,6 +26,7 @@ public:
     std::uint64_t counter(TallyLayout::Counter c) const { return data_[layout_.counter(c)]; }
     // Every group at weight 1: the plain run.
     bool plain() const { return plain_; }
+    double weight(std::size_t group) const { return weights_[group]; }
     // The surface map can be weighted: it keeps the groups apart, or the weights are plain.
     bool map_available() const { return plain_ || layout_.map_groups() == layout_.groups(); }
 

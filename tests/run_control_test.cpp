@@ -1,5 +1,6 @@
 // Run control pieces without MPI: the work plan covers every photon exactly once on any
 // number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
+#include "app/result_summary.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"

@@ -50,7 +50,4 @@ int available_cores();
 // command-line overrides). Rank 0 prints progress and the summary to `out`.
 RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out);
 
-// The summary printed at the end of a run and by `luxtrace info`.
-void print_result_summary(const ResultReader& result, std::ostream& out);
-
 }  // namespace luxtrace

@@ -1,11 +1,15 @@
 // Run control pieces without MPI: the work plan covers every photon exactly once on any
-// number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
+// number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law; the
+// reduction message and the decision survive their encoding.
+#include "luxtrace/run/run_control.hpp"
 #include "app/result_summary.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/decision.hpp"
+#include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/run/work_plan.hpp"
 #include "luxtrace/run/worker_pool.hpp"
@@ -389,4 +393,147 @@ TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
     EXPECT_NE(s.error.find("unknown sampler 'halton'"), std::string::npos) << s.error;
     EXPECT_TRUE(std::filesystem::is_empty(dir)) << "a failed run must write nothing";
     std::filesystem::remove_all(dir);
+}
+
+// A rank's message decodes to the fields it was encoded from, on a world of three ranks.
+TEST(ReductionMessage, EncodeDecodeKeepsEveryField) {
+    std::mt19937_64 g(5);
+    std::vector<std::uint64_t> tallies(1000);
+    for (std::uint64_t& w : tallies) w = g();
+    ReductionMessage m;
+    m.tallies = tallies;
+    m.progress = {{0, 0}, {7, 1234}, {0, 0}};  // rank 1's message
+    m.flags = {1, 0, 1, 0};
+    std::vector<std::uint64_t> words;
+    m.encode(words);
+    ASSERT_EQ(words.size(), ReductionMessage::word_count(tallies.size(), 3));
+    EXPECT_EQ(words.size(), tallies.size() + 2 * 3 + RankFlags::kWords);
+    const ReductionMessage d = ReductionMessage::decode(words, tallies.size(), 3);
+    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), tallies.begin(), tallies.end()));
+    ASSERT_EQ(d.progress.size(), 3u);
+    for (std::size_t r = 0; r < 3; ++r) {
+        EXPECT_EQ(d.progress[r].items_done, m.progress[r].items_done) << "rank " << r;
+        EXPECT_EQ(d.progress[r].prefix, m.progress[r].prefix) << "rank " << r;
+    }
+    EXPECT_EQ(d.flags.signalled, 1u);
+    EXPECT_EQ(d.flags.idle, 0u);
+    EXPECT_EQ(d.flags.input_fault, 1u);
+    EXPECT_EQ(d.flags.internal_fault, 0u);
+    // Encoding again into the same buffer (the snapshot's, reused) gives the same words.
+    std::vector<std::uint64_t> again = words;
+    m.encode(again);
+    EXPECT_EQ(again, words);
+    EXPECT_THROW(ReductionMessage::decode(words, tallies.size(), 2), std::logic_error);
+}
+
+namespace {
+
+// One rank's tracing of its share of `budget` photons of `scene` to the end, as the run
+// loop encodes it.
+struct RankTrace {
+    std::vector<std::uint64_t> words;
+    RankProgress progress;
+};
+RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPlan& plan, int rank, int ranks,
+                     const RankFlags& flags) {
+    TallyStore store{TallyLayout(scene)};
+    RankWork work(plan, rank);
+    TraceOptions opt;
+    opt.seed = scene.run.seed;
+    opt.threads = 1;
+    {
+        WorkerPool pool(scene, embree, store, work, opt);
+        while (!pool.exhausted() && !pool.failed()) pool.wait_for_park(0.005);
+        pool.stop();
+        EXPECT_FALSE(pool.failed());
+    }
+    ReductionMessage m;
+    m.tallies = store.data();
+    m.progress.resize(static_cast<std::size_t>(ranks));
+    m.progress[static_cast<std::size_t>(rank)] = work.progress();
+    m.flags = flags;
+    RankTrace t{{}, work.progress()};
+    m.encode(t.words);
+    return t;
+}
+
+}  // namespace
+
+// The wire form of a reduction on three ranks: each rank encodes its message and packs its
+// lit sides under the mask OR-ed over the ranks, the packed words are summed, and rank 0
+// unpacks and decodes. The tallies are those of one rank tracing every photon (integer
+// sums: bit-identical), each rank's progress is its own, the flags count the ranks; the
+// closed room's unlit backs are left out of the words sent.
+TEST(ReductionMessage, PackedSumOverRanksDecodesToTheOneRankTallies) {
+    const Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+    const EmbreeScene embree(scene);
+    const TallyLayout layout(scene);
+    constexpr std::uint64_t kBudget = 30000;
+    constexpr int kRanks = 3;
+    const WorkPlan plan({}, kBudget, 4096, kRanks);
+    const std::vector<RankFlags> flags = {{0, 1, 0, 0}, {1, 1, 0, 1}, {1, 0, 1, 0}};
+    std::vector<RankTrace> ranks;
+    for (int r = 0; r < kRanks; ++r) ranks.push_back(trace_rank(scene, embree, plan, r, kRanks, flags[r]));
+    std::vector<std::uint64_t> mask = lit_side_mask(layout, ranks[0].words);
+    for (const RankTrace& t : ranks) {
+        const std::vector<std::uint64_t> m = lit_side_mask(layout, t.words);
+        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] |= m[i];
+    }
+    std::vector<std::uint64_t> sum, packed;
+    for (const RankTrace& t : ranks) {
+        pack_lit_sides(layout, mask, t.words, packed);
+        if (sum.empty()) sum.assign(packed.size(), 0);
+        ASSERT_EQ(packed.size(), sum.size());
+        for (std::size_t i = 0; i < packed.size(); ++i) sum[i] += packed[i];
+    }
+    const std::size_t full = ReductionMessage::word_count(layout.size(), kRanks);
+    EXPECT_LT(sum.size(), full) << "the backs of the closed room's walls are never lit";
+    std::vector<std::uint64_t> words(full, 1);  // overwritten everywhere by unpacking
+    unpack_lit_sides(layout, mask, sum, words);
+    const ReductionMessage d = ReductionMessage::decode(words, layout.size(), kRanks);
+
+    const WorkPlan one({}, kBudget, 4096, 1);
+    const RankTrace reference = trace_rank(scene, embree, one, 0, 1, {});
+    const ReductionMessage ref = ReductionMessage::decode(reference.words, layout.size(), 1);
+    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), ref.tallies.begin(), ref.tallies.end()));
+    for (int r = 0; r < kRanks; ++r) {
+        EXPECT_EQ(d.progress[r].items_done, ranks[r].progress.items_done) << "rank " << r;
+        EXPECT_EQ(d.progress[r].prefix, ranks[r].progress.prefix) << "rank " << r;
+    }
+    EXPECT_EQ(count_photons(plan.done_ranges(d.progress)), kBudget);
+    EXPECT_EQ(d.flags.signalled, 2u);
+    EXPECT_EQ(d.flags.idle, 2u);
+    EXPECT_EQ(d.flags.input_fault, 1u);
+    EXPECT_EQ(d.flags.internal_fault, 1u);
+}
+
+TEST(Decision, EncodeDecodeKeepsEveryFieldButTheReason) {
+    Decision go;
+    go.next_period_s = 0.3712;
+    Decision checkpoint_now;
+    checkpoint_now.checkpoint = true;
+    checkpoint_now.next_period_s = 2.0;
+    Decision snapshot_result;
+    snapshot_result.stop = snapshot_result.result_is_snapshot = true;
+    snapshot_result.reason = "photons";
+    Decision stopped_early;
+    stopped_early.stop = stopped_early.checkpoint = true;
+    stopped_early.exit_code = kExitStoppedEarly;
+    for (const Decision& d :
+         {go, checkpoint_now, snapshot_result, stopped_early, Decision::fault(true), Decision::fault(false)}) {
+        const std::vector<double> w = d.encode();
+        ASSERT_EQ(w.size(), Decision::kWords);
+        const Decision e = Decision::decode(w);
+        EXPECT_EQ(e.stop, d.stop);
+        EXPECT_EQ(e.checkpoint, d.checkpoint);
+        EXPECT_EQ(e.exit_code, d.exit_code);
+        EXPECT_EQ(e.next_period_s, d.next_period_s);
+        EXPECT_EQ(e.result_is_snapshot, d.result_is_snapshot);
+        EXPECT_TRUE(e.reason.empty());
+    }
+    EXPECT_EQ(Decision::fault(true).exit_code, kExitInternal);
+    EXPECT_EQ(Decision::fault(false).exit_code, kExitBadInput);
+    EXPECT_TRUE(Decision::fault(false).stop);
+    EXPECT_FALSE(Decision::fault(false).checkpoint);  // a failed rank's tallies are never written
+    EXPECT_THROW(Decision::decode(std::vector<double>(4)), std::logic_error);
 }

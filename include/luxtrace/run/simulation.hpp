@@ -1,6 +1,7 @@
 #pragma once
 // One `luxtrace run`: trace this rank's share of the photon budget with its threads,
-// reduce the tallies to rank 0, estimate the errors and write the result file.
+// reduce the tallies to rank 0, estimate the errors and write the result file. The phases
+// are RunLoop's (run_loop.hpp).
 #include "luxtrace/io/result_file.hpp"
 
 #include <atomic>

@@ -1,10 +1,16 @@
 // Run control pieces without MPI: the work plan covers every photon exactly once on any
-// number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law.
+// number of ranks and after any interruption; the forecast recovers a 1/sqrt(N) law; the
+// reduction message and the decision survive their encoding; the run controller's rules,
+// row by row.
+#include "luxtrace/run/run_control.hpp"
+#include "app/result_summary.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/decision.hpp"
+#include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/run/work_plan.hpp"
 #include "luxtrace/run/worker_pool.hpp"
@@ -388,4 +394,311 @@ TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
     EXPECT_NE(s.error.find("unknown sampler 'halton'"), std::string::npos) << s.error;
     EXPECT_TRUE(std::filesystem::is_empty(dir)) << "a failed run must write nothing";
     std::filesystem::remove_all(dir);
+}
+
+// A rank's message decodes to the fields it was encoded from, on a world of three ranks.
+TEST(ReductionMessage, EncodeDecodeKeepsEveryField) {
+    std::mt19937_64 g(5);
+    std::vector<std::uint64_t> tallies(1000);
+    for (std::uint64_t& w : tallies) w = g();
+    ReductionMessage m;
+    m.tallies = tallies;
+    m.progress = {{0, 0}, {7, 1234}, {0, 0}};  // rank 1's message
+    m.flags = {1, 0, 1, 0};
+    std::vector<std::uint64_t> words;
+    m.encode(words);
+    ASSERT_EQ(words.size(), ReductionMessage::word_count(tallies.size(), 3));
+    EXPECT_EQ(words.size(), tallies.size() + 2 * 3 + RankFlags::kWords);
+    const ReductionMessage d = ReductionMessage::decode(words, tallies.size(), 3);
+    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), tallies.begin(), tallies.end()));
+    ASSERT_EQ(d.progress.size(), 3u);
+    for (std::size_t r = 0; r < 3; ++r) {
+        EXPECT_EQ(d.progress[r].items_done, m.progress[r].items_done) << "rank " << r;
+        EXPECT_EQ(d.progress[r].prefix, m.progress[r].prefix) << "rank " << r;
+    }
+    EXPECT_EQ(d.flags.signalled, 1u);
+    EXPECT_EQ(d.flags.idle, 0u);
+    EXPECT_EQ(d.flags.input_fault, 1u);
+    EXPECT_EQ(d.flags.internal_fault, 0u);
+    // Encoding again into the same buffer (the snapshot's, reused) gives the same words.
+    std::vector<std::uint64_t> again = words;
+    m.encode(again);
+    EXPECT_EQ(again, words);
+    EXPECT_THROW(ReductionMessage::decode(words, tallies.size(), 2), std::logic_error);
+}
+
+namespace {
+
+// One rank's tracing of its share of `budget` photons of `scene` to the end, as the run
+// loop encodes it.
+struct RankTrace {
+    std::vector<std::uint64_t> words;
+    RankProgress progress;
+};
+RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPlan& plan, int rank, int ranks,
+                     const RankFlags& flags) {
+    TallyStore store{TallyLayout(scene)};
+    RankWork work(plan, rank);
+    TraceOptions opt;
+    opt.seed = scene.run.seed;
+    opt.threads = 1;
+    {
+        WorkerPool pool(scene, embree, store, work, opt);
+        while (!pool.exhausted() && !pool.failed()) pool.wait_for_park(0.005);
+        pool.stop();
+        EXPECT_FALSE(pool.failed());
+    }
+    ReductionMessage m;
+    m.tallies = store.data();
+    m.progress.resize(static_cast<std::size_t>(ranks));
+    m.progress[static_cast<std::size_t>(rank)] = work.progress();
+    m.flags = flags;
+    RankTrace t{{}, work.progress()};
+    m.encode(t.words);
+    return t;
+}
+
+}  // namespace
+
+// The wire form of a reduction on three ranks: each rank encodes its message and packs its
+// lit sides under the mask OR-ed over the ranks, the packed words are summed, and rank 0
+// unpacks and decodes. The tallies are those of one rank tracing every photon (integer
+// sums: bit-identical), each rank's progress is its own, the flags count the ranks; the
+// closed room's unlit backs are left out of the words sent.
+TEST(ReductionMessage, PackedSumOverRanksDecodesToTheOneRankTallies) {
+    const Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+    const EmbreeScene embree(scene);
+    const TallyLayout layout(scene);
+    constexpr std::uint64_t kBudget = 30000;
+    constexpr int kRanks = 3;
+    const WorkPlan plan({}, kBudget, 4096, kRanks);
+    const std::vector<RankFlags> flags = {{0, 1, 0, 0}, {1, 1, 0, 1}, {1, 0, 1, 0}};
+    std::vector<RankTrace> ranks;
+    for (int r = 0; r < kRanks; ++r) ranks.push_back(trace_rank(scene, embree, plan, r, kRanks, flags[r]));
+    std::vector<std::uint64_t> mask = lit_side_mask(layout, ranks[0].words);
+    for (const RankTrace& t : ranks) {
+        const std::vector<std::uint64_t> m = lit_side_mask(layout, t.words);
+        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] |= m[i];
+    }
+    std::vector<std::uint64_t> sum, packed;
+    for (const RankTrace& t : ranks) {
+        pack_lit_sides(layout, mask, t.words, packed);
+        if (sum.empty()) sum.assign(packed.size(), 0);
+        ASSERT_EQ(packed.size(), sum.size());
+        for (std::size_t i = 0; i < packed.size(); ++i) sum[i] += packed[i];
+    }
+    const std::size_t full = ReductionMessage::word_count(layout.size(), kRanks);
+    EXPECT_LT(sum.size(), full) << "the backs of the closed room's walls are never lit";
+    std::vector<std::uint64_t> words(full, 1);  // overwritten everywhere by unpacking
+    unpack_lit_sides(layout, mask, sum, words);
+    const ReductionMessage d = ReductionMessage::decode(words, layout.size(), kRanks);
+
+    const WorkPlan one({}, kBudget, 4096, 1);
+    const RankTrace reference = trace_rank(scene, embree, one, 0, 1, {});
+    const ReductionMessage ref = ReductionMessage::decode(reference.words, layout.size(), 1);
+    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), ref.tallies.begin(), ref.tallies.end()));
+    for (int r = 0; r < kRanks; ++r) {
+        EXPECT_EQ(d.progress[r].items_done, ranks[r].progress.items_done) << "rank " << r;
+        EXPECT_EQ(d.progress[r].prefix, ranks[r].progress.prefix) << "rank " << r;
+    }
+    EXPECT_EQ(count_photons(plan.done_ranges(d.progress)), kBudget);
+    EXPECT_EQ(d.flags.signalled, 2u);
+    EXPECT_EQ(d.flags.idle, 2u);
+    EXPECT_EQ(d.flags.input_fault, 1u);
+    EXPECT_EQ(d.flags.internal_fault, 1u);
+}
+
+TEST(Decision, EncodeDecodeKeepsEveryFieldButTheReason) {
+    Decision go;
+    go.next_period_s = 0.3712;
+    Decision checkpoint_now;
+    checkpoint_now.checkpoint = true;
+    checkpoint_now.next_period_s = 2.0;
+    Decision snapshot_result;
+    snapshot_result.stop = snapshot_result.result_is_snapshot = true;
+    snapshot_result.reason = "photons";
+    Decision stopped_early;
+    stopped_early.stop = stopped_early.checkpoint = true;
+    stopped_early.exit_code = kExitStoppedEarly;
+    for (const Decision& d :
+         {go, checkpoint_now, snapshot_result, stopped_early, Decision::fault(true), Decision::fault(false)}) {
+        const std::vector<double> w = d.encode();
+        ASSERT_EQ(w.size(), Decision::kWords);
+        const Decision e = Decision::decode(w);
+        EXPECT_EQ(e.stop, d.stop);
+        EXPECT_EQ(e.checkpoint, d.checkpoint);
+        EXPECT_EQ(e.exit_code, d.exit_code);
+        EXPECT_EQ(e.next_period_s, d.next_period_s);
+        EXPECT_EQ(e.result_is_snapshot, d.result_is_snapshot);
+        EXPECT_TRUE(e.reason.empty());
+    }
+    EXPECT_EQ(Decision::fault(true).exit_code, kExitInternal);
+    EXPECT_EQ(Decision::fault(false).exit_code, kExitBadInput);
+    EXPECT_TRUE(Decision::fault(false).stop);
+    EXPECT_FALSE(Decision::fault(false).checkpoint);  // a failed rank's tallies are never written
+    EXPECT_THROW(Decision::decode(std::vector<double>(4)), std::logic_error);
+}
+
+namespace {
+
+// The tallies of 20,000 photons in the room, traced once for the whole table.
+const std::vector<std::uint64_t>& room_tallies(const Scene& scene) {
+    static const std::vector<std::uint64_t> tallies = [&] {
+        const EmbreeScene embree(scene);
+        const WorkPlan plan({}, 20000, 4096, 1);
+        const RankTrace t = trace_rank(scene, embree, plan, 0, 1, {});
+        const ReductionMessage m = ReductionMessage::decode(t.words, TallyLayout(scene).size(), 1);
+        return std::vector<std::uint64_t>(m.tallies.begin(), m.tallies.end());
+    }();
+    return tallies;
+}
+
+enum class Goal { none, met, unmet_error, unmet_count };
+
+// One reduction's input and the decision the rules give for it (RunController::after_reduction).
+struct ControlRow {
+    const char* name;
+    // [run]
+    double report_every_s = 0.0;
+    std::uint64_t report_every_photons = 0;
+    double time_limit_s = 0.0;
+    double checkpoint_every_s = 0.0;
+    Goal goal = Goal::none;
+    // the reduction (earlier ones at `earlier_s`, same flags off)
+    std::vector<double> earlier_s = {};
+    double elapsed_s = 1.0;
+    bool idle = false, signalled = false;
+    double stall_s = 0.0, write_s = 0.0;
+    // the decision
+    bool stop = false, checkpoint = false;
+    int exit_code = 0;
+    const char* reason = "";  // a prefix of it
+    bool result_is_snapshot = false;
+    double next_period_s = 0.0;  // checked when the run goes on
+};
+
+}  // namespace
+
+// Every rule of the run controller on one reduction, in microseconds instead of whole
+// runs: the end-to-end stop tests (stop_criteria_test) keep the runs that check real files.
+TEST(RunController, DecidesEachRuleAsTabled) {
+    Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+    const TallyLayout layout(scene);
+    const std::vector<std::uint64_t>& tallies = room_tallies(scene);
+    constexpr std::uint64_t kPhotons = 20000;
+    // The table detector's photons received in these tallies: goals on either side of it.
+    Target count;
+    count.on = "detector:table";
+    count.detector = "table";
+    count.i1 = 10;
+    count.j1 = 8;
+    const double e0 = scene.lights.total_flux_lm() / kPhotons;
+    const GlobalEstimate g = estimate_global(layout, tallies, scene.triangle_area_m2, e0, kPhotons);
+    count.photons_received = 1.0;
+    const double received = evaluate_target(count, scene, layout, tallies, e0, kPhotons, g).value;
+    ASSERT_GT(received, 1000.0);
+    Target error = count;
+    error.photons_received = 0.0;
+    error.relative_error = 1.0;
+    const double rel = evaluate_target(error, scene, layout, tallies, e0, kPhotons, g).value;
+    ASSERT_TRUE(rel > 0.0 && rel < 1.0);
+
+    const double bound = RunController::kPhotonPeriodBound_s, dflt = kDefaultReportEvery_s;
+    // clang-format off: one row per rule
+    // One row per rule (clang-format would give every field a line).
+    // clang-format off
+    const std::vector<ControlRow> rows = {
+        {.name = "nothing to stop for: the default period", .next_period_s = dflt},
+        {.name = "the period as asked", .report_every_s = 0.7, .next_period_s = 0.7},
+        {.name = "a period too short is raised", .report_every_s = 0.001, .next_period_s = 0.05},
+        {.name = "a period too long is lowered", .report_every_s = 1000, .next_period_s = 60},
+        {.name = "stalls: the period is 50 times the stall", .stall_s = 0.1, .next_period_s = 5.0},
+        {.name = "median of the last five stalls", .earlier_s = {0.2, 0.4, 0.6, 0.8}, .stall_s = 0.1,
+         .next_period_s = dflt},
+        {.name = "photon counts: the period only bounds the wait", .report_every_photons = 1000,
+         .next_period_s = bound},
+        {.name = "budget traced", .idle = true,
+         .stop = true, .reason = "photons", .result_is_snapshot = true},
+        {.name = "budget traced at a photon count", .report_every_photons = 1000, .idle = true,
+         .stop = true, .reason = "photons", .result_is_snapshot = true},
+        {.name = "target met", .goal = Goal::met,
+         .stop = true, .reason = "target detector:table"},
+        {.name = "target met at a photon count: the snapshot is the result", .report_every_photons = 1000,
+         .goal = Goal::met, .stop = true, .reason = "target detector:table", .result_is_snapshot = true},
+        {.name = "a met target outranks a signal", .goal = Goal::met, .signalled = true,
+         .stop = true, .reason = "target detector:table"},
+        {.name = "the budget outranks a signal", .idle = true, .signalled = true,
+         .stop = true, .reason = "photons", .result_is_snapshot = true},
+        {.name = "signal: checkpoint and exit 3", .signalled = true,
+         .stop = true, .checkpoint = true, .exit_code = 3, .reason = "signal"},
+        {.name = "signal at a photon count: a final reduction still follows", .report_every_photons = 1000,
+         .signalled = true, .stop = true, .checkpoint = true, .exit_code = 3, .reason = "signal"},
+        {.name = "time limit far: the next reduction before the last moment", .time_limit_s = 10, .elapsed_s = 8.5,
+         .next_period_s = 10 - 0.25 - 8.5},
+        {.name = "time limit within the margin", .time_limit_s = 10, .elapsed_s = 9.7,
+         .stop = true, .reason = "time_limit"},
+        {.name = "the margin grows with the write time", .time_limit_s = 10, .elapsed_s = 7.7, .write_s = 1.0,
+         .stop = true, .reason = "time_limit"},
+        {.name = "... and not before", .time_limit_s = 10, .elapsed_s = 7.6, .write_s = 1.0,
+         .next_period_s = 10 - 2.25 - 7.6},
+        {.name = "time limit with an error target unmet: checkpoint, exit 3", .time_limit_s = 10,
+         .goal = Goal::unmet_error, .elapsed_s = 9.8,
+         .stop = true, .checkpoint = true, .exit_code = 3, .reason = "time_limit"},
+        {.name = "time limit with a count target unmet: a finished run", .time_limit_s = 10,
+         .goal = Goal::unmet_count, .elapsed_s = 9.8,
+         .stop = true, .reason = "time_limit"},
+        {.name = "time limit at photon counts", .report_every_photons = 1000, .time_limit_s = 100, .elapsed_s = 10,
+         .next_period_s = 100 - 0.25 - 10},
+        {.name = "periodic checkpoint due", .checkpoint_every_s = 1.0, .elapsed_s = 1.0,
+         .checkpoint = true, .next_period_s = dflt},
+        {.name = "periodic checkpoint not yet due", .checkpoint_every_s = 1.0, .elapsed_s = 0.9,
+         .next_period_s = dflt},
+        {.name = "periodic checkpoint: its interval counts from the last one", .checkpoint_every_s = 1.0,
+         .earlier_s = {1.0}, .elapsed_s = 1.9,
+         .next_period_s = dflt},
+        {.name = "periodic checkpoint: again after its interval", .checkpoint_every_s = 1.0,
+         .earlier_s = {1.0}, .elapsed_s = 2.0,
+         .checkpoint = true, .next_period_s = dflt},
+    };
+    // clang-format on
+    // clang-format on
+    for (const ControlRow& row : rows) {
+        SCOPED_TRACE(row.name);
+        scene.run.report_every_s = row.report_every_s;
+        scene.run.report_every_photons = row.report_every_photons;
+        scene.run.time_limit_s = row.time_limit_s;
+        scene.run.checkpoint_every_s = row.checkpoint_every_s;
+        scene.run.targets.clear();
+        if (row.goal == Goal::met || row.goal == Goal::unmet_count) {
+            scene.run.targets.push_back(count);
+            scene.run.targets.back().photons_received = row.goal == Goal::met ? received / 2 : 2 * received;
+        }
+        if (row.goal == Goal::unmet_error) {
+            scene.run.targets.push_back(error);
+            scene.run.targets.back().relative_error = rel / 2;
+        }
+        RunController control(scene, layout, {}, 0.0, 0);
+        ReductionInput in;
+        in.tallies = tallies;
+        in.photons = kPhotons;
+        for (const double t : row.earlier_s) {
+            in.elapsed_s = t;
+            in.stall_s = row.stall_s > 0.0 ? 0.001 : 0.0;  // small stalls before: the median is theirs
+            ASSERT_FALSE(control.after_reduction(in).stop);
+        }
+        in.elapsed_s = row.elapsed_s;
+        in.all_ranks_idle = row.idle;
+        in.signalled = row.signalled;
+        in.stall_s = row.stall_s;
+        in.write_s = row.write_s;
+        const Decision d = control.after_reduction(in);
+        EXPECT_EQ(d.stop, row.stop);
+        EXPECT_EQ(d.checkpoint, row.checkpoint);
+        EXPECT_EQ(d.exit_code, row.exit_code);
+        EXPECT_EQ(d.reason.rfind(row.reason, 0), 0u) << d.reason;
+        EXPECT_EQ(d.result_is_snapshot, row.result_is_snapshot);
+        if (!row.stop) {
+            EXPECT_NEAR(d.next_period_s, row.next_period_s, 1e-12);
+        }
+    }
 }

@@ -13,6 +13,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/probe.hpp"
+#include "result_summary.hpp"
 #include "scene_summary.hpp"
 
 #include <CLI/CLI.hpp>

@@ -11,14 +11,28 @@ namespace luxtrace {
 RunController::RunController(const Scene& scene, const TallyLayout& layout, std::vector<HistoryRow> previous,
                              double previous_elapsed_s, std::uint64_t previous_photons)
     : scene_(scene), layout_(layout), history_(std::move(previous)), points_(scene.run.targets.size()),
-      time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons),
-      period_s_(std::clamp(scene.run.report_every_s, 0.05, 60.0)) {
-    if (scene.run.report_every_s <= 0.0) period_s_ = 2.0;
+      time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons), period_s_(initial_period_s(scene.run)) {}
+
+double RunController::initial_period_s(const RunConfig& run) {
     // Reductions come at photon counts; the period only bounds the wait (time limit).
-    if (scene.run.report_every_photons > 0) period_s_ = kPhotonPeriodBound_s;
+    if (run.report_every_photons > 0) return kPhotonPeriodBound_s;
+    return std::clamp(run.report_every_s > 0.0 ? run.report_every_s : kDefaultReportEvery_s, kMinPeriod_s,
+                      kMaxReportPeriod_s);
 }
 
 Decision RunController::after_reduction(const ReductionInput& in) {
+    Decision d = decide(in);
+    // With reductions at photon counts, a run that ends there (a target met, the budget
+    // traced) keeps exactly that snapshot's photons: the threads' chunks beyond it depend
+    // on timing, and the result must not (README: the same on any machine). A snapshot
+    // taken with every rank out of work holds every photon already: no second copy of the
+    // tallies is needed either.
+    d.result_is_snapshot = (scene_.run.report_every_photons > 0 || in.all_ranks_idle) && d.stop && d.exit_code == 0 &&
+                           !d.checkpoint;
+    return d;
+}
+
+Decision RunController::decide(const ReductionInput& in) {
     const RunConfig& run = scene_.run;
     photons_ = in.photons;
     elapsed_s_ = in.elapsed_s;

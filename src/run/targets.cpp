@@ -20,6 +20,14 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
     s.kind = kind_of(t);
     const bool arith = t.averaging == Averaging::arithmetic;
     s.label = t.on;
+    // A target on a [[light_scene]] reads the groups' tallies weighted by its dimming.
+    std::vector<double> weights;
+    if (!t.light_scene.empty()) {
+        s.label += "@" + t.light_scene;
+        for (const LightScene& ls : scene.light_scenes)
+            if (ls.name == t.light_scene) weights = ls.weights;
+    }
+    const WeightedTallies tallies(layout, data, weights);
     switch (s.kind) {
     case TargetKind::relative_error:
         s.goal = t.relative_error;
@@ -35,12 +43,16 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
         break;
     }
     if (t.detector.empty()) {
-        s.value = s.kind == TargetKind::absolute_error ? g.target_sigma_lx() : g.target_sigma_rel(arith);
+        const GlobalEstimate scene_global = t.light_scene.empty()
+                                                ? g
+                                                : estimate_global(tallies, scene.triangle_area_m2, e0, photons);
+        s.value = s.kind == TargetKind::absolute_error ? scene_global.target_sigma_lx()
+                                                       : scene_global.target_sigma_rel(arith);
     } else {
         const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                      [&](const Detector& d) { return d.name == t.detector; });
         const std::size_t di = static_cast<std::size_t>(it - scene.detectors.begin());
-        const DetectorEstimate e = estimate_detector(*it, di, layout, data, e0, photons, {t.i0, t.i1, t.j0, t.j1});
+        const DetectorEstimate e = estimate_detector(*it, di, tallies, e0, photons, {t.i0, t.i1, t.j0, t.j1});
         const bool whole = t.i0 == 0 && t.j0 == 0 && t.i1 == it->nx && t.j1 == it->ny;
         switch (s.kind) {
         case TargetKind::relative_error: s.value = arith ? e.sigma_rel_arithmetic : e.sigma_rel_quadratic; break;

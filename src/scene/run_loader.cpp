@@ -122,6 +122,9 @@ struct RunReader : StepReader {
                                     (names.empty() ? std::string(" (the scene has none)")
                                                    : " (the light scenes: " + names + ")"));
             }
+            if (g.detector.empty() && !scene.run.group_maps)
+                r.fail("scene", "a global target on a light scene needs the surface map per light group; "
+                                "[run] group_maps = false keeps one map for all groups");
             g.light_scene = *ls;
         }
         r.finish();

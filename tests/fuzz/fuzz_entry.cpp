@@ -1,6 +1,7 @@
 // Entry functions of the fuzz targets; see fuzz_entry.hpp and tests/fuzz/README.md.
 #include "fuzz_entry.hpp"
 
+#include "app/result_summary.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
@@ -10,7 +11,6 @@
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/renderer.hpp"
 #include "luxtrace/render/tone_map.hpp"
-#include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 

@@ -4,6 +4,7 @@
 // write a checkpoint, and when to reduce next.
 #include "luxtrace/forecast/forecast.hpp"
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/run/decision.hpp"
 #include "luxtrace/run/targets.hpp"
 
 #include <iosfwd>
@@ -14,14 +15,7 @@
 namespace luxtrace {
 
 struct Scene;
-
-struct Decision {
-    bool stop = false;
-    bool checkpoint = false;
-    int exit_code = 0;
-    double next_period_s = 1.0;
-    std::string reason;
-};
+struct RunConfig;
 
 struct ReductionInput {
     std::span<const std::uint64_t> tallies;
@@ -37,12 +31,19 @@ class RunController {
 public:
     // With reductions at photon counts, the longest wait for one (seconds).
     static constexpr double kPhotonPeriodBound_s = 3600.0;
-    // The shortest period a forecast may ask for.
+    // The shortest period a forecast may ask for, and the bounds of report_every_s.
     static constexpr double kMinPeriod_s = 0.05;
+    static constexpr double kMaxReportPeriod_s = 60.0;
+    // The first reduction's period: report_every_s (kDefaultReportEvery_s when 0) within
+    // the bounds, or kPhotonPeriodBound_s with reductions at photon counts.
+    static double initial_period_s(const RunConfig& run);
     // `previous`: history of the run being continued (times since its start).
     RunController(const Scene& scene, const TallyLayout& layout, std::vector<HistoryRow> previous,
                   double previous_elapsed_s, std::uint64_t previous_photons);
 
+    // The rules in order: a target met, the budget traced, a signal (checkpoint, exit 3),
+    // the time limit (exit 3 with a checkpoint while error targets are unmet), a periodic
+    // checkpoint; the next period from the stalls and the forecasts.
     Decision after_reduction(const ReductionInput& in);
     // Estimates and target states of the latest reduction.
     const GlobalEstimate& global() const { return global_; }
@@ -54,6 +55,7 @@ public:
     std::string progress_line() const;
 
 private:
+    Decision decide(const ReductionInput& in);
     const Scene& scene_;
     const TallyLayout& layout_;
     std::vector<HistoryRow> history_;                // stored: whole run including earlier parts

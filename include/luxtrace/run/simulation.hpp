@@ -1,6 +1,7 @@
 #pragma once
 // One `luxtrace run`: trace this rank's share of the photon budget with its threads,
-// reduce the tallies to rank 0, estimate the errors and write the result file.
+// reduce the tallies to rank 0, estimate the errors and write the result file. The phases
+// are RunLoop's (run_loop.hpp).
 #include "luxtrace/io/result_file.hpp"
 
 #include <atomic>
@@ -49,8 +50,5 @@ int available_cores();
 // Runs the simulation described by `scene` (its `run` table already holds the
 // command-line overrides). Rank 0 prints progress and the summary to `out`.
 RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out);
-
-// The summary printed at the end of a run and by `luxtrace info`.
-void print_result_summary(const ResultReader& result, std::ostream& out);
 
 }  // namespace luxtrace

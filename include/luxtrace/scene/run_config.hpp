@@ -23,11 +23,15 @@ struct Target {
     std::string light_scene;
 };
 
+// Seconds between reductions and progress lines when the scene and the command line
+// leave report_every_s out (or set 0).
+inline constexpr double kDefaultReportEvery_s = 2.0;
+
 struct RunConfig {
     std::uint64_t seed = 1;
     std::uint64_t photons = 1'000'000;
     double time_limit_s = 0.0;  // 0 = none
-    double report_every_s = 2.0;
+    double report_every_s = kDefaultReportEvery_s;
     // Reductions every this many photons (per run, split evenly over the ranks) instead
     // of every report_every_s: the history is then the same on any machine. 0 = by time.
     std::uint64_t report_every_photons = 0;

@@ -1,0 +1,179 @@
+#include "result_summary.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/result_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+
+namespace {
+
+// Eavg, Emin, Emax and U0 stored on an illuminance detector or a task area (SPEC §4).
+void print_metrics(const ResultReader& r, const std::string& g, const std::string& label, std::ostream& out) {
+    auto f = [&](const char* name) { return r.attr_f64(g, name); };
+    auto cell = [&](const char* name) {
+        const std::vector<double> c = r.f64_attr_array(g, name);
+        return c.size() == 2 ? std::to_string(static_cast<long>(c[0])) + "," + std::to_string(static_cast<long>(c[1]))
+                             : std::string("?");
+    };
+    out << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(13) << label << std::right << "Eavg "
+        << f("E_avg_lx") << " +- " << f("E_avg_sigma_lx") << " lx, Emin " << f("E_min_lx") << " +- "
+        << f("E_min_sigma_lx") << " lx (cell " << cell("E_min_cell") << std::defaultfloat << std::setprecision(3)
+        << "; ";
+    if (f("E_min_bias_lx") < 0.0)
+        out << "biased low by about " << -f("E_min_bias_lx") << " lx: " << r.attr_u64(g, "E_min_competitors")
+            << " cells within 3 sigma)";
+    else out << "no other cell within 3 sigma)";
+    out << std::fixed << std::setprecision(2) << ", Emax " << f("E_max_lx") << " +- " << f("E_max_sigma_lx")
+        << " lx (cell " << cell("E_max_cell") << ")\n";
+    out << std::setprecision(3) << "  " << std::setw(13) << ""
+        << "U0 = Emin/Eavg " << f("U0") << " +- " << f("U0_sigma") << ", Emin/Emax " << f("E_min_over_max") << " +- "
+        << f("E_min_over_max_sigma");
+    if (r.attr_u64(g, "U0_unreliable") != 0)
+        out << "  WARNING: Emin too noisy or biased (error or bias above 2 % of Emin, or a cell without photons): "
+               "U0 not meaningful; run longer or use coarser cells";
+    out << '\n';
+    if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0)
+        out << std::setprecision(2) << "  " << std::setw(13) << ""
+            << "maintained Eavg " << f("E_avg_maintained_lx") << " +- " << f("E_avg_maintained_sigma_lx")
+            << " lx, Emin " << f("E_min_maintained_lx") << " +- " << f("E_min_maintained_sigma_lx") << " lx, Emax "
+            << f("E_max_maintained_lx") << " lx\n";
+}
+
+}  // namespace
+
+void print_result_summary(const ResultReader& r, std::ostream& out) {
+    const auto flags = out.flags();
+    const std::uint64_t photons = r.attr_u64("/", "photons");
+    const double elapsed = r.attr_f64("/", "elapsed_s");
+    out << "scene          " << r.attr_str("/", "scene_file") << '\n'
+        << "luxtrace       " << r.attr_str("/", "luxtrace_version") << ", sampler " << r.attr_str("/", "sampler")
+        << (r.has_attr("/", "replicates") && r.attr_u64("/", "replicates") > 0
+                ? " (" + std::to_string(r.attr_u64("/", "replicates")) + " replicates)"
+                : std::string())
+        << ", seed " << r.attr_u64("/", "seed") << '\n'
+        << "run            " << r.attr_u64("/", "ranks") << " rank(s) x " << r.attr_u64("/", "threads_per_rank")
+        << " thread(s), stopped by: " << r.attr_str("/", "stop_reason") << '\n'
+        << "photons        " << photons << " in " << std::fixed << std::setprecision(2) << elapsed << " s ("
+        << std::scientific << std::setprecision(3) << (elapsed > 0 ? photons / elapsed : 0.0) << " photons/s)\n";
+    if (r.has_attr("/", "reductions"))
+        out << "reductions     " << r.attr_u64("/", "reductions") << ", tracing stalled " << std::fixed
+            << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s (" << std::setprecision(2)
+            << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0) << " % of the run)\n";
+    if (r.has("/checkpoint/done_ranges")) {
+        const std::vector<std::uint64_t> done = r.u64("/checkpoint/done_ranges");
+        std::uint64_t n = 0, highest = 0;
+        for (std::size_t i = 0; i + 1 < done.size(); i += 2) {
+            if (done[i + 1] < done[i])
+                throw InputError(r.path().string() + ": damaged checkpoint: a done range ends before it begins");
+            n += done[i + 1] - done[i];
+            highest = std::max(highest, done[i + 1]);
+        }
+        out << "checkpoint     " << n << " photons done in " << done.size() / 2 << " range(s) below index " << highest
+            << ", budget " << r.attr_u64("/checkpoint", "budget") << '\n';
+    }
+    out << std::defaultfloat << std::setprecision(6);
+    out << "flux           " << r.attr_f64("/", "total_flux_lm") << " lm, " << r.attr_f64("/", "flux_per_photon_lm")
+        << " lm per photon\n";
+    out << std::fixed << std::setprecision(2);
+    // Format 2 (issue 13) adds the second-moment estimate and says which one targets use.
+    const bool moment = r.has_attr("/global", "moment_sigma_lx");
+    const std::string used = r.has_attr("/global", "error_estimator") ? r.attr_str("/global", "error_estimator")
+                                                                      : "odd_even";
+    auto global_line = [&](const char* label, const std::string& prefix, const std::string& estimator) {
+        out << label << r.attr_f64("/global", prefix + "sigma_lx") << " lx, relative "
+            << 100.0 * r.attr_f64("/global", prefix + "sigma_rel_arithmetic") << " % (arithmetic), "
+            << 100.0 * r.attr_f64("/global", prefix + "sigma_rel_quadratic") << " % (quadratic)"
+            << (moment && used == estimator ? ", used by targets" : "") << '\n';
+    };
+    out << "global map     mean " << r.attr_f64("/global", "mean_arithmetic_lx") << " lx";
+    if (r.has_attr("/global", "lit_sides") && r.has_attr("/global", "lit_area_m2"))
+        out << " over " << r.attr_u64("/global", "lit_sides") << " lit triangle sides, "
+            << r.attr_f64("/global", "lit_area_m2") << " m^2";
+    out << '\n';
+    global_line("  odd/even     RMS error ", "", "odd_even");
+    if (moment) global_line("  2nd moment   RMS error ", "moment_", "second_moment");
+    for (const std::string& name : r.children("/detectors")) {
+        const std::string g = "/detectors/" + name;
+        const std::string units = r.attr_str(g, "units");
+        out << "detector " << std::left << std::setw(14) << name << std::right << " " << r.attr_str(g, "type")
+            << ", mean " << std::setprecision(2) << r.attr_f64(g, "mean_value") << " " << units << " +- "
+            << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
+            << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " % (eq. 9), " << r.attr_u64(g, "photons_received")
+            << " photons received";
+        if (r.has_attr(g, "error_estimator") && r.attr_str(g, "error_estimator") == "replicate_spread")
+            out << "; errors from the replicate spread, " << r.attr_u64(g, "error_dof") << " dof";
+        out << '\n';
+        if (r.has_attr(g, "modelling_ratio_mean"))
+            out << "  modelling    E_c/E_h of the means " << std::setprecision(3)
+                << r.attr_f64(g, "modelling_ratio_mean") << " +- " << std::setprecision(2)
+                << 100.0 * r.attr_f64(g, "modelling_ratio_mean_sigma_rel") << " %, points " << std::setprecision(3)
+                << r.attr_f64(g, "modelling_ratio_min") << " to " << r.attr_f64(g, "modelling_ratio_max")
+                << " (horizontal: " << r.attr_str(g, "horizontal") << ")\n"
+                << std::setprecision(2);
+        if (r.has_attr("/", "maintenance_factor") && r.attr_f64("/", "maintenance_factor") < 1.0) {
+            const double mf = r.attr_f64("/", "maintenance_factor");
+            out << "  maintained   mean " << mf * r.attr_f64(g, "mean_value") << " " << units << " (initial x MF "
+                << std::defaultfloat << std::setprecision(3) << mf
+                << (r.attr_u64("/", "maintenance_factor_uniform") ? "" : ", flux-weighted over lights that differ")
+                << ")\n"
+                << std::fixed << std::setprecision(2);
+        }
+        if (r.has_attr(g, "U0")) {
+            print_metrics(r, g, "whole grid", out);
+            for (const std::string& area : r.children(g + "/task_areas")) {
+                const std::string ga = g + "/task_areas/" + area;
+                std::vector<long> c;
+                for (double x : r.f64_attr_array(ga, "cell_range")) c.push_back(static_cast<long>(x));
+                if (c.size() != 4) c.assign(4, 0);
+                out << "  task area '" << area << "' cells [" << c[0] << ":" << c[1] << "," << c[2] << ":" << c[3]
+                    << "], " << r.attr_u64(ga, "metrics_cells") << " cells\n";
+                print_metrics(r, ga, "", out);
+            }
+            out << std::fixed << std::setprecision(2);
+        }
+    }
+    for (const std::string& name : r.has("/observers") ? r.children("/observers") : std::vector<std::string>{}) {
+        const std::string g = "/observers/" + name;
+        const double ugr = r.attr_f64(g, "ugr");
+        out << "observer " << std::left << std::setw(14) << name << std::right << " UGR ";
+        if (std::isfinite(ugr))
+            out << std::setprecision(1) << ugr << " +- " << std::setprecision(2) << r.attr_f64(g, "ugr_sigma");
+        else out << "undefined";
+        out << " (" << r.attr_u64(g, "luminaires_in_view") << " luminaire(s) in view), Lb " << std::setprecision(2)
+            << r.attr_f64(g, "background_luminance_cd_m2") << " cd/m^2 from E_ind "
+            << r.attr_f64(g, "indirect_vertical_illuminance_lx") << " lx +- "
+            << 100.0 * r.attr_f64(g, "indirect_vertical_illuminance_sigma_rel") << " %";
+        if (std::isfinite(ugr) && !r.attr_u64(g, "in_cie117_range")) out << "; outside CIE 117's range 10-30";
+        out << '\n';
+        if (r.has_attr(g, "ugr_maintained") && std::isfinite(ugr))
+            out << "  maintained   UGR " << std::setprecision(1) << r.attr_f64(g, "ugr_maintained") << " (x MF "
+                << std::defaultfloat << std::setprecision(3) << r.attr_f64("/", "maintenance_factor") << ")\n"
+                << std::fixed;
+    }
+    if (r.has("/history/target_value")) {
+        std::vector<std::size_t> shape;
+        const std::vector<double> v = r.f64("/history/target_value", &shape);
+        const std::vector<std::string> labels = r.attr_strs("/history", "target_labels");
+        const std::vector<double> goals = r.f64_attr_array("/history", "target_goals");
+        const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
+        for (std::size_t i = 0; i < nt && i < labels.size() && i < goals.size() && shape[0] > 0; ++i) {
+            const double last = v[(shape[0] - 1) * nt + i];
+            const bool count = labels[i].find("received") != std::string::npos;
+            const bool rel = labels[i].find(" rel") != std::string::npos;
+            const bool met = count ? last >= goals[i] : (last > 0.0 && last <= goals[i]);
+            out << "target         " << labels[i] << ": " << std::setprecision(4) << (rel ? 100.0 * last : last)
+                << (rel ? " %" : "") << " (goal " << (rel ? 100.0 * goals[i] : goals[i]) << (rel ? " %" : "")
+                << ") at the last reduction, " << (met ? "met" : "not met") << '\n';
+        }
+    }
+    out.flags(flags);
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,9 @@
+#pragma once
+// What `luxtrace run` prints at the end of a run and `luxtrace info` prints about a result
+// or checkpoint file: read from the file, so both print the same.
+#include <iosfwd>
+
+namespace luxtrace {
+class ResultReader;
+void print_result_summary(const ResultReader& result, std::ostream& out);
+}  // namespace luxtrace

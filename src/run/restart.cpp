@@ -1,0 +1,49 @@
+#include "luxtrace/run/restart.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/scene/run_config.hpp"
+#include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/tracer.hpp"
+
+#include <algorithm>
+
+namespace luxtrace {
+
+RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout) {
+    CheckpointState ck = read_checkpoint(path);
+    if (ck.format_version != kResultFormatVersion)
+        throw InputError(path + ": the checkpoint has result format " + std::to_string(ck.format_version) +
+                         ", this luxtrace writes format " + std::to_string(kResultFormatVersion) +
+                         " (both sides of every triangle counted apart); continue it with the luxtrace that wrote "
+                         "it, or start anew");
+    if (ck.sampler == run.sampler && ck.replicates != layout.replicates())
+        throw InputError(path + ": the checkpoint was made with " + std::to_string(ck.replicates) +
+                         " replicates; restart with the same (drop --replicates)");
+    if (ck.layout_size != layout.size() || ck.triangles != layout.triangles() || ck.bands != layout.bands())
+        throw InputError(path + ": the checkpoint was made for another scene (" + std::to_string(ck.triangles) +
+                         " triangles, " + std::to_string(ck.bands) + " bands; this scene has " +
+                         std::to_string(layout.triangles()) + " and " + std::to_string(layout.bands()) + ")");
+    if (ck.photon_layout != kPhotonLayout)
+        throw InputError(path +
+                         ": the checkpoint was made by a luxtrace whose photons draw their random "
+                         "numbers differently (photon layout " +
+                         std::to_string(ck.photon_layout) + ", this one " + std::to_string(kPhotonLayout) +
+                         "); continue it with that version or start anew");
+    if (ck.seed != run.seed || ck.sampler != run.sampler)
+        throw InputError(path + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " + ck.sampler +
+                         "; restart with the same (drop --seed/--sampler)");
+    RestartState s;
+    for (std::size_t i = 0; i + 1 < ck.done.size(); i += 2) s.done.push_back({ck.done[i], ck.done[i + 1]});
+    // A restart may set a new budget (--photons), but not one below photons it holds.
+    std::uint64_t highest = 0;
+    for (const PhotonRange& r : s.done) highest = std::max(highest, r.end);
+    if (run.photons < highest)
+        throw InputError("--photons: the checkpoint " + path + " already holds photons up to index " +
+                         std::to_string(highest - 1) + "; the budget must be at least " + std::to_string(highest));
+    s.tallies = std::move(ck.tallies);
+    s.history = std::move(ck.history);
+    s.elapsed_s = ck.elapsed_s;
+    return s;
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,338 @@
+#include "luxtrace/run/run_loop.hpp"
+
+#include "luxtrace/stats/result_estimates.hpp"
+
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/io/atomic_file.hpp"
+#include "luxtrace/run/reduction_message.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/stats/estimates.hpp"
+#include "luxtrace/stats/result_estimates.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <ostream>
+#include <thread>
+
+#ifndef LUXTRACE_VERSION
+#define LUXTRACE_VERSION "unknown"
+#endif
+
+namespace luxtrace {
+
+namespace {
+
+bool is_input_error(const std::exception_ptr& e) {
+    try {
+        std::rethrow_exception(e);
+    } catch (const InputError&) {
+        return true;
+    } catch (...) {
+        return false;
+    }
+}
+
+std::string describe(const std::exception_ptr& e) {
+    try {
+        std::rethrow_exception(e);
+    } catch (const std::exception& x) {
+        return x.what();
+    } catch (...) {
+        return "unknown exception";
+    }
+}
+
+// Items of at most 1M photons, at least 8 per rank when the budget is small.
+std::uint64_t item_block(std::uint64_t photons, int ranks) {
+    return std::clamp<std::uint64_t>(photons / (8 * static_cast<std::uint64_t>(ranks)) + 1, std::uint64_t{4096},
+                                     std::uint64_t{1} << 20);
+}
+
+// Reductions at photon counts: each rank stops handing out photons at its share of the
+// next count, and the snapshot is taken when all its threads have parked there.
+std::uint64_t fence_step_of(const RunConfig& run, int ranks) {
+    return run.report_every_photons > 0
+               ? std::max<std::uint64_t>(1, (run.report_every_photons + ranks - 1) / static_cast<std::uint64_t>(ranks))
+               : 0;
+}
+
+}  // namespace
+
+RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
+    : scene_(scene), run_(scene.run), comm_(comm), opt_(opt), out_(out), t0_(comm.wtime()), ranks_(comm.size()),
+      threads_(opt.threads > 0 ? opt.threads : available_cores()), layout_(scene), store_(layout_),
+      restored_(opt.restart.empty() ? RestartState{} : restore_checkpoint(opt.restart, run_, layout_)),
+      plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),
+      embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)),
+      checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
+      show_(comm.is_root() && !opt.quiet),
+      tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
+      fence_step_(fence_step_of(run_, ranks_)), snapshot_(ReductionMessage::word_count(layout_.size(), ranks_), 0),
+      period_s_(RunController::initial_period_s(run_)) {
+    if (!opt.restart.empty()) {
+        if (comm.is_root()) store_.assign(restored_.tallies);
+        std::vector<std::uint64_t>().swap(restored_.tallies);
+    }
+    if (comm.is_root())
+        control_.emplace(scene, layout_, std::move(restored_.history), restored_.elapsed_s,
+                         plan_.previously_done_count());
+    summary_.output = run_.output;
+    info_.luxtrace_version = LUXTRACE_VERSION;
+    info_.scene_file = std::filesystem::absolute(scene.file).string();
+    info_.seed = run_.seed;
+    info_.ranks = ranks_;
+    info_.threads_per_rank = threads_;
+    info_.sampler = run_.sampler;
+    info_.photon_layout = kPhotonLayout;
+}
+
+void RunLoop::check_writable() {
+    std::vector<double> writable{1.0};
+    std::string not_writable;
+    if (comm_.is_root()) {
+        try {
+            luxtrace::check_writable(run_.output, "result file");
+            luxtrace::check_writable(checkpoint_path_, "checkpoint");
+        } catch (const IoError& e) {
+            not_writable = e.what();
+            writable[0] = 0.0;
+        }
+    }
+    comm_.broadcast(writable);
+    if (writable[0] == 0.0) throw InputError(not_writable);
+}
+
+void RunLoop::trace() {
+    fence_ = fence_step_;
+    if (fence_step_ > 0) work_.set_fence(fence_);
+    TraceOptions topt;
+    topt.seed = run_.seed;
+    topt.sampler = run_.sampler;
+    topt.replicates = run_.replicates;
+    topt.threads = threads_;
+    topt.chunk = 256;  // pause latency: a thread finishes its chunk before parking
+    trace0_ = comm_.wtime();
+    pool_.emplace(scene_, embree_, store_, work_, topt);
+}
+
+void RunLoop::wait_for_reduction() {
+    const double due = comm_.wtime() + period_s_;
+    while (comm_.wtime() < due && !pool_->exhausted() && !pool_->failed() &&
+           !(opt_.signal != nullptr && opt_.signal->load() != 0) && !(fence_step_ > 0 && work_.fence_reached()))
+        pool_->wait_for_park(std::min(0.005, std::max(0.0, due - comm_.wtime())));
+}
+
+void RunLoop::encode_snapshot(bool signalled, bool idle) {
+    // One rank: the previous reduction's buffer comes back (start_reduce).
+    if (snapshot_.empty()) snapshot_.swap(reduced_);
+    ReductionMessage m;
+    m.tallies = store_.data();
+    m.progress.resize(static_cast<std::size_t>(ranks_));
+    m.progress[static_cast<std::size_t>(comm_.rank())] = work_.progress();
+    m.flags.signalled = signalled ? 1 : 0;
+    m.flags.idle = idle ? 1 : 0;
+    if (pool_->failed()) (is_input_error(pool_->error()) ? m.flags.input_fault : m.flags.internal_fault) = 1;
+    m.encode(snapshot_);
+}
+
+void RunLoop::snapshot() {
+    const double s0 = comm_.wtime();
+    // Threads park at chunk boundaries with their buffers flushed: the store and the
+    // progress agree exactly.
+    pool_->pause();
+    encode_snapshot(opt_.signal != nullptr && opt_.signal->load() != 0, pool_->exhausted());
+    if (fence_step_ > 0) work_.set_fence(fence_ += fence_step_);
+    pool_->resume();
+    stall_s_ = comm_.wtime() - s0;
+    stall_total_s_ += stall_s_;
+    ++reductions_;
+}
+
+PendingReduce RunLoop::start_reduce() {
+    if (ranks_ == 1) {
+        // The sum is the snapshot itself: its buffer becomes `reduced_`, and returns to be
+        // the next snapshot once rank 0 is done with it.
+        reduced_.swap(snapshot_);
+        return PendingReduce::completed();
+    }
+    side_mask_ = lit_side_mask(layout_, snapshot_);
+    comm_.allreduce_or(side_mask_);
+    pack_lit_sides(layout_, side_mask_, snapshot_, packed_);
+    info_.reduction_message_words = packed_.size();
+    return comm_.ireduce_sum_to_root(packed_, packed_reduced_);
+}
+
+void RunLoop::finish_reduce() {
+    if (ranks_ == 1 || !comm_.is_root()) return;
+    reduced_.resize(snapshot_.size());
+    unpack_lit_sides(layout_, side_mask_, packed_reduced_, reduced_);
+}
+
+void RunLoop::reduce() {
+    const double r0 = comm_.wtime();
+    PendingReduce pending = start_reduce();
+    while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+    finish_reduce();
+    reduce_total_s_ += comm_.wtime() - r0;
+}
+
+Decision RunLoop::decide() {
+    if (!comm_.is_root()) return {};
+    const ReductionMessage m = ReductionMessage::decode(reduced_, layout_.size(), ranks_);
+    if (m.flags.input_fault > 0 || m.flags.internal_fault > 0) {
+        const Decision d = Decision::fault(m.flags.internal_fault > 0);
+        summary_.stop_reason = d.reason;
+        return d;
+    }
+    ReductionInput in;
+    in.tallies = m.tallies;
+    in.photons = count_photons(plan_.done_ranges(m.progress));
+    in.elapsed_s = comm_.wtime() - t0_;
+    in.all_ranks_idle = m.flags.idle == static_cast<std::uint64_t>(ranks_);
+    in.signalled = m.flags.signalled > 0;
+    in.stall_s = stall_s_;
+    in.write_s = write_s_;
+    const Decision d = control_->after_reduction(in);
+    if (show_) out_ << (tty_ ? "\r" : "") << control_->progress_line() << (tty_ ? "\033[K" : "\n") << std::flush;
+    summary_.stop_reason = d.reason;
+    // A periodic checkpoint comes from this exact snapshot; a final one (exit 3) from the
+    // final reduction, which holds more photons.
+    if (d.checkpoint && !d.stop) {
+        const double w0 = comm_.wtime();
+        // A failed periodic checkpoint leaves the previous one intact: warn, go on.
+        if (const std::string err = attempt_write(checkpoint_path_, in.elapsed_s, "checkpoint", true); !err.empty())
+            std::cerr << "luxtrace: warning: checkpoint not written: " << err << "; " << latest_checkpoint_note()
+                      << "; the run goes on\n"
+                      << std::flush;
+        write_s_ = comm_.wtime() - w0;
+    }
+    return d;
+}
+
+Decision RunLoop::broadcast(const Decision& decision) {
+    std::vector<double> words = comm_.is_root() ? decision.encode() : std::vector<double>(Decision::kWords, 0.0);
+    comm_.broadcast(words);
+    Decision d = Decision::decode(words);
+    if (comm_.is_root()) d.reason = decision.reason;
+    period_s_ = d.next_period_s;
+    return d;
+}
+
+void RunLoop::write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint) {
+    const ReductionMessage m = ReductionMessage::decode(reduced_, layout_.size(), ranks_);
+    const std::vector<PhotonRange> done = plan_.done_ranges(m.progress);
+    const std::uint64_t n = count_photons(done);
+    const std::vector<std::uint64_t> tallies(m.tallies.begin(), m.tallies.end());
+    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
+    ResultEstimates est = estimate_result(scene_, layout_, tallies, e0, n);
+    RunInfo i = info_;
+    i.photons = n;
+    i.flux_per_photon_lm = e0;
+    i.elapsed_s = restored_.elapsed_s + elapsed_s;
+    i.stop_reason = reason;
+    control_->fill_run_info(i);
+    CheckpointData ck;
+    if (as_checkpoint) {
+        ck.tallies = tallies;
+        for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
+        ck.budget = run_.photons;
+    }
+    write_result(path, scene_, layout_, tallies, i, est, control_->history(), as_checkpoint ? &ck : nullptr);
+    summary_.photons = n;
+    summary_.global = est.global;
+    summary_.detectors = std::move(est.detectors);
+}
+
+std::string RunLoop::attempt_write(const std::string& path, double elapsed_s, const std::string& reason,
+                                   bool as_checkpoint) {
+    try {
+        write_file(path, elapsed_s, reason, as_checkpoint);
+    } catch (const IoError& e) {
+        return e.what();
+    }
+    if (as_checkpoint) {
+        latest_checkpoint_ = path;
+        latest_checkpoint_photons_ = summary_.photons;
+    }
+    return {};
+}
+
+std::string RunLoop::latest_checkpoint_note() const {
+    if (latest_checkpoint_.empty()) return "no checkpoint of this run was written before";
+    return "the latest checkpoint " + latest_checkpoint_ + " (" + std::to_string(latest_checkpoint_photons_) +
+           " photons) is kept";
+}
+
+void RunLoop::explain_failed_writes(const std::string& result_err, const std::string& checkpoint_err) {
+    summary_.exit_code = kExitWriteFailed;
+    summary_.failed = true;
+    const std::string restart = "luxtrace run " + scene_.file.string() + " --restart ";
+    if (!result_err.empty()) {
+        summary_.error = "the result was not written: " + result_err + "\n";
+        if (checkpoint_err.empty())
+            summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
+                              " photons) are kept in the checkpoint " + checkpoint_path_ +
+                              "; write the result from it with: " + restart + checkpoint_path_ + " [--output OTHER.h5]";
+        else
+            summary_.error += "luxtrace: the checkpoint was not written either: " + checkpoint_err +
+                              "\nluxtrace: " + latest_checkpoint_note();
+    } else {
+        summary_.error = "the result " + run_.output +
+                         " was written, but the checkpoint to continue from was not: " + checkpoint_err +
+                         "\nluxtrace: " + latest_checkpoint_note();
+    }
+}
+
+RunSummary RunLoop::write(const Decision& decision) {
+    if (tty_) out_ << '\n';
+    // The final exact reduction: the threads finish their chunks and flush.
+    pool_->stop();
+    summary_.tracing_s = comm_.allreduce_max(comm_.wtime() - trace0_);
+    if (decision.exit_code == kExitInternal || decision.exit_code == kExitBadInput) {
+        summary_.exit_code = decision.exit_code;
+        summary_.failed = true;
+        if (pool_->failed()) summary_.error = describe(pool_->error());
+        return summary_;
+    }
+    if (!decision.result_is_snapshot) {
+        encode_snapshot(false, false);
+        start_reduce().wait();
+        finish_reduce();
+    }
+    const double elapsed = comm_.allreduce_max(comm_.wtime() - t0_);
+    info_.reductions = reductions_;
+    info_.reduction_stall_s = comm_.allreduce_max(stall_total_s_);
+    info_.reduction_wait_s = comm_.allreduce_max(reduce_total_s_);
+    summary_.elapsed_s = restored_.elapsed_s + elapsed;
+    summary_.exit_code = decision.exit_code;
+    std::vector<double> final_code{static_cast<double>(summary_.exit_code)};
+    if (comm_.is_root()) {
+        // Each intersection ends in an arrival on a triangle or in an escape.
+        summary_.rays = reduced_[layout_.counter(TallyLayout::kEscaped)];
+        for (std::size_t i = 0; i < layout_.sides(); ++i)
+            for (std::size_t c = 0; c < layout_.map_columns(); ++c)
+                summary_.rays += reduced_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
+                                 reduced_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
+        const std::string result_err = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
+        // A result that cannot be written: keep the tallies in a checkpoint instead.
+        const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint ||
+                                     !result_err.empty();
+        std::string checkpoint_err;
+        if (want_checkpoint) checkpoint_err = attempt_write(checkpoint_path_, elapsed, summary_.stop_reason, true);
+        if (want_checkpoint && checkpoint_err.empty()) summary_.checkpoint = checkpoint_path_;
+        if (!result_err.empty() || !checkpoint_err.empty()) explain_failed_writes(result_err, checkpoint_err);
+        final_code[0] = summary_.exit_code;
+    }
+    // Every rank ends with rank 0's verdict on the writes.
+    comm_.broadcast(final_code);
+    summary_.exit_code = static_cast<int>(final_code[0]);
+    summary_.failed = summary_.failed || summary_.exit_code == kExitWriteFailed;
+    return summary_;
+}
+
+}  // namespace luxtrace

@@ -31,6 +31,8 @@ void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
     attr_strings(file, "bands", scene.bands, false);
     attr(file, "sampler", info.sampler);
     attr(file, "replicates", static_cast<std::uint64_t>(layout.replicates()));  // 0: random
+    attr_strings(file, "light_groups", scene.light_groups, false);
+    attr(file, "group_maps", std::uint64_t{layout.map_groups() == layout.groups() ? 1u : 0u});
     if (layout.replicates() > 0) {
         std::vector<std::uint64_t> per(layout.replicates());
         for (std::size_t r = 0; r < per.size(); ++r) per[r] = tallies[layout.replicate_photons(r)];

@@ -42,14 +42,24 @@ def written(path):
 
     def generic(name):
         parts = name.split("/")
-        if len(parts) >= 3 and parts[1] in ("detectors", "observers"):
+        if len(parts) >= 3 and parts[1] in ("detectors", "observers", "light_groups", "light_scenes"):
             parts[2] = "NAME"
         if len(parts) >= 5 and parts[1] == "detectors" and parts[3] == "task_areas":
             parts[4] = "AREA"
+        # A light group's or light scene's detectors and observers: DET, OBS, AREA.
+        if len(parts) >= 5 and parts[1] in ("light_groups", "light_scenes"):
+            if parts[3] == "detectors":
+                parts[4] = "DET"
+                if len(parts) >= 7 and parts[5] == "task_areas":
+                    parts[6] = "AREA"
+            elif parts[3] == "observers":
+                parts[4] = "OBS"
         return "/".join(parts) or "/"
 
     # Groups named by the scene are documented as NAME / AREA tables, not as rows.
-    named_by_scene = ("/detectors", "/observers", "/detectors/NAME/task_areas")
+    named_by_scene = ("/detectors", "/observers", "/detectors/NAME/task_areas", "/light_groups", "/light_scenes",
+                      "/light_groups/NAME/detectors", "/light_scenes/NAME/detectors",
+                      "/light_scenes/NAME/observers", "/light_scenes/NAME/detectors/DET/task_areas")
 
     def attrs(obj, where):
         for a in obj.attrs:

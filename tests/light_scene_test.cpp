@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -128,6 +129,33 @@ TEST(LightScenes, DimmedSceneErrorsMatchTheScatterOverSeeds) {
     std::cout << "[light scenes] evening (0.1, 1.0) over " << kSeeds << " seeds, " << K
               << " cells: file error / scatter " << ratio << "; the plain run's relative error instead: " << naive_ratio
               << "\n";
+}
+
+TEST(LightScenes, ATargetOnASceneStopsTheRunWhenTheSceneMeetsIt) {
+    // The room with a target on the evening scene's desk: the run (a budget it cannot
+    // spend first) stops when that scene's error reaches the goal, forecasts it on the way,
+    // and the scene's stored error meets it.
+    test_support::ScratchDir dir("light_scenes_target");
+    const fs::path scene = dir.path() / "target.toml", out = dir.path() / "t.h5";
+    {
+        std::ifstream in(std::string(LUXTRACE_TEST_DATA_DIR) + "/validation/light_scenes.toml");
+        std::ofstream o(scene);
+        o << in.rdbuf() << "\n[[run.target]]\non = \"detector:desk\"\nrelative_error = 0.03\nscene = \"evening\"\n";
+    }
+    const std::string cmd = std::string("\"") + LUXTRACE_BINARY + "\" run \"" + scene.string() + "\" --output \"" +
+                            out.string() + "\" --quiet --threads 2 --photons 1G --report-every-photons 20k > /dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const ResultReader r(out);
+    EXPECT_EQ(r.attr_str("/", "stop_reason").rfind("target detector:desk@evening", 0), 0u)
+        << r.attr_str("/", "stop_reason");
+    const double err = r.attr_f64("/light_scenes/evening" + kDesk, "sigma_rel_quadratic");
+    EXPECT_LE(err, 0.03);
+    EXPECT_GT(err, 0.0);
+    // The plain run's desk, lit by the window row at full output too, is further along.
+    EXPECT_LT(r.attr_f64(kDesk, "sigma_rel_quadratic"), err);
+    const std::vector<double> forecast = r.f64("/history/target_forecast_photons");
+    EXPECT_TRUE(std::any_of(forecast.begin(), forecast.end(), [](double f) { return std::isfinite(f) && f > 0; }));
+    EXPECT_LT(r.attr_u64("/", "photons"), 100'000'000u);
 }
 
 }  // namespace

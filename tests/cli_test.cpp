@@ -422,3 +422,43 @@ TEST_F(Cli, ReductionsAtPhotonCountsAreOnePerStep) {
         EXPECT_EQ(r.u64("/history/photons"), (std::vector<std::uint64_t>{10000, 20000})) << "run " << i;
     }
 }
+
+// `info --scene` recombines the light groups after the run (issue 22): at a
+// [[light_scene]]'s weights it prints what the run estimated for that scene (the line
+// `info` adds per light scene), at weights all 1 the plain run's detector mean; bad
+// combinations and files without light groups exit 2 naming --scene.
+TEST_F(Cli, InfoSceneRecombinesTheLightGroups) {
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "two_groups.toml";
+    const fs::path out = dir / "r.h5";
+    ASSERT_EQ(run("run " + scene.string() + " --photons 20k --threads 1 --quiet --output " + out.string()).code, 0);
+    const Outcome plain = run("info " + out.string());
+    ASSERT_EQ(plain.code, 0) << plain.out;
+    std::smatch m;
+    ASSERT_TRUE(
+        std::regex_search(plain.out, m, std::regex(R"(light scene +dim: detector table mean (\S+ lx \+- \S+ %))")))
+        << plain.out;
+    const std::string dim = m[1];
+    ASSERT_TRUE(std::regex_search(plain.out, m, std::regex(R"(detector table +illuminance, mean (\S+ lx \+- \S+ %))")))
+        << plain.out;
+    const std::string all = m[1];
+    const Outcome o = run("info " + out.string() + " --scene \"a=0.1, b=1\"");
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("detector table          mean " + dim), std::string::npos) << dim << '\n' << o.out;
+    EXPECT_NE(o.out.find("global map     mean"), std::string::npos) << o.out;
+    const Outcome ones = run("info " + out.string() + " --scene a=1,b=1");
+    EXPECT_NE(ones.out.find("detector table          mean " + all), std::string::npos) << all << '\n' << ones.out;
+    for (const char* bad : {"c=1", "a", "a=-1", "a=1,a=1"}) {
+        const Outcome e = run("info " + out.string() + " --scene " + bad);
+        EXPECT_EQ(e.code, 2) << bad << '\n' << e.out;
+        EXPECT_NE(e.out.find("--scene"), std::string::npos) << e.out;
+    }
+    const fs::path one = dir / "one.h5";
+    ASSERT_EQ(run("run " + write("one.toml", kSmallScene).string() + " --photons 2k --threads 1 --quiet --output " +
+                  one.string())
+                  .code,
+              0);
+    const Outcome e = run("info " + one.string() + " --scene a=1");
+    EXPECT_EQ(e.code, 2) << e.out;
+    EXPECT_NE(e.out.find("--scene: " + one.string() + " has no light groups"), std::string::npos) << e.out;
+    EXPECT_EQ(run("info " + one.string()).out.find("light scene"), std::string::npos);
+}

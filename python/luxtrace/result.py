@@ -441,6 +441,9 @@ class Result(_AttrAccess):
         self.history = history
         self.path = path
         self.notes = list(notes)  #: what a combination left out, and why
+        #: ``/light_groups``' raw counts by group name, in index order (see _read_tallies);
+        #: empty for a run with one light group, and for a combination
+        self.light_group_tallies = {}
 
     def __repr__(self):
         return (f"<Result {self.path or 'combined'}: {self.photons} photons, format {self.format_version}, "
@@ -469,6 +472,21 @@ class Result(_AttrAccess):
     replicates = property(lambda self: int(self._attr("replicates", 0)), doc="R of sobol, 0 for random")
     ranks = property(lambda self: self._attr("ranks"))
     threads_per_rank = property(lambda self: self._attr("threads_per_rank"))
+
+    @property
+    def light_groups(self):
+        """The light groups' names in index order (the order of /light_scenes' ``weights``);
+        empty when the run had one light group."""
+        return list(self.light_group_tallies)
+
+    def light_scene(self, weights):
+        """The result with light group g at weight ``weights[g]`` (groups not named are off),
+        recombined from each group's own counts with exact errors: a
+        :class:`luxtrace.light_scenes.LightScene` with ``surface`` and ``detectors``.
+        KeyError for an unknown group, ValueError for a negative weight or a file without
+        light groups."""
+        from .light_scenes import LightScene
+        return LightScene(self, dict(weights))
 
     def detector(self, name):
         """The detector NAME; KeyError naming the detectors there are otherwise."""
@@ -499,9 +517,10 @@ def _read_datasets(group, skip=()):
 
 
 def _read_tallies(f, version):
-    """The integer tallies of an open file: ``(surface, detectors)``, the surface map's
+    """The integer tallies of an open file: ``(surface, detectors, light_groups)``, the surface map's
     :attr:`SurfaceMap.TALLIES` (format 1's [T,B] as [T,2,B]) and, by detector name, each
-    grid's :attr:`Detector.TALLIES`. The one place the raw counts are read: every value and
+    grid's :attr:`Detector.TALLIES`, and each light group's own (see
+    :func:`_read_light_group_tallies`). The one place the raw counts are read: every value and
     error is computed from them, so a layout that splits them further (a light group or
     replicate dimension) is taken apart here."""
     g = f["global"]
@@ -510,7 +529,28 @@ def _read_tallies(f, version):
         surface = {k: _with_sides(a) for k, a in surface.items()}
     detectors = {name: {k: grp[k][()] for k in Detector.TALLIES if k in grp}
                  for name, grp in (f["detectors"].items() if "detectors" in f else ())}
-    return surface, detectors
+    return surface, detectors, _read_light_group_tallies(f)
+
+
+def _read_light_group_tallies(f):
+    """``/light_groups/NAME`` (issue 22): by group name, its ``index``, ``flux_lm``, ``lights``,
+    ``surface`` (the map's TALLIES and ``replicate_count``, or None when the run kept one map
+    for all groups) and ``detectors`` (name -> count, sumsq, replicate_count and the totals
+    ``photons_received``, ``total_count``, ``total_sumsq``, ``replicate_total``)."""
+    if "light_groups" not in f:
+        return {}
+    out = {}
+    for name, grp in f["light_groups"].items():
+        surface = {k: grp[k][()] for k in SurfaceMap.TALLIES + ("replicate_count",) if k in grp}
+        dets = {}
+        for dname, d in (grp["detectors"].items() if "detectors" in grp else ()):
+            dets[dname] = {k: d[k][()] for k in Detector.TALLIES if k in d}
+            dets[dname].update({k: _plain(d.attrs[k]) for k in
+                                ("photons_received", "total_count", "total_sumsq", "replicate_total") if k in d.attrs})
+        out[name] = {"index": int(grp.attrs["index"]), "flux_lm": float(grp.attrs["flux_lm"]),
+                     "lights": int(grp.attrs.get("lights", 0)), "detectors": dets,
+                     "surface": surface if "count_odd" in surface else None}
+    return dict(sorted(out.items(), key=lambda kv: kv[1]["index"]))
 
 
 def _with_sides(a):
@@ -561,7 +601,7 @@ def _read(f, path):
     m = f["mesh"]
     names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
     mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
-    surface_tallies, detector_tallies = _read_tallies(f, version)
+    surface_tallies, detector_tallies, group_tallies = _read_tallies(f, version)
     g = _read_datasets(f["global"], skip=SurfaceMap.TALLIES)
     if version == 1:
         for k in ("illuminance", "illuminance_direct", "odd_even_difference_lx"):
@@ -582,7 +622,9 @@ def _read(f, path):
         for name, grp in f["observers"].items():
             observers[name] = Group(name, _attrs(grp), _read_datasets(grp))
     history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
-    return Result(attrs, mesh, surface, detectors, observers, history, path=path)
+    res = Result(attrs, mesh, surface, detectors, observers, history, path=path)
+    res.light_group_tallies = group_tallies
+    return res
 
 
 def _validate(r, path):

@@ -2,6 +2,7 @@
 // to exit codes.
 #include "cli_reference.hpp"
 #include "commands.hpp"
+#include "light_scene_summary.hpp"
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_data.hpp"
@@ -172,7 +173,11 @@ int cmd_check(const std::string& path) {
     return 0;
 }
 
-int cmd_info(const std::string& path) {
+int cmd_info(const std::string& path, const std::optional<std::string>& scene) {
+    if (scene) {
+        print_light_scene(ResultFile(path), *scene, std::cout);
+        return 0;
+    }
     const ResultReader r(path);
     print_result_summary(r, std::cout);
     return 0;
@@ -212,6 +217,10 @@ int main(int argc, char** argv) {
     check->add_option("scene", check_path, "scene file (TOML)")->required();
     auto* info = app.add_subcommand("info", "print the stored summary of a result file");
     info->add_option("result", info_path, "result file (.h5)")->required();
+    std::optional<std::string> info_scene;
+    info->add_option("--scene", info_scene,
+                     "light groups at these weights, e.g. \"a=0.5,b=1\" (groups not named are off): the detector "
+                     "means and the global map with their errors, recombined from the result's light groups");
 
     RenderArgs rd;
     auto* render = app.add_subcommand("render",
@@ -256,7 +265,7 @@ int main(int argc, char** argv) {
     try {
         if (*run) return cmd_run(comm, ra);
         if (*check) return comm.is_root() ? cmd_check(check_path) : 0;
-        if (*info) return comm.is_root() ? cmd_info(info_path) : 0;
+        if (*info) return comm.is_root() ? cmd_info(info_path, info_scene) : 0;
         if (*render) return comm.is_root() ? cmd_render(rd) : 0;
         if (*photometry) return comm.is_root() ? cmd_photometry(photometry_files, lamp_set) : 0;
         if (*xdmf) return comm.is_root() ? cmd_export_xdmf(xdmf_result, xdmf_output) : 0;

@@ -157,6 +157,16 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
                 << std::defaultfloat << std::setprecision(3) << r.attr_f64("/", "maintenance_factor") << ")\n"
                 << std::fixed;
     }
+    // Each [[light_scene]]'s detector means (issue 22); other combinations: info --scene.
+    for (const std::string& scene : r.has("/light_scenes") ? r.children("/light_scenes") : std::vector<std::string>{}) {
+        const std::string gs = "/light_scenes/" + scene + "/detectors";
+        for (const std::string& name : r.has(gs) ? r.children(gs) : std::vector<std::string>{}) {
+            const std::string g = gs + "/" + name;
+            out << "light scene    " << scene << ": detector " << name << " mean " << std::setprecision(2)
+                << r.attr_f64(g, "mean_value") << " " << r.attr_str(g, "units") << " +- "
+                << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %\n";
+        }
+    }
     if (r.has("/history/target_value")) {
         std::vector<std::size_t> shape;
         const std::vector<double> v = r.f64("/history/target_value", &shape);

@@ -2,6 +2,8 @@
 
 #include "luxtrace/core/error.hpp"
 
+#include <algorithm>
+
 namespace luxtrace {
 
 namespace {
@@ -65,6 +67,13 @@ std::vector<double> ResultFile::vertices() const {
     return v;
 }
 
+std::vector<double> ResultFile::triangle_areas() const {
+    std::vector<std::size_t> shape;
+    std::vector<double> a = reader_.f64("/mesh/area", &shape);
+    if (shape.size() != 1) throw InputError(path().string() + ": /mesh/area is not [T]");
+    return a;
+}
+
 std::optional<std::vector<std::string>> ResultFile::material_names() const {
     if (!reader_.has("/mesh/material_names")) return std::nullopt;
     return reader_.attr_strs("/mesh", "material_names");
@@ -99,25 +108,74 @@ SurfaceIlluminance ResultFile::surface_illuminance() const {
     return s;
 }
 
-SurfaceCounts ResultFile::surface_counts() const {
+SurfaceCounts ResultFile::surface_counts() const { return surface_counts_at("/global"); }
+
+// The counts of the map in `group`: /global, or a light group's own.
+SurfaceCounts ResultFile::surface_counts_at(const std::string& group) const {
     SurfaceCounts s;
     std::vector<std::size_t> dims;
-    s.count_odd = reader_.u64("/global/count_odd", &dims);
-    s.shape = surface_shape("/global/count_odd", dims);
-    const std::pair<const char*, std::vector<std::uint64_t>*> others[] = {{"/global/count_even", &s.count_even},
-                                                                          {"/global/direct_odd", &s.direct_odd},
-                                                                          {"/global/direct_even", &s.direct_even}};
+    const std::string odd = group + "/count_odd";
+    s.count_odd = reader_.u64(odd, &dims);
+    s.shape = surface_shape(odd, dims);
+    const std::pair<const char*, std::vector<std::uint64_t>*> others[] = {{"/count_even", &s.count_even},
+                                                                          {"/direct_odd", &s.direct_odd},
+                                                                          {"/direct_even", &s.direct_even}};
     for (const auto& [name, out] : others) {
         std::vector<std::size_t> d;
-        *out = reader_.u64(name, &d);
-        if (d != dims) throw InputError(path().string() + ": " + name + " differs in shape from /global/count_odd");
+        *out = reader_.u64(group + name, &d);
+        if (d != dims) throw InputError(path().string() + ": " + group + name + " differs in shape from " + odd);
     }
     if (surface_sides() == 2) {  // format 1 has no sumsq
         std::vector<std::size_t> d;
-        s.sumsq = reader_.u64("/global/sumsq", &d);
-        if (d != dims) throw InputError(path().string() + ": /global/sumsq differs in shape from /global/count_odd");
+        s.sumsq = reader_.u64(group + "/sumsq", &d);
+        if (d != dims) throw InputError(path().string() + ": " + group + "/sumsq differs in shape from " + odd);
     }
     return s;
+}
+
+std::vector<LightGroupData> ResultFile::light_groups() const {
+    std::vector<LightGroupData> groups;
+    if (!reader_.has("/light_groups")) return groups;
+    for (const std::string& name : reader_.children("/light_groups")) {
+        const std::string g = "/light_groups/" + name;
+        LightGroupData lg;
+        lg.name = name;
+        lg.index = reader_.attr_u64(g, "index");
+        lg.flux_lm = reader_.attr_f64(g, "flux_lm");
+        if (reader_.has(g + "/count_odd")) lg.surface = surface_counts_at(g);
+        for (const std::string& det : detector_names()) {
+            const std::string gd = g + "/detectors/" + det;
+            if (!reader_.has(gd)) throw InputError(path().string() + ": " + g + " has no detector " + det);
+            LightGroupDetector d;
+            std::vector<std::size_t> dims, qdims;
+            d.count = reader_.u64(gd + "/count", &dims);
+            d.sumsq = reader_.u64(gd + "/sumsq", &qdims);
+            if (dims.size() != 3 || qdims != dims)
+                throw InputError(path().string() + ": " + gd + "/count and sumsq are not both [ny, nx, B]");
+            d.photons_received = reader_.attr_u64(gd, "photons_received");
+            d.total_count = reader_.attr_u64(gd, "total_count");
+            d.total_sumsq = reader_.attr_u64(gd, "total_sumsq");
+            if (reader_.has(gd + "/replicate_count")) {
+                d.replicate_count = reader_.u64(gd + "/replicate_count");
+                d.replicate_total = reader_.f64_attr_array(gd, "replicate_total");
+            }
+            lg.detectors.emplace_back(det, std::move(d));
+        }
+        groups.push_back(std::move(lg));
+    }
+    std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+    for (std::size_t i = 0; i < groups.size(); ++i)
+        if (groups[i].index != i)
+            throw InputError(path().string() + ": /light_groups: the groups' indices are not 0 to " +
+                             std::to_string(groups.size() - 1));
+    return groups;
+}
+
+std::vector<std::uint64_t> ResultFile::replicate_photons() const {
+    std::vector<std::uint64_t> n;
+    if (!reader_.has_attr(kRoot, "replicate_photons")) return n;
+    for (double x : reader_.f64_attr_array(kRoot, "replicate_photons")) n.push_back(static_cast<std::uint64_t>(x));
+    return n;
 }
 
 std::vector<std::string> ResultFile::detector_names() const { return reader_.children("/detectors"); }

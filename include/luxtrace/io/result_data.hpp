@@ -5,7 +5,8 @@
 // surface map for both sides of a triangle, [T, B]; format 2 one per side, [T, 2, B].
 // ResultReader (result_file.hpp) stays for code that reads by HDF5 path (info's summary,
 // tests). To read a new group of datasets (e.g. per light group): a struct here and one
-// method that reads it in result_data.cpp, next to the writer's part in result_parts.hpp.
+// method that reads it in result_data.cpp, next to the writer's part in result_parts.hpp
+// (as light_groups() reads what result_light_scenes.cpp writes).
 #include "luxtrace/io/result_file.hpp"
 
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace luxtrace {
@@ -56,6 +58,25 @@ struct DetectorData {
     std::uint64_t photons_received = 0;
 };
 
+// One light group's own counts of a detector (/light_groups/NAME/detectors/DET), from which
+// a combination of groups is recombined after the run (issue 22).
+struct LightGroupDetector {
+    std::vector<std::uint64_t> count, sumsq;  // [ny][nx][bands]
+    std::uint64_t photons_received = 0, total_count = 0, total_sumsq = 0;
+    std::vector<std::uint64_t> replicate_count;  // sobol: [R][ny][nx][bands]; empty for random
+    std::vector<double> replicate_total;         // sobol: [R] the grid's count per replicate
+};
+
+// /light_groups/NAME: the group's own surface counts (absent when the run kept one map for
+// all groups) and detector counts, by detector name in detector_names() order.
+struct LightGroupData {
+    std::string name;
+    std::size_t index = 0;
+    double flux_lm = 0.0;
+    std::optional<SurfaceCounts> surface;
+    std::vector<std::pair<std::string, LightGroupDetector>> detectors;
+};
+
 class ResultFile {
 public:
     // Opens and checks `path` (seal, format) and reads its root attributes; throws InputError.
@@ -75,7 +96,8 @@ public:
 
     // Counted from /mesh's datasets without reading the surface maps.
     MeshShape mesh_shape() const;
-    std::vector<double> vertices() const;  // [V][3], m
+    std::vector<double> vertices() const;        // [V][3], m
+    std::vector<double> triangle_areas() const;  // [T], m^2
     // /mesh/material_names, or nothing in files without it.
     std::optional<std::vector<std::string>> material_names() const;
 
@@ -89,11 +111,17 @@ public:
     std::vector<std::string> detector_names() const;
     DetectorData detector(const std::string& name) const;
 
+    // /light_groups in index order; empty for a run with one light group.
+    std::vector<LightGroupData> light_groups() const;
+    // Photons per sobol replicate (root attribute replicate_photons); empty for random.
+    std::vector<std::uint64_t> replicate_photons() const;
+
     // A checkpoint's photon budget (throws InputError for a result file).
     std::uint64_t checkpoint_budget() const;
 
 private:
     SurfaceShape surface_shape(const std::string& dataset, const std::vector<std::size_t>& dims) const;
+    SurfaceCounts surface_counts_at(const std::string& group) const;
 
     ResultReader reader_;
     bool checkpoint_ = false;

@@ -157,14 +157,46 @@ void print_result_summary(const ResultReader& r, std::ostream& out) {
                 << std::defaultfloat << std::setprecision(3) << r.attr_f64("/", "maintenance_factor") << ")\n"
                 << std::fixed;
     }
-    // Each [[light_scene]]'s detector means (issue 22); other combinations: info --scene.
+    // Each [[light_scene]] (issue 22): its weights, global map, detectors with their
+    // EN 12464-1 metrics, and UGR; other combinations: info --scene.
+    const std::vector<std::string> groups = r.has_attr("/", "light_groups") ? r.attr_strs("/", "light_groups")
+                                                                            : std::vector<std::string>{};
     for (const std::string& scene : r.has("/light_scenes") ? r.children("/light_scenes") : std::vector<std::string>{}) {
-        const std::string gs = "/light_scenes/" + scene + "/detectors";
+        const std::string base = "/light_scenes/" + scene;
+        const std::vector<double> w = r.f64_attr_array(base, "weights");
+        out << "light scene    " << scene << " (" << std::defaultfloat << std::setprecision(3);
+        for (std::size_t g = 0; g < w.size() && g < groups.size(); ++g)
+            out << (g > 0 ? ", " : "") << groups[g] << ' ' << (w[g] > 0.0 ? w[g] : 0.0);
+        out << "; " << std::fixed << std::setprecision(0) << r.attr_f64(base, "flux_lm") << " lm)\n"
+            << std::setprecision(2);
+        if (r.has(base + "/global"))
+            out << "  global map   mean " << r.attr_f64(base + "/global", "mean_arithmetic_lx") << " lx, RMS error "
+                << r.attr_f64(base + "/global", "moment_sigma_lx") << " lx (2nd moment), "
+                << r.attr_f64(base + "/global", "sigma_lx") << " lx (odd/even)\n";
+        const std::string gs = base + "/detectors";
         for (const std::string& name : r.has(gs) ? r.children(gs) : std::vector<std::string>{}) {
             const std::string g = gs + "/" + name;
             out << "light scene    " << scene << ": detector " << name << " mean " << std::setprecision(2)
                 << r.attr_f64(g, "mean_value") << " " << r.attr_str(g, "units") << " +- "
-                << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %\n";
+                << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
+                << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " %\n";
+            if (!r.has_attr(g, "U0")) continue;
+            print_metrics(r, g, "whole grid", out);
+            for (const std::string& area :
+                 r.has(g + "/task_areas") ? r.children(g + "/task_areas") : std::vector<std::string>{}) {
+                out << "  task area '" << area << "'\n";
+                print_metrics(r, g + "/task_areas/" + area, "", out);
+            }
+            out << std::fixed << std::setprecision(2);
+        }
+        const std::string os = base + "/observers";
+        for (const std::string& name : r.has(os) ? r.children(os) : std::vector<std::string>{}) {
+            const double ugr = r.attr_f64(os + "/" + name, "ugr");
+            out << "  observer " << name << " UGR ";
+            if (std::isfinite(ugr))
+                out << std::setprecision(1) << ugr << " +- " << std::setprecision(2)
+                    << r.attr_f64(os + "/" + name, "ugr_sigma") << '\n';
+            else out << "undefined\n";
         }
     }
     if (r.has("/history/target_value")) {

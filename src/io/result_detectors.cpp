@@ -95,6 +95,16 @@ void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceM
     }
 }
 
+void write_detector_summary(hid_t g, const DetectorEstimate& e) {
+    attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
+    attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
+    attr(g, "mean_arithmetic", e.mean_arithmetic);
+    attr(g, "mean_quadratic", e.mean_quadratic);
+    attr(g, "photons_received", e.photons_received);
+    attr(g, "mean_value", e.mean_value);
+    attr(g, "mean_sigma_rel", e.mean_sigma_rel);
+}
+
 void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
                      const ResultEstimates& est) {
     const Id dets = create_group(file, "detectors", "group /detectors");
@@ -125,13 +135,7 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         attr(g, "size", std::vector<double>{d.size_u, d.size_v});
         attr(g, "cells",
              std::vector<std::uint64_t>{static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny)});
-        attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
-        attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
-        attr(g, "mean_arithmetic", e.mean_arithmetic);
-        attr(g, "mean_quadratic", e.mean_quadratic);
-        attr(g, "photons_received", e.photons_received);
-        attr(g, "mean_value", e.mean_value);
-        attr(g, "mean_sigma_rel", e.mean_sigma_rel);
+        write_detector_summary(g, e);
         // What sigma_rel and the summaries are (docs/QMC.md): eq. (8) for independent
         // photons, or the spread of the R replicate means (sobol) with R - 1 dof.
         attr(g, "error_estimator", e.replicate_spread ? "replicate_spread" : "independent_photons_eq8");

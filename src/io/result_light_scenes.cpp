@@ -10,44 +10,6 @@ using namespace hdf5;
 
 namespace {
 
-void write_group_surface(hid_t g, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
-                         std::size_t group) {
-    const std::size_t T = scene.triangle_count(), B = scene.bands.size();
-    constexpr std::size_t kS = TallyLayout::kSides;
-    const std::vector<hsize_t> dims{T, kS, B};
-    auto slot = [&](std::size_t t, std::size_t side, std::size_t b, TallyLayout::SurfaceSlot s) {
-        return data[L.surface(t, side, b, s, group)];
-    };
-    const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {{"count_odd", TallyLayout::kCountOdd},
-                                                                      {"count_even", TallyLayout::kCountEven},
-                                                                      {"direct_odd", TallyLayout::kDirectOdd},
-                                                                      {"direct_even", TallyLayout::kDirectEven}};
-    std::vector<std::uint64_t> buf(T * kS * B);
-    for (const auto& [name, s] : slots) {
-        for (std::size_t t = 0; t < T; ++t)
-            for (std::size_t side = 0; side < kS; ++side)
-                for (std::size_t b = 0; b < B; ++b) buf[(t * kS + side) * B + b] = slot(t, side, b, s);
-        dataset(g, name, dims, buf.data());
-    }
-    for (std::size_t t = 0; t < T; ++t)
-        for (std::size_t side = 0; side < kS; ++side)
-            for (std::size_t b = 0; b < B; ++b)
-                buf[(t * kS + side) * B + b] = slot(t, side, b, TallyLayout::kCountOdd) +
-                                               slot(t, side, b, TallyLayout::kCountEven) +
-                                               slot(t, side, b, TallyLayout::kRepeats);
-    dataset(g, "sumsq", dims, buf.data());
-    if (const std::size_t R = L.replicates(); R > 0) {
-        std::vector<std::uint64_t> rep(T * kS * B * R);
-        for (std::size_t t = 0; t < T; ++t)
-            for (std::size_t side = 0; side < kS; ++side)
-                for (std::size_t b = 0; b < B; ++b)
-                    for (std::size_t r = 0; r < R; ++r)
-                        rep[((t * kS + side) * B + b) * R + r] =
-                            data[L.map_replicate(L.side_index(t, side), L.map_column(b, group), r)];
-        dataset(g, "replicate_count", {T, kS, B, R}, rep.data());
-    }
-}
-
 void write_group_detector(hid_t parent, const Detector& d, std::size_t di, std::size_t B, const TallyLayout& L,
                           const std::vector<std::uint64_t>& data, std::size_t group) {
     const Id g = create_group(parent, d.name, "group detectors/" + d.name);
@@ -78,31 +40,7 @@ void write_group_detector(hid_t parent, const Detector& d, std::size_t di, std::
 
 void write_scene_global(hid_t parent, const Scene& scene, const ResultEstimates& est) {
     const Id glob = create_group(parent, "global", "group light_scenes/NAME/global");
-    const std::size_t T = scene.triangle_count(), B = scene.bands.size();
-    constexpr std::size_t kS = TallyLayout::kSides;
-    const SurfaceMaps& m = est.surface;
-    dataset(glob, "illuminance", {T, kS, B}, m.illuminance_lx.data());
-    dataset(glob, "illuminance_direct", {T, kS, B}, m.illuminance_direct_lx.data());
-    dataset(glob, "odd_even_difference_lx", {T, kS}, m.odd_even_difference_lx.data());
-    dataset(glob, "sigma_lx", {T, kS}, m.sigma_lx.data());
-    if (!m.replicate_sigma_lx.empty()) dataset(glob, "replicate_sigma_lx", {T, kS}, m.replicate_sigma_lx.data());
-    const GlobalEstimate& g = est.global;
-    attr(glob, "sigma_lx", g.sigma_lx);
-    attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
-    attr(glob, "sigma_rel_quadratic", g.sigma_rel_quadratic);
-    attr(glob, "moment_sigma_lx", g.moment_sigma_lx);
-    attr(glob, "moment_sigma_rel_arithmetic", g.moment_sigma_rel_arithmetic);
-    attr(glob, "moment_sigma_rel_quadratic", g.moment_sigma_rel_quadratic);
-    if (!m.replicate_sigma_lx.empty()) {
-        attr(glob, "replicate_sigma_lx", g.replicate_sigma_lx);
-        attr(glob, "replicate_sigma_rel_arithmetic", g.replicate_sigma_rel_arithmetic);
-        attr(glob, "replicate_sigma_rel_quadratic", g.replicate_sigma_rel_quadratic);
-    }
-    attr(glob, "error_estimator", g.estimator_name());
-    attr(glob, "lit_area_m2", g.lit_area_m2);
-    attr(glob, "lit_sides", g.lit_sides);
-    attr(glob, "mean_arithmetic_lx", g.mean_arithmetic_lx);
-    attr(glob, "mean_quadratic_lx", g.mean_quadratic_lx);
+    write_surface_estimates(glob, scene, est.surface, est.global);
 }
 
 void write_scene_detectors(hid_t parent, const Scene& scene, const ResultEstimates& est) {
@@ -117,13 +55,7 @@ void write_scene_detectors(hid_t parent, const Scene& scene, const ResultEstimat
         dataset(g, "value", dims, e.value.data());
         dataset(g, "sigma_rel", dims, e.sigma_rel.data());
         attr(g, "units", d.units());
-        attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
-        attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
-        attr(g, "mean_arithmetic", e.mean_arithmetic);
-        attr(g, "mean_quadratic", e.mean_quadratic);
-        attr(g, "photons_received", e.photons_received);
-        attr(g, "mean_value", e.mean_value);
-        attr(g, "mean_sigma_rel", e.mean_sigma_rel);
+        write_detector_summary(g, e);
         write_task_areas(g, d, e.metrics, est.maintained_metrics[di]);
     }
 }
@@ -132,14 +64,8 @@ void write_scene_observers(hid_t parent, const Scene& scene, const ResultEstimat
     if (scene.observers.empty()) return;
     const Id obs = create_group(parent, "observers", "group light_scenes/NAME/observers");
     for (std::size_t oi = 0; oi < scene.observers.size(); ++oi) {
-        const UgrEstimate& u = est.observers[oi].ugr;
         const Id g = create_group(obs, scene.observers[oi].name, "group light_scenes/NAME/observers/OBS");
-        attr(g, "ugr", u.ugr);
-        attr(g, "ugr_sigma", u.ugr_sigma);
-        if (const std::optional<double>& m = est.observers[oi].ugr_maintained) attr(g, "ugr_maintained", *m);
-        attr(g, "background_luminance_cd_m2", u.background_luminance_cd_m2);
-        attr(g, "indirect_vertical_illuminance_lx", u.indirect_illuminance_lx);
-        attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);
+        write_ugr(g, est.observers[oi]);
     }
 }
 
@@ -158,7 +84,7 @@ void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& L, co
         attr(g, "index", static_cast<std::uint64_t>(lg));
         attr(g, "flux_lm", flux[lg]);
         attr(g, "lights", lights[lg]);
-        if (L.map_groups() == L.groups()) write_group_surface(g, scene, L, data, lg);
+        if (L.map_groups() == L.groups()) write_surface_counts(g, scene, L, data, lg, lg + 1);
         const Id dets = create_group(g, "detectors", "group /light_groups/" + name + "/detectors");
         for (std::size_t di = 0; di < scene.detectors.size(); ++di)
             write_group_detector(dets, scene.detectors[di], di, B, L, data, lg);

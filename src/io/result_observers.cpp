@@ -42,6 +42,16 @@ void write_glare_sources(hid_t g, const std::vector<GlareSource>& sources) {
 
 }  // namespace
 
+void write_ugr(hid_t g, const ObserverEstimate& e) {
+    const UgrEstimate& u = e.ugr;
+    attr(g, "ugr", u.ugr);
+    attr(g, "ugr_sigma", u.ugr_sigma);
+    if (e.ugr_maintained) attr(g, "ugr_maintained", *e.ugr_maintained);
+    attr(g, "background_luminance_cd_m2", u.background_luminance_cd_m2);
+    attr(g, "indirect_vertical_illuminance_lx", u.indirect_illuminance_lx);
+    attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);
+}
+
 void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
                      const ResultEstimates& est) {
     if (scene.observers.empty()) return;
@@ -54,12 +64,7 @@ void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const
         const DetectorEstimate& e = est.detectors[di];
         const UgrEstimate& u = est.observers[oi].ugr;
         const Id g = create_group(obs, o.name, "group /observers/" + o.name);
-        attr(g, "ugr", u.ugr);
-        attr(g, "ugr_sigma", u.ugr_sigma);
-        if (const std::optional<double>& m = est.observers[oi].ugr_maintained) attr(g, "ugr_maintained", *m);
-        attr(g, "background_luminance_cd_m2", u.background_luminance_cd_m2);
-        attr(g, "indirect_vertical_illuminance_lx", u.indirect_illuminance_lx);
-        attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);
+        write_ugr(g, est.observers[oi]);
         attr(g, "glare_sum", u.glare_sum);
         attr(g, "position", std::vector<double>{o.position.x, o.position.y, o.position.z});
         attr(g, "view_direction", std::vector<double>{o.view_direction.x, o.view_direction.y, o.view_direction.z});

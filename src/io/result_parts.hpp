@@ -26,6 +26,17 @@ void write_mesh(hid_t file, const Scene& scene);
 // /global: the surface map's counts per triangle side and band, its illuminance and errors.
 void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& layout,
                        const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
+// The surface map's counts in `g`: count_odd, count_even, direct_odd, direct_even and
+// sumsq [T, 2, B] (and sobol's replicate_count [T, 2, B, R]) of the map groups
+// [first_group, last_group) together.
+void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& layout,
+                          const std::vector<std::uint64_t>& tallies, std::size_t first_group, std::size_t last_group);
+// The estimated maps and the global estimate's attributes in `g`.
+void write_surface_estimates(hid_t g, const Scene& scene, const SurfaceMaps& maps, const GlobalEstimate& global);
+// A detector's summary: its means and errors over the grid.
+void write_detector_summary(hid_t g, const DetectorEstimate& e);
+// An observer's UGR and the indirect light it comes from.
+void write_ugr(hid_t g, const ObserverEstimate& e);
 // /detectors/NAME: counts, values, errors, metrics, task areas and cylinders.
 void write_detectors(hid_t file, const Scene& scene, const TallyLayout& layout,
                      const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);

@@ -24,17 +24,15 @@ void write_mesh(hid_t file, const Scene& scene) {
     string_dataset(mesh, "material_names", names);
 }
 
-void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
-                       const ResultEstimates& est) {
+void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+                          std::size_t first_group, std::size_t last_group) {
     const std::size_t T = scene.triangle_count(), B = scene.bands.size();
     // Every surface dataset has a side axis, [T, 2, B] (side 0 the front).
-    const Id glob = create_group(file, "global", "group /global");
     constexpr std::size_t kS = TallyLayout::kSides;
     const std::vector<hsize_t> dims{T, kS, B};
-    // The plain run's counts: every light group's together.
     auto slot_of = [&](std::size_t t, std::size_t side, std::size_t b, TallyLayout::SurfaceSlot s) {
         std::uint64_t n = 0;
-        for (std::size_t g = 0; g < L.map_groups(); ++g) n += data[L.surface(t, side, b, s, g)];
+        for (std::size_t lg = first_group; lg < last_group; ++lg) n += data[L.surface(t, side, b, s, lg)];
         return n;
     };
     const std::pair<const char*, TallyLayout::SurfaceSlot> slots[] = {{"count_odd", TallyLayout::kCountOdd},
@@ -46,7 +44,7 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, con
         for (std::size_t t = 0; t < T; ++t)
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b) buf[(t * kS + side) * B + b] = slot_of(t, side, b, slot);
-        dataset(glob, name, dims, buf.data());
+        dataset(g, name, dims, buf.data());
     }
     // Sum over photons of (arrivals on the side)^2 = arrivals + repeats (tally.hpp).
     for (std::size_t t = 0; t < T; ++t)
@@ -55,29 +53,31 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, con
                 buf[(t * kS + side) * B + b] = slot_of(t, side, b, TallyLayout::kCountOdd) +
                                                slot_of(t, side, b, TallyLayout::kCountEven) +
                                                slot_of(t, side, b, TallyLayout::kRepeats);
-    dataset(glob, "sumsq", dims, buf.data());
-    const SurfaceMaps& m = est.surface;
-    dataset(glob, "illuminance", dims, m.illuminance_lx.data());
-    dataset(glob, "illuminance_direct", dims, m.illuminance_direct_lx.data());
-    // Per side, band-summed: float maps the XDMF companion can show as they are.
-    dataset(glob, "odd_even_difference_lx", {T, kS}, m.odd_even_difference_lx.data());
-    dataset(glob, "sigma_lx", {T, kS}, m.sigma_lx.data());
-    if (L.replicates() > 0) {
-        // sobol: each side's arrivals per replicate (all groups), and the side's error
-        // from their spread.
-        const std::size_t R = L.replicates();
+    dataset(g, "sumsq", dims, buf.data());
+    if (const std::size_t R = L.replicates(); R > 0) {
+        // sobol: each side's arrivals per replicate.
         std::vector<std::uint64_t> rep(T * kS * B * R, 0);
         for (std::size_t t = 0; t < T; ++t)
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b)
-                    for (std::size_t g = 0; g < L.map_groups(); ++g)
+                    for (std::size_t lg = first_group; lg < last_group; ++lg)
                         for (std::size_t r = 0; r < R; ++r)
                             rep[((t * kS + side) * B + b) * R + r] +=
-                                data[L.map_replicate(L.side_index(t, side), L.map_column(b, g), r)];
-        dataset(glob, "replicate_count", {T, kS, B, R}, rep.data());
-        dataset(glob, "replicate_sigma_lx", {T, kS}, m.replicate_sigma_lx.data());
+                                data[L.map_replicate(L.side_index(t, side), L.map_column(b, lg), r)];
+        dataset(g, "replicate_count", {T, kS, B, R}, rep.data());
     }
-    const GlobalEstimate& g = est.global;
+}
+
+void write_surface_estimates(hid_t glob, const Scene& scene, const SurfaceMaps& m, const GlobalEstimate& g) {
+    const std::size_t T = scene.triangle_count(), B = scene.bands.size();
+    constexpr std::size_t kS = TallyLayout::kSides;
+    dataset(glob, "illuminance", {T, kS, B}, m.illuminance_lx.data());
+    dataset(glob, "illuminance_direct", {T, kS, B}, m.illuminance_direct_lx.data());
+    // Per side, band-summed: float maps the XDMF companion can show as they are.
+    dataset(glob, "odd_even_difference_lx", {T, kS}, m.odd_even_difference_lx.data());
+    dataset(glob, "sigma_lx", {T, kS}, m.sigma_lx.data());
+    const bool replicates = !m.replicate_sigma_lx.empty();  // sobol: the sides' errors from their replicates
+    if (replicates) dataset(glob, "replicate_sigma_lx", {T, kS}, m.replicate_sigma_lx.data());
     attr(glob, "sigma_lx", g.sigma_lx);
     attr(glob, "sigma_rel_arithmetic", g.sigma_rel_arithmetic);
     attr(glob, "sigma_rel_quadratic", g.sigma_rel_quadratic);
@@ -85,7 +85,7 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, con
     attr(glob, "moment_sigma_lx", g.moment_sigma_lx);
     attr(glob, "moment_sigma_rel_arithmetic", g.moment_sigma_rel_arithmetic);
     attr(glob, "moment_sigma_rel_quadratic", g.moment_sigma_rel_quadratic);
-    if (L.replicates() > 0) {
+    if (replicates) {
         attr(glob, "replicate_sigma_lx", g.replicate_sigma_lx);
         attr(glob, "replicate_sigma_rel_arithmetic", g.replicate_sigma_rel_arithmetic);
         attr(glob, "replicate_sigma_rel_quadratic", g.replicate_sigma_rel_quadratic);
@@ -95,6 +95,14 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, con
     attr(glob, "lit_sides", g.lit_sides);
     attr(glob, "mean_arithmetic_lx", g.mean_arithmetic_lx);
     attr(glob, "mean_quadratic_lx", g.mean_quadratic_lx);
+}
+
+void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+                       const ResultEstimates& est) {
+    const Id glob = create_group(file, "global", "group /global");
+    // The plain run's counts: every light group's together.
+    write_surface_counts(glob, scene, L, data, 0, L.map_groups());
+    write_surface_estimates(glob, scene, est.surface, est.global);
     attr(glob, "photons_escaped", data[L.counter(TallyLayout::kEscaped)]);
     attr(glob, "photons_absorbed", data[L.counter(TallyLayout::kAbsorbed)]);
     attr(glob, "photons_truncated", data[L.counter(TallyLayout::kTruncated)]);

@@ -3,6 +3,8 @@
 #include "luxtrace/io/result_file.hpp"
 
 #include <iostream>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
     if (argc != 3) {
@@ -19,6 +21,16 @@ int main(int argc, char** argv) {
             names.push_back("/detectors/" + d + "/sumsq");
             if (a.has("/detectors/" + d + "/replicate_count") || b.has("/detectors/" + d + "/replicate_count"))
                 names.push_back("/detectors/" + d + "/replicate_count");  // sobol
+        }
+        // Light groups (issue 22): each group's own counts.
+        for (const std::string& lg :
+             a.has("/light_groups") ? a.children("/light_groups") : std::vector<std::string>{}) {
+            const std::string g = "/light_groups/" + lg;
+            for (const char* n : {"count_odd", "count_even", "direct_odd", "direct_even", "sumsq", "replicate_count"})
+                if (a.has(g + "/" + n)) names.push_back(g + "/" + n);
+            for (const std::string& d : a.children(g + "/detectors"))
+                for (const char* n : {"count", "sumsq", "replicate_count"})
+                    if (a.has(g + "/detectors/" + d + "/" + n)) names.push_back(g + "/detectors/" + d + "/" + n);
         }
         int differ = 0;
         if (a.attr_u64("/", "photons") != b.attr_u64("/", "photons")) {

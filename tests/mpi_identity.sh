@@ -2,12 +2,14 @@
 # Bit-identical tallies whatever the split: the same seed and photon budget must give the
 # same uint64 counts on 1 rank x 1 thread, 1 rank x 2 threads, 2 ranks x 1 thread and
 # 3 ranks x 2 threads; a different seed must not (so the comparison can fail).
-# Usage: mpi_identity.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER]
-# (SAMPLER: random, the default, or sobol, whose per-replicate grids are compared too.)
+# Usage: mpi_identity.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER [SCENE]]
+# (SAMPLER: random, the default, or sobol, whose per-replicate grids are compared too;
+# SCENE: tests/data/run/room.toml by default; with light groups their own counts are
+# compared as well.)
 set -euo pipefail
 lux=$1 cmp=$2 mpiexec=$3 work=$4 sampler=${5:-random}
 here=$(cd "$(dirname "$0")" && pwd)
-scene=$here/data/run/room.toml
+scene=${6:-$here/data/run/room.toml}
 mkdir -p "$work"
 mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tcp_if_include lo)
 common=(--photons 300000 --seed 7 --quiet --sampler "$sampler")
@@ -30,16 +32,17 @@ for other in r1t2 r2t1 r3t2; do
     else echo "FAIL: r1t1 and $other differ"; status=1; fi
 done
 # The reductions of the 2-rank run left out exactly the sides no rank had hit (a closed
-# room's outer faces): tally words minus (5 + R) slots per band for each unlit side (R the
-# sobol replicates, whose arrivals each side keeps too).
+# room's outer faces): tally words minus (5 + R) slots per band and map group for each
+# unlit side (R the sobol replicates, whose arrivals each side keeps too).
 if /usr/bin/python3 - "$work/r2t1.h5" <<'PY'
 import sys, h5py
 f = h5py.File(sys.argv[1], "r")
 a, g = f.attrs, f["global"]
 T, B = g["count_odd"].shape[0], g["count_odd"].shape[2]
 R = int(a["replicates"]) if "replicates" in a else 0
+G = len(a["light_groups"]) if int(a.get("group_maps", 1)) else 1
 unlit = 2 * T - int(g.attrs["lit_sides"])
-want = int(a["tally_words"]) - unlit * (5 + R) * B + 2 * 2 + 4  # + progress of 2 ranks, 4 flags
+want = int(a["tally_words"]) - unlit * (5 + R) * B * G + 2 * 2 + 4  # + progress of 2 ranks, 4 flags
 print(f"reduction message: {int(a['reduction_message_words'])} words, tallies {int(a['tally_words'])}, "
       f"{unlit} of {2 * T} sides unlit, expected {want}")
 sys.exit(0 if unlit > 0 and int(a["reduction_message_words"]) == want else 1)

@@ -8,12 +8,13 @@
 # first progress line is printed, and the restart then sets the budget to a little more
 # than the checkpoint holds (`--photons` on a restart), which the uninterrupted reference
 # run gets too.
-# Usage: restart_test.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER]
-# (SAMPLER: random, the default, or sobol; a restart takes the checkpoint's sampler.)
+# Usage: restart_test.sh LUXTRACE H5_TALLY_COMPARE MPIEXEC WORKDIR [SAMPLER [SCENE]]
+# (SAMPLER: random, the default, or sobol; a restart takes the checkpoint's sampler.
+# SCENE: tests/data/run/room.toml by default.)
 set -uo pipefail
 lux=$1 cmp=$2 mpiexec=$3 work=$4 sampler=${5:-random}
 here=$(cd "$(dirname "$0")" && pwd)
-scene=$here/data/run/room.toml
+scene=${6:-$here/data/run/room.toml}
 rm -rf "$work"; mkdir -p "$work"
 mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tcp_if_include lo)
 endless=1000000000000

@@ -7,6 +7,7 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"
+#include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/decision.hpp"
@@ -353,7 +354,7 @@ TEST(RunSimulation, SobolResultNamesItsEstimatorAndKeepsTheReplicates) {
         EXPECT_EQ(sum, count[c]) << "cell " << c;
     }
     std::ostringstream info;
-    print_result_summary(r, info);
+    print_result_summary(ResultFile(r.path()), info);
     EXPECT_NE(info.str().find("sobol (8 replicates)"), std::string::npos) << info.str();
     EXPECT_NE(info.str().find("errors from the replicate spread, 7 dof"), std::string::npos) << info.str();
     std::filesystem::remove_all(dir);

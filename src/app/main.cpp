@@ -151,8 +151,7 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
             std::cerr << "luxtrace: warning: " << xdmf_path.string() << " not written: " << e.what() << '\n';
         }
         if (!a.quiet) {
-            ResultReader r(s.output);
-            print_result_summary(r, std::cout);
+            print_result_summary(ResultFile(s.output), std::cout);
         }
         if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
         std::cout << "result: " << fs::absolute(s.output).string() << '\n';
@@ -178,8 +177,7 @@ int cmd_info(const std::string& path, const std::optional<std::string>& scene) {
         print_light_scene(ResultFile(path), *scene, std::cout);
         return 0;
     }
-    const ResultReader r(path);
-    print_result_summary(r, std::cout);
+    print_result_summary(ResultFile(path), std::cout);
     return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "result_summary.hpp"
 
+#include "luxtrace/io/result_data.hpp"
+
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
 
@@ -48,7 +50,8 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
 
 }  // namespace
 
-void print_result_summary(const ResultReader& r, std::ostream& out) {
+void print_result_summary(const ResultFile& file, std::ostream& out) {
+    const ResultReader& r = file.raw();
     const auto flags = out.flags();
     const std::uint64_t photons = r.attr_u64("/", "photons");
     const double elapsed = r.attr_f64("/", "elapsed_s");

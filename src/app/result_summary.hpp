@@ -4,6 +4,6 @@
 #include <iosfwd>
 
 namespace luxtrace {
-class ResultReader;
-void print_result_summary(const ResultReader& result, std::ostream& out);
+class ResultFile;
+void print_result_summary(const ResultFile& result, std::ostream& out);
 }  // namespace luxtrace

@@ -421,9 +421,8 @@ int fuzz_result(const std::uint8_t* data, std::size_t size) {
 
     // luxtrace info
     expect_input_error_only([&] {
-        const ResultReader r(file);
         std::ostringstream out;
-        print_result_summary(r, out);
+        print_result_summary(ResultFile(file), out);
     });
     check_hdf5_closed("info");
     // luxtrace run --restart: main.cpp's checks, then the simulation's read_checkpoint.

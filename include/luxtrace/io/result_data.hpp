@@ -3,8 +3,8 @@
 // (render, export-xdmf, run --restart, the bench): it knows the file's paths and tells
 // the format versions apart here and nowhere else. Format 1 (luxtrace 0.2) has one
 // surface map for both sides of a triangle, [T, B]; format 2 one per side, [T, 2, B].
-// ResultReader (result_file.hpp) stays for code that reads by HDF5 path (info's summary,
-// tests). To read a new group of datasets (e.g. per light group): a struct here and one
+// Attributes the typed accessors do not cover (the summary's metrics and glare figures)
+// are read by path through raw(), the ResultReader (result_file.hpp) underneath. To read a new group of datasets (e.g. per light group): a struct here and one
 // method that reads it in result_data.cpp, next to the writer's part in result_parts.hpp
 // (as light_groups() reads what result_light_scenes.cpp writes).
 #include "luxtrace/io/result_file.hpp"
@@ -83,6 +83,8 @@ public:
     explicit ResultFile(const std::filesystem::path& path);
 
     const std::filesystem::path& path() const { return reader_.path(); }
+    // The file by HDF5 path, for what has no typed accessor.
+    const ResultReader& raw() const { return reader_; }
     bool is_checkpoint() const { return checkpoint_; }
     std::uint64_t format_version() const { return format_version_; }
     // The surface maps' side axis: 2 in format 2, 1 in format 1 (SurfaceShape).

@@ -291,6 +291,41 @@ TEST_F(GlareRun, TwoPanelsByHand) {
     EXPECT_NE(info.out.find("UGR "), std::string::npos) << info.out;
 }
 
+// Light scenes (issue 22): each panel its own group. At one weight w for every group, the
+// luminances and E_ind all scale by w, so UGR moves by exactly 8 log10(w); with the far
+// panel off, UGR is the near panel's term over the scene's own E_ind.
+TEST_F(GlareRun, LightScenesDimTheLuminairesTheyView) {
+    const std::string ies = (fs::path(LUXTRACE_TEST_DATA_DIR) / "glare" / "panel_600.ies").string();
+    const std::string text = "[[material]]\nname = \"grey\"\nreflectance = 0.5\n"
+                             "[[shape]]\ntype = \"box\"\ncenter = [3, 2, 1.5]\nsize = [6, 4, 3]\ninward = true\n"
+                             "subdivisions = 6\nmaterial = \"grey\"\n"
+                             "[[light]]\ntype = \"point\"\nphotometry = \"" +
+                             ies +
+                             "\"\nposition = [3, 1, 2.9]\ngroup = \"near\"\n"
+                             "[[light]]\ntype = \"point\"\nphotometry = \"" +
+                             ies +
+                             "\"\nposition = [5, 3, 2.9]\ngroup = \"far\"\n"
+                             "[[light_scene]]\nname = \"half\"\ndimming = { near = 0.5, far = 0.5 }\n"
+                             "[[light_scene]]\nname = \"near_only\"\ndimming = { near = 1 }\n"
+                             "[[observer]]\nname = \"desk\"\nposition = [0.5, 2, 1.2]\nview_direction = [1, 0, 0]\n";
+    const fs::path file = dir_ / "groups.toml", out = dir_ / "groups.h5";
+    std::ofstream(file) << text;
+    const auto run = run_luxtrace("run " + file.string() + " --output " + out.string() +
+                                  " --quiet --threads 2 --photons 1M --seed 17");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const ResultReader r(out);
+    const std::string plain = "/observers/desk", half = "/light_scenes/half/observers/desk",
+                      near = "/light_scenes/near_only/observers/desk";
+    EXPECT_NEAR(r.attr_f64(half, "ugr"), r.attr_f64(plain, "ugr") + 8.0 * std::log10(0.5), 1e-9);
+    EXPECT_NEAR(r.attr_f64(half, "ugr_sigma"), r.attr_f64(plain, "ugr_sigma"), 1e-12);
+    const HandTerms t = hand_terms(Vec3(0.5, 2, 1.2), Vec3(3, 1, 2.9));
+    const double e_ind = r.attr_f64(near, "indirect_vertical_illuminance_lx");
+    ASSERT_GT(e_ind, 0.0);
+    EXPECT_LT(e_ind, r.attr_f64(plain, "indirect_vertical_illuminance_lx"));
+    EXPECT_NEAR(r.attr_f64(near, "ugr"), 8.0 * std::log10(0.25 / (e_ind / kPi) * t.L * t.L * t.omega / (t.p * t.p)),
+                1e-3);
+}
+
 // `on = "observer:NAME"` stops the run when E_ind's relative error (hence UGR's, 3.47
 // times it) reaches the goal.
 TEST_F(GlareRun, ObserverTargetStopsTheRun) {

@@ -462,3 +462,23 @@ TEST_F(Cli, InfoSceneRecombinesTheLightGroups) {
     EXPECT_NE(e.out.find("--scene: " + one.string() + " has no light groups"), std::string::npos) << e.out;
     EXPECT_EQ(run("info " + one.string()).out.find("light scene"), std::string::npos);
 }
+
+// The README's light-scene example (examples/light_scenes/meeting_room.toml) runs, prints
+// its scenes, and `info --scene` recombines a stored scene's weights to the same numbers.
+TEST_F(Cli, LightScenesExampleRunsAndRecombinesItsScenes) {
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "light_scenes" /
+                           "meeting_room.toml";
+    const fs::path out = dir / "meeting_room.h5";
+    const Outcome r = run("run " + scene.string() + " --photons 300k --threads 2 --output " + out.string());
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* name : {"presentation", "daylight", "cleaning"})
+        EXPECT_NE(r.out.find(std::string("light scene    ") + name + " ("), std::string::npos) << name << '\n' << r.out;
+    std::smatch m;
+    ASSERT_TRUE(
+        std::regex_search(r.out, m, std::regex(R"(light scene +daylight: detector table mean (\S+ lx \+- \S+ %))")))
+        << r.out;
+    const Outcome o = run("info " + out.string() + " --scene \"window_row=0.3,corridor_row=1\"");
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("detector table          mean " + std::string(m[1])), std::string::npos) << m[1] << '\n'
+                                                                                                  << o.out;
+}

@@ -8,8 +8,7 @@
 //   block 0: light, band, emission direction (2);
 //   block 1: emission position (2), drawn by area and directional lights only;
 //   block 2 + b: event and direction (2) at the b-th surface arrival.
-// (Photon layout 2. Layout 1, before luxtrace 0.2, drew single dimensions: 0 light,
-// 1 band, 2-3 position, 4-5 direction, 6+3b.. event and direction at arrival b.)
+// This is photon layout kPhotonLayout, stored in results; a restart refuses another.
 //
 // A thread keeps several photons in flight: their rays are intersected one after the
 // other, then the records of the triangles they hit are fetched together and each photon

@@ -28,48 +28,39 @@ std::string joined(const std::vector<std::string>& names) {
     return s;
 }
 
-// The global map of the combination: eqs. (4)-(5) over the lit sides, with the odd and even
-// half-maps weighted like the counts, and each side's sigma from S = sum_g w_g (odd + even)_g
-// and Q = sum_g w_g^2 sumsq_g (as estimate_global on WeightedTallies).
-struct GlobalFigures {
-    double mean_lx = 0.0, odd_even_sigma_lx = kNaN, moment_sigma_lx = kNaN;
-    std::size_t lit_sides = 0;
-};
-
-GlobalFigures recombine_global(const std::vector<LightGroupData>& groups, const std::vector<double>& w,
-                               const std::vector<double>& area, double e0, double photons) {
+// The global map of the combination, estimated by the run's own estimate_global: the
+// groups' surface counts laid out as a run's tallies (one map group per light group, no
+// detectors) and read through WeightedTallies with the combination's weights.
+GlobalEstimate recombine_global(const std::vector<LightGroupData>& groups, const std::vector<double>& w,
+                                const std::vector<double>& area, double e0, std::uint64_t photons,
+                                const std::vector<std::uint64_t>& rep_photons) {
     const SurfaceShape& shape = groups.front().surface->shape;
+    const std::size_t R = rep_photons.size();
     for (const LightGroupData& g : groups)
-        if (g.surface->shape.size() != shape.size() || area.size() != shape.triangles || g.surface->sumsq.empty())
+        if (g.surface->shape.size() != shape.size() || shape.sides != TallyLayout::kSides ||
+            area.size() != shape.triangles || g.surface->sumsq.empty() ||
+            g.surface->replicate_count.size() != shape.size() * R)
             throw InputError("/light_groups/" + g.name + ": its maps do not agree with /mesh and the other groups");
-    double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_var = 0.0;
-    GlobalFigures out;
-    for (std::size_t t = 0; t < shape.triangles; ++t)
-        for (std::size_t side = 0; side < shape.sides; ++side) {
-            double odd = 0.0, even = 0.0, q = 0.0;
-            for (std::size_t b = 0; b < shape.bands; ++b)
-                for (std::size_t g = 0; g < groups.size(); ++g) {
-                    const SurfaceCounts& c = *groups[g].surface;
-                    const std::size_t i = shape.index(t, side, b);
-                    odd += w[g] * static_cast<double>(c.count_odd[i]);
-                    even += w[g] * static_cast<double>(c.count_even[i]);
-                    q += w[g] * w[g] * static_cast<double>(c.sumsq[i]);
+    const TallyLayout L(shape.triangles, TallyDims{shape.bands, groups.size(), groups.size(), R}, {});
+    std::vector<std::uint64_t> data(L.size(), 0);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        const SurfaceCounts& c = *groups[g].surface;
+        for (std::size_t t = 0; t < shape.triangles; ++t)
+            for (std::size_t side = 0; side < shape.sides; ++side)
+                for (std::size_t b = 0; b < shape.bands; ++b) {
+                    const std::size_t i = shape.index(t, side, b), s = L.side_index(t, side);
+                    data[L.side_slot(s, b, TallyLayout::kCountOdd, g)] = c.count_odd[i];
+                    data[L.side_slot(s, b, TallyLayout::kCountEven, g)] = c.count_even[i];
+                    data[L.side_slot(s, b, TallyLayout::kDirectOdd, g)] = c.direct_odd[i];
+                    data[L.side_slot(s, b, TallyLayout::kDirectEven, g)] = c.direct_even[i];
+                    // sumsq = count + repeats (tally.hpp)
+                    data[L.side_slot(s, b, TallyLayout::kRepeats, g)] = c.sumsq[i] - c.count_odd[i] - c.count_even[i];
+                    for (std::size_t r = 0; r < R; ++r)
+                        data[L.map_replicate(s, L.map_column(b, g), r)] = c.replicate_count[i * R + r];
                 }
-            if (odd + even == 0.0) continue;
-            const double a = area[t], k = e0 / a;
-            const double d = 2.0 * (odd - even) * k, e = (odd + even) * k;
-            const double sigma = std::sqrt(std::max(0.0, q - (odd + even) * (odd + even) / photons)) * k;
-            s += a;
-            ++out.lit_sides;
-            sum_d2 += a * d * d;
-            sum_e += a * e;
-            sum_var += a * sigma * sigma;
-        }
-    if (s <= 0.0) return out;
-    out.mean_lx = sum_e / s;
-    out.odd_even_sigma_lx = 0.5 * std::sqrt(sum_d2 / s);
-    out.moment_sigma_lx = std::sqrt(sum_var / s);
-    return out;
+    }
+    for (std::size_t r = 0; r < R; ++r) data[L.replicate_photons(r)] = rep_photons[r];
+    return estimate_global(WeightedTallies(L, data, w), area, e0, photons);
 }
 
 // A detector's mean and its relative error: the weighted totals n = sum_g w_g n_g and
@@ -159,13 +150,19 @@ void print_light_scene(const ResultFile& file, const std::string& spec, std::ost
     out << " (recombined from /light_groups)\n" << std::fixed << std::setprecision(2);
     const bool maps = std::all_of(groups.begin(), groups.end(), [](const auto& g) { return g.surface.has_value(); });
     if (maps && photons > 0.0) {
-        const GlobalFigures gf = recombine_global(groups, w, file.triangle_areas(), e0, photons);
-        auto rel = [&](double s) { return gf.mean_lx > 0.0 ? 100.0 * s / gf.mean_lx : kNaN; };
-        out << "global map     mean " << gf.mean_lx << " lx over " << gf.lit_sides << " lit triangle sides\n"
-            << "  odd/even     RMS error " << gf.odd_even_sigma_lx << " lx, relative " << rel(gf.odd_even_sigma_lx)
-            << " % (arithmetic)\n"
-            << "  2nd moment   RMS error " << gf.moment_sigma_lx << " lx, relative " << rel(gf.moment_sigma_lx)
-            << " % (arithmetic)\n";
+        const GlobalEstimate g = recombine_global(groups, w, file.triangle_areas(), e0, info.photons,
+                                                  file.replicate_photons());
+        auto line = [&](const char* label, double sigma, double rel, GlobalEstimate::Estimator e) {
+            out << label << sigma << " lx, relative " << 100.0 * rel << " % (arithmetic)"
+                << (g.primary == e ? ", used by targets" : "") << '\n';
+        };
+        out << "global map     mean " << g.mean_arithmetic_lx << " lx over " << g.lit_sides << " lit triangle sides\n";
+        line("  odd/even     RMS error ", g.sigma_lx, g.sigma_rel_arithmetic, GlobalEstimate::Estimator::odd_even);
+        line("  2nd moment   RMS error ", g.moment_sigma_lx, g.moment_sigma_rel_arithmetic,
+             GlobalEstimate::Estimator::second_moment);
+        if (g.primary == GlobalEstimate::Estimator::replicate_spread)
+            line("  replicates   RMS error ", g.replicate_sigma_lx, g.replicate_sigma_rel_arithmetic,
+                 GlobalEstimate::Estimator::replicate_spread);
     } else {
         out << "global map     not kept per light group (run.group_maps = false)\n";
     }

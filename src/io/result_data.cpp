@@ -130,6 +130,13 @@ SurfaceCounts ResultFile::surface_counts_at(const std::string& group) const {
         s.sumsq = reader_.u64(group + "/sumsq", &d);
         if (d != dims) throw InputError(path().string() + ": " + group + "/sumsq differs in shape from " + odd);
     }
+    if (reader_.has(group + "/replicate_count")) {  // sobol
+        std::vector<std::size_t> d;
+        s.replicate_count = reader_.u64(group + "/replicate_count", &d);
+        if (d.size() != 4 || d[0] != dims[0] || d[1] != dims[1] || d[2] != dims[2] || d[3] != replicates_)
+            throw InputError(path().string() + ": " + group +
+                             "/replicate_count is not [T, 2, B, R] with R = " + std::to_string(replicates_));
+    }
     return s;
 }
 

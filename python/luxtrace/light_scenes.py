@@ -18,7 +18,7 @@ class LightSceneSurface:
     odd_even_difference_lx and sigma_lx [T,2], and the /global summaries as attributes
     (mean_arithmetic_lx, odd_even_sigma_lx = D / 2 of eq. 5, moment_sigma_lx, ...)."""
 
-    def __init__(self, tallies, weights, area_m2, e0, photons):
+    def __init__(self, tallies, weights, area_m2, e0, photons, replicate_photons=None):
         def weighted(key, square=False):
             return sum((w * w if square else w) * t[key].astype(float) for w, t in zip(weights, tallies))
         area = np.asarray(area_m2, dtype=float)[:, None, None]
@@ -39,6 +39,19 @@ class LightSceneSurface:
         self.moment_sigma_lx = g["moment_sigma_lx"]
         self.moment_sigma_rel_arithmetic = g["moment_sigma_rel_arithmetic"]
         self.lit_area_m2 = g["lit_area_m2"]
+        #: sobol: each side's error from the spread of its weighted replicate maps
+        #: (replicate_sigma_lx [T,2]) and the map's (replicate_sigma_lx_global, as the file's
+        #: attribute replicate_sigma_lx); None for random runs.
+        self.replicate_sigma_lx = self.replicate_sigma_lx_global = None
+        if replicate_photons is not None and all("replicate_count" in t for t in tallies):
+            reps = sum(w * t["replicate_count"].astype(float) for w, t in zip(weights, tallies)).sum(axis=2)
+            rel = statistics.replicate_sigma_rel(np.moveaxis(reps, -1, 0), replicate_photons)
+            e = (odd_b + even_b) * e0 / area[:, :, 0]
+            self.replicate_sigma_lx = np.where(odd_b + even_b > 0, rel * e, np.nan)
+            lit = odd_b + even_b > 0
+            a = np.broadcast_to(area[:, :, 0], lit.shape)
+            s = np.where(lit, np.nan_to_num(self.replicate_sigma_lx), 0.0)
+            self.replicate_sigma_lx_global = float(np.sqrt((a * s * s)[lit].sum() / a[lit].sum()))
 
 
 class LightSceneDetector:
@@ -96,12 +109,12 @@ class LightScene:
         self.weights = {g: float(weights.get(g, 0.0)) for g in names}
         w = [self.weights[g] for g in names]
         e0, photons = result.flux_per_photon_lm, result.photons
+        rep_photons = result.attrs.get("replicate_photons")
+        rep_photons = None if rep_photons is None else np.atleast_1d(rep_photons)
         surf = [groups[g]["surface"] for g in names]
         self.surface = None
         if all(s for s in surf):
-            self.surface = LightSceneSurface(surf, w, result.mesh.area_m2, e0, photons)
-        rep_photons = result.attrs.get("replicate_photons")
-        rep_photons = None if rep_photons is None else np.atleast_1d(rep_photons)
+            self.surface = LightSceneSurface(surf, w, result.mesh.area_m2, e0, photons, rep_photons)
         self.detectors = {}
         for name, d in result.detectors.items():
             if not all(name in groups[g]["detectors"] for g in names):

@@ -60,6 +60,11 @@ def test_dimmed_combination_equals_the_files_light_scene(two_groups):
                                    atol=1e-12)
         for k in ("mean_arithmetic_lx", "mean_quadratic_lx", "sigma_lx", "moment_sigma_lx"):
             assert ls.surface.summary[k] == pytest.approx(g.attrs[k], rel=1e-10), k
+        if "replicate_sigma_lx" in g:  # sobol: the replicate maps' spread, as the file's
+            np.testing.assert_allclose(ls.surface.replicate_sigma_lx, g["replicate_sigma_lx"][()], rtol=1e-10)
+            assert ls.surface.replicate_sigma_lx_global == pytest.approx(g.attrs["replicate_sigma_lx"], rel=1e-10)
+        else:
+            assert ls.surface.replicate_sigma_lx is None
     # Dimming a to 10 % lowers the mean below the plain run's.
     assert ls.detectors["table"].mean_value < r.detectors["table"].mean_value
 

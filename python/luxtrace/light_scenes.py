@@ -47,7 +47,7 @@ class LightSceneSurface:
             reps = sum(w * t["replicate_count"].astype(float) for w, t in zip(weights, tallies)).sum(axis=2)
             rel = statistics.replicate_sigma_rel(np.moveaxis(reps, -1, 0), replicate_photons)
             e = (odd_b + even_b) * e0 / area[:, :, 0]
-            self.replicate_sigma_lx = np.where(odd_b + even_b > 0, rel * e, np.nan)
+            self.replicate_sigma_lx = np.where(odd_b + even_b > 0, rel * e, 0.0)  # an unlit side: 0, as the file
             lit = odd_b + even_b > 0
             a = np.broadcast_to(area[:, :, 0], lit.shape)
             s = np.where(lit, np.nan_to_num(self.replicate_sigma_lx), 0.0)

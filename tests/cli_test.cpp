@@ -488,3 +488,28 @@ TEST_F(Cli, LightScenesExampleRunsAndRecombinesItsScenes) {
     EXPECT_NE(o.out.find("detector table          mean " + std::string(m[1])), std::string::npos) << m[1] << '\n'
                                                                                                   << o.out;
 }
+
+// A checkpoint's light groups keep their counts apart: it continues only with the same
+// groups (names and order), and exits 2 naming both otherwise.
+TEST_F(Cli, RestartRefusesOtherLightGroups) {
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "two_groups.toml";
+    const fs::path ck = dir / "ck.h5", out = dir / "r.h5";
+    ASSERT_EQ(run("run " + scene.string() + " --photons 300k --report-every-photons 100k --checkpoint-every 1e-6 " +
+                  "--threads 1 --quiet --checkpoint " + ck.string() + " --output " + out.string())
+                  .code,
+              0);
+    ASSERT_TRUE(fs::exists(ck));
+    std::ifstream in(scene);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("group = \"b\""), 11, "group = \"c\"");
+    text.replace(text.find("b = 1.0 }"), 9, "c = 1.0 }");
+    const Outcome o = run("run " + write("renamed.toml", text).string() + " --restart " + ck.string() +
+                          " --photons 400k --quiet --output " + (dir / "x.h5").string());
+    EXPECT_EQ(o.code, 2) << o.out;
+    EXPECT_NE(o.out.find("light groups a, b, this scene has a, c"), std::string::npos) << o.out;
+    EXPECT_FALSE(fs::exists(dir / "x.h5"));
+    EXPECT_EQ(run("run " + scene.string() + " --restart " + ck.string() + " --photons 400k --quiet --output " +
+                  (dir / "y.h5").string())
+                  .code,
+              0);
+}

@@ -9,7 +9,16 @@
 
 namespace luxtrace {
 
-RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout) {
+namespace {
+std::string joined(const std::vector<std::string>& names) {
+    std::string s;
+    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+}
+}  // namespace
+
+RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
+                                const std::vector<std::string>& light_groups) {
     CheckpointState ck = read_checkpoint(path);
     if (ck.format_version != kResultFormatVersion)
         throw InputError(path + ": the checkpoint has result format " + std::to_string(ck.format_version) +
@@ -19,6 +28,17 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
     if (ck.sampler == run.sampler && ck.replicates != layout.replicates())
         throw InputError(path + ": the checkpoint was made with " + std::to_string(ck.replicates) +
                          " replicates; restart with the same (drop --replicates)");
+    // Light groups keep their counts apart: a checkpoint continues only with the same ones.
+    const std::vector<std::string> ck_groups = ck.light_groups.empty() ? std::vector<std::string>{"default"}
+                                                                       : ck.light_groups;
+    const bool ck_shared = ck_groups.size() > 1 && !ck.group_maps;
+    const bool shared = layout.groups() > 1 && layout.map_groups() == 1;
+    if (ck_groups.size() != layout.groups() || (!ck.light_groups.empty() && ck.light_groups != light_groups) ||
+        ck_shared != shared)
+        throw InputError(path + ": the checkpoint keeps the light groups " + joined(ck_groups) +
+                         (ck_shared ? " (one surface map for all)" : "") + ", this scene has " + joined(light_groups) +
+                         (shared ? " (one surface map for all)" : "") +
+                         ": restart with the light groups and [run] group_maps the checkpoint was made with");
     if (ck.layout_size != layout.size() || ck.triangles != layout.triangles() || ck.bands != layout.bands())
         throw InputError(path + ": the checkpoint was made for another scene (" + std::to_string(ck.triangles) +
                          " triangles, " + std::to_string(ck.bands) + " bands; this scene has " +

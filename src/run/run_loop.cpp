@@ -66,7 +66,8 @@ std::uint64_t fence_step_of(const RunConfig& run, int ranks) {
 RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
     : scene_(scene), run_(scene.run), comm_(comm), opt_(opt), out_(out), t0_(comm.wtime()), ranks_(comm.size()),
       threads_(opt.threads > 0 ? opt.threads : available_cores()), layout_(scene), store_(layout_),
-      restored_(opt.restart.empty() ? RestartState{} : restore_checkpoint(opt.restart, run_, layout_)),
+      restored_(opt.restart.empty() ? RestartState{}
+                                    : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups)),
       plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),
       embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)),
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),

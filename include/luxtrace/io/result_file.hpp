@@ -62,8 +62,10 @@ struct CheckpointState {
     std::uint64_t budget = 0;
     std::uint64_t seed = 0;
     std::string sampler;
-    std::uint64_t photon_layout = 1;  // files without the attribute were made with layout 1
-    std::uint64_t replicates = 0;     // sobol's R; 0 for random (and files before it)
+    std::uint64_t photon_layout = 1;        // files without the attribute were made with layout 1
+    std::uint64_t replicates = 0;           // sobol's R; 0 for random (and files before it)
+    std::vector<std::string> light_groups;  // empty in files before light groups (one group)
+    bool group_maps = true;
     std::uint64_t format_version = 1;
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;

@@ -22,6 +22,8 @@ struct RestartState {
 
 // Reads the checkpoint `path` and checks that `run` (seed, sampler, replicates, budget)
 // and `layout` can continue it; throws InputError naming what differs.
-RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout);
+// `light_groups`: the scene's (Scene::light_groups), which the checkpoint's must match.
+RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
+                                const std::vector<std::string>& light_groups);
 
 }  // namespace luxtrace

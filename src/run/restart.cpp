@@ -39,6 +39,11 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
                          (ck_shared ? " (one surface map for all)" : "") + ", this scene has " + joined(light_groups) +
                          (shared ? " (one surface map for all)" : "") +
                          ": restart with the light groups and [run] group_maps the checkpoint was made with");
+    // A sobol checkpoint of luxtrace 0.3: the same scene, but no replicate maps per side.
+    if (layout.replicates() > 0 && ck.triangles == layout.triangles() && ck.bands == layout.bands() &&
+        ck.layout_size + layout.sides() * layout.map_columns() * layout.replicates() == layout.size())
+        throw InputError(path + ": the checkpoint was made by a luxtrace whose sobol runs kept no replicate maps "
+                                "per triangle side (before 0.4); continue it with that version, or start anew");
     if (ck.layout_size != layout.size() || ck.triangles != layout.triangles() || ck.bands != layout.bands())
         throw InputError(path + ": the checkpoint was made for another scene (" + std::to_string(ck.triangles) +
                          " triangles, " + std::to_string(ck.bands) + " bands; this scene has " +

@@ -301,6 +301,44 @@ TEST_F(Cli, DamagedSealedResultsAreRefusedBeforeHdf5ReadsThem) {
     EXPECT_FALSE(fs::exists(dir / "pic")) << "nothing written by a refused render";
 }
 
+// Plain `luxtrace` processes started together, each refusing a damaged file at once
+// (the earliest exit after MPI starts): every one ends with exit 2 and its message, none
+// with a signal. Open MPI's singleton orted once made such an exit end in SIGSEGV on a
+// loaded machine, and an isolated singleton's shared session directory in exit 1.
+TEST_F(Cli, ConcurrentEarlyExitsOfPlainProcessesAllExitTwo) {
+    const fs::path scene = write("s.toml", kSmallScene);
+    const fs::path good = dir / "good.h5";
+    ASSERT_EQ(
+        run("run " + scene.string() + " --photons 2k --seed 3 --threads 1 --quiet --output " + good.string()).code, 0);
+    const fs::path cut = dir / "cut.h5";
+    fs::copy_file(good, cut);
+    fs::resize_file(cut, fs::file_size(good) - 100);
+    constexpr int kProcesses = 8;
+    constexpr int kRounds = 3;
+    for (int round = 0; round < kRounds; ++round) {
+        std::string cmd;
+        for (int k = 0; k < kProcesses; ++k) {
+            const std::string args = k % 2 == 0 ? "info " + cut.string()
+                                                : "run " + scene.string() + " --restart " + cut.string() +
+                                                      " --photons 10k --output " + (dir / "r.h5").string();
+            const fs::path out = dir / ("out" + std::to_string(k));
+            cmd += "( " + std::string(LUXTRACE_BINARY) + " " + args + " > " + out.string() + " 2>&1; echo $? > " +
+                   out.string() + ".rc ) & ";
+        }
+        ASSERT_EQ(std::system((cmd + "wait").c_str()), 0);
+        for (int k = 0; k < kProcesses; ++k) {
+            const fs::path out = dir / ("out" + std::to_string(k));
+            int code = -1;
+            std::ifstream(out.string() + ".rc") >> code;
+            std::stringstream text;
+            text << std::ifstream(out).rdbuf();
+            EXPECT_EQ(code, 2) << "round " << round << ", process " << k << '\n' << text.str();
+            EXPECT_NE(text.str().find(cut.string() + ": damaged file"), std::string::npos) << text.str();
+        }
+    }
+    EXPECT_FALSE(fs::exists(dir / "r.h5")) << "nothing written by a refused restart";
+}
+
 // Result format 2 (two-sided maps, issue 13) is read beside format 1: `info` and
 // `export-xdmf` still work on a luxtrace 0.2 result, and a restart from a format-1
 // checkpoint (whose tally array has another layout) is refused by name, writing nothing.

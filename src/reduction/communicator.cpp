@@ -27,6 +27,14 @@ Communicator::Communicator(int* argc, char*** argv) {
         setenv("OMPI_MCA_pml", "ob1", 0);
         setenv("OMPI_MCA_btl", "self", 0);
         setenv("OMPI_MCA_mtl", "^ofi", 0);
+        // Nor the orted that Open MPI 4.1 forks to serve a singleton: a PMIx event from it
+        // can reach the progress thread after MPI_Finalize has unloaded mca_pmix_ext3x.so,
+        // whose handler it then calls (SIGSEGV on exit, seen after an early exit 2 on a
+        // loaded machine). An isolated singleton's session directory is always jf.0, which
+        // concurrent ones create and remove under each other; with one rank and btl=self
+        // nothing needs it.
+        setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+        setenv("OMPI_MCA_orte_create_session_dirs", "0", 0);
     }
     int provided = 0;
     // Only the main thread calls MPI; tracing threads never do.

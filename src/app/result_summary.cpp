@@ -102,6 +102,9 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
     out << '\n';
     global_line("  odd/even     RMS error ", "", "odd_even");
     if (moment) global_line("  2nd moment   RMS error ", "moment_", "second_moment");
+    // sobol (issue 22): the spread of the replicate maps, which its targets use.
+    if (r.has_attr("/global", "replicate_sigma_lx"))
+        global_line("  replicates   RMS error ", "replicate_", "replicate_spread");
     for (const std::string& name : r.children("/detectors")) {
         const std::string g = "/detectors/" + name;
         const std::string units = r.attr_str(g, "units");
@@ -172,10 +175,14 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
             out << (g > 0 ? ", " : "") << groups[g] << ' ' << (w[g] > 0.0 ? w[g] : 0.0);
         out << "; " << std::fixed << std::setprecision(0) << r.attr_f64(base, "flux_lm") << " lm)\n"
             << std::setprecision(2);
-        if (r.has(base + "/global"))
+        if (r.has(base + "/global")) {
+            // The error its targets use (the replicate spread for sobol), and D / 2.
+            const bool replicates = r.attr_str(base + "/global", "error_estimator") == "replicate_spread";
             out << "  global map   mean " << r.attr_f64(base + "/global", "mean_arithmetic_lx") << " lx, RMS error "
-                << r.attr_f64(base + "/global", "moment_sigma_lx") << " lx (2nd moment), "
+                << r.attr_f64(base + "/global", replicates ? "replicate_sigma_lx" : "moment_sigma_lx")
+                << (replicates ? " lx (replicates), " : " lx (2nd moment), ")
                 << r.attr_f64(base + "/global", "sigma_lx") << " lx (odd/even)\n";
+        }
         const std::string gs = base + "/detectors";
         for (const std::string& name : r.has(gs) ? r.children(gs) : std::vector<std::string>{}) {
             const std::string g = gs + "/" + name;

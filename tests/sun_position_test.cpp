@@ -53,7 +53,8 @@ double argmax(const std::function<double(double)>& f, double lo, double hi) {
 
 TEST(SunPosition, ReproducesTheReportsExampleZenithAndAzimuth) {
     const SunPosition p = sun_position(example_time(), example_site());
-    // Table A5.1 and the report's abstract: 50.111622 and 194.340241 (spa_tester output).
+    // Table A5.1 prints 50.11162 and 194.34024; 50.111622 and 194.340241 are the
+    // six-decimal values of NREL's own implementation for this case (issue 23).
     EXPECT_NEAR(p.zenith_deg, 50.111622, 1e-6);
     EXPECT_NEAR(p.azimuth_deg, 194.340241, 1e-6);
     EXPECT_NEAR(p.altitude_deg, 90.0 - 50.111622, 1e-5);
@@ -85,6 +86,20 @@ TEST(SunPosition, ReproducesTheReportsIntermediateValues) {
     EXPECT_NEAR(s.topocentric_hour_angle, 11.10629, 3e-5);
     // Refraction at 820 mbar and 11 C, e0 near 39.87 deg: about 0.0163 deg.
     EXPECT_NEAR(s.refraction, 0.016332, 5e-6);
+}
+
+TEST(SunPosition, ReproducesTheReportsPeriodicSums) {
+    // Table A5.1's L0..L5, B0..B1, R0..R4 (1e-8 rad, 1e-8 AU): a check of every table
+    // row's weight, which the final L, B and R see only through powers of JME.
+    const SpaIntermediates s = sun_position(example_time(), example_site()).spa;
+    const double jme = (s.julian_ephemeris_day - 2451545.0) / 365250.0;
+    const EarthPeriodicSums e = earth_periodic_sums(jme);
+    const double l[] = {172067561.526586, 628332010650.051147, 61368.682493, -26.902819, -121.279536, -0.999999};
+    const double b[] = {-176.502688, 3.067582};
+    const double r[] = {99653849.037796, 100378.567146, -1140.953507, -141.115419, 1.232361};
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(e.l[i], l[i], 2e-6 * std::max(1.0, std::abs(l[i]) * 1e-9)) << "L" << i;
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(e.b[i], b[i], 2e-6) << "B" << i;
+    for (int i = 0; i < 5; ++i) EXPECT_NEAR(e.r[i], r[i], 2e-6) << "R" << i;
 }
 
 TEST(SunPosition, JulianDayMatchesTheReportsExamples) {

@@ -219,15 +219,18 @@ double limit_360(double deg) {
     return limited < 0.0 ? limited + 360.0 : limited;
 }
 
-// Eqs. 9-11: sum_i (sum_rows A cos(B + C JME)) JME^i / 1e8, in rad (L, B) or AU (R).
-double earth_series(std::span<const std::span<const PeriodicTerm>> series, double jme) {
-    double total = 0.0, power = 1.0;
-    for (const auto& terms : series) {
-        double sum = 0.0;
-        for (const PeriodicTerm& t : terms) sum += t.a * std::cos(t.b + t.c * jme);
-        total += sum * power;
-        power *= jme;
-    }
+// Eqs. 9-10: the sum over one table of A cos(B + C JME).
+double periodic_sum(std::span<const PeriodicTerm> terms, double jme) {
+    double sum = 0.0;
+    for (const PeriodicTerm& t : terms) sum += t.a * std::cos(t.b + t.c * jme);
+    return sum;
+}
+
+// Eq. 11: the sums as a polynomial in JME, / 1e8, in rad (L, B) or AU (R).
+template <std::size_t N>
+double earth_series(const std::array<double, N>& sums, double jme) {
+    double total = 0.0;
+    for (std::size_t i = N; i-- > 0;) total = total * jme + sums[i];
     return total / 1e8;
 }
 
@@ -251,6 +254,17 @@ void check(const LocalStandardTime& t, const SunSite& s) {
 }
 
 }  // namespace
+
+EarthPeriodicSums earth_periodic_sums(double jme) {
+    const std::span<const PeriodicTerm> l[] = {kL0, kL1, kL2, kL3, kL4, kL5};
+    const std::span<const PeriodicTerm> b[] = {kB0, kB1};
+    const std::span<const PeriodicTerm> r[] = {kR0, kR1, kR2, kR3, kR4};
+    EarthPeriodicSums sums;
+    for (std::size_t i = 0; i < sums.l.size(); ++i) sums.l[i] = periodic_sum(l[i], jme);
+    for (std::size_t i = 0; i < sums.b.size(); ++i) sums.b[i] = periodic_sum(b[i], jme);
+    for (std::size_t i = 0; i < sums.r.size(); ++i) sums.r[i] = periodic_sum(r[i], jme);
+    return sums;
+}
 
 double julian_day(int year, int month, double day) {
     if (month <= 2) {  // January and February count as months 13 and 14 of the year before
@@ -280,12 +294,10 @@ SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
     s.julian_ephemeris_day = jde;
 
     // 3.2: the Earth's heliocentric position (eqs. 9-12, Table A4.2).
-    const std::span<const PeriodicTerm> l_series[] = {kL0, kL1, kL2, kL3, kL4, kL5};
-    const std::span<const PeriodicTerm> b_series[] = {kB0, kB1};
-    const std::span<const PeriodicTerm> r_series[] = {kR0, kR1, kR2, kR3, kR4};
-    s.heliocentric_longitude = limit_360(deg(earth_series(l_series, jme)));
-    s.heliocentric_latitude = deg(earth_series(b_series, jme));
-    s.radius_au = earth_series(r_series, jme);
+    const EarthPeriodicSums sums = earth_periodic_sums(jme);
+    s.heliocentric_longitude = limit_360(deg(earth_series(sums.l, jme)));
+    s.heliocentric_latitude = deg(earth_series(sums.b, jme));
+    s.radius_au = earth_series(sums.r, jme);
 
     // 3.3: geocentric.
     s.geocentric_longitude = limit_360(s.heliocentric_longitude + 180.0);  // eq. 13

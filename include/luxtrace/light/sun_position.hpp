@@ -10,6 +10,8 @@
 // luxtrace. Longitudes east positive; the UTC offset is that of standard time, east
 // positive (UTC-7 is -7), so the UT is the local time minus the offset.
 
+#include <array>
+
 namespace luxtrace {
 
 // A civil date and time, independent of any parser: proleptic Gregorian from 1582-10-15,
@@ -74,6 +76,15 @@ struct SunPosition {
 // Throws std::invalid_argument naming the field out of range (month, day, hour, minute,
 // second, utc_offset_h, latitude_deg, longitude_deg, pressure_mbar, temperature_c).
 SunPosition sun_position(const LocalStandardTime& time, const SunSite& site);
+
+// The sums of eqs. 9-10 for each power of JME (L0..L5, B0..B1, R0..R4, in 1e-8 rad or
+// 1e-8 AU), for a Julian ephemeris millennium: what Table A5.1 prints.
+struct EarthPeriodicSums {
+    std::array<double, 6> l{};
+    std::array<double, 2> b{};
+    std::array<double, 5> r{};
+};
+EarthPeriodicSums earth_periodic_sums(double julian_ephemeris_millennium);
 
 // SPA eq. 4 for a UT date with the day's fraction in `day` (e.g. 2.521180556 for the 2nd
 // at 12:30:30 UT).

@@ -102,6 +102,25 @@ TEST(SunPosition, ReproducesTheReportsPeriodicSums) {
     for (int i = 0; i < 5; ++i) EXPECT_NEAR(e.r[i], r[i], 2e-6) << "R" << i;
 }
 
+TEST(SunPosition, AgreesWithTheReportsTransitSunriseAndSunset) {
+    // Table A5.1 also gives the day's transit (18:46:04.97 UT), sunrise (13:12:43.46 UT)
+    // and sunset (00:20:19.19 UT: the report keeps all three within the UT day of the
+    // example, so this is the sunset that ends 16 October in Golden, on 17 October in
+    // UT; the next one is about 1.5 min earlier), found by interpolating the geocentric
+    // position over three days (Appendix A.2), not by the per-instant path tested here.
+    // At transit the hour angle is zero; at sunrise and sunset the unrefracted altitude
+    // is -0.8333 deg (refraction plus the sun's radius), to within the observer's
+    // parallax (at most 0.0024 deg).
+    const SunSite site = example_site();
+    const auto at_ut = [&](int day, int hour, int minute, double second) {
+        return sun_position(LocalStandardTime{2003, 10, day, hour, minute, second, 0.0}, site);
+    };
+    const double h = at_ut(17, 18, 46, 4.97).spa.hour_angle;
+    EXPECT_NEAR(std::min(h, 360.0 - h), 0.0, 1e-3);  // 0.1 s of time is 4e-4 deg
+    EXPECT_NEAR(at_ut(17, 13, 12, 43.46).spa.elevation_unrefracted, -0.8333, 0.005);
+    EXPECT_NEAR(at_ut(17, 0, 20, 19.19).spa.elevation_unrefracted, -0.8333, 0.005);
+}
+
 TEST(SunPosition, JulianDayMatchesTheReportsExamples) {
     // Table A4.1 (Meeus's examples): Gregorian and Julian calendars, negative years.
     EXPECT_DOUBLE_EQ(julian_day(2000, 1, 1.5), 2451545.0);

@@ -1,0 +1,66 @@
+#pragma once
+// Sky luminance distributions for daylight (docs/DAYLIGHT.md, "Sky luminance
+// distributions"): the 15 CIE standard general skies of ISO 15469:2004 / CIE S 011/E:2003,
+// the traditional CIE overcast sky (type 16) and a sky of uniform luminance, each as a
+// luminance relative to the zenith's, L / L_z, plus the illuminances such a sky gives an
+// unobstructed horizontal or vertical plane per unit zenith luminance (by quadrature).
+//
+// Directions: z up; azimuths clockwise from north seen from above, north = +y, east = +x
+// (90 deg east, 180 deg south), so a direction of zenith angle Z and azimuth alpha is
+// (sin Z sin alpha, sin Z cos alpha, cos Z). Angles in radians.
+#include "luxtrace/core/math.hpp"
+
+namespace luxtrace {
+
+// The gradation (a, b) and indicatrix (c, d, e) parameters of one CIE standard general
+// sky (ISO 15469:2004, table 1).
+struct CieSkyParameters {
+    double a, b, c, d, e;
+};
+
+// Types 1 to 15; throws std::invalid_argument for any other type.
+CieSkyParameters cie_general_sky_parameters(int cie_type);
+
+// The direction of zenith angle Z and azimuth alpha in the convention above.
+Vec3 sky_direction(double zenith_rad, double azimuth_rad);
+
+class SkyModel {
+public:
+    // cie_type 1-15 (the general skies, which need the sun's position: zenith angle in
+    // [0, pi/2]) or 16 (the traditional overcast sky, which ignores it). Throws
+    // std::invalid_argument for another type or a sun outside that range.
+    static SkyModel cie(int cie_type, double sun_zenith_rad, double sun_azimuth_rad);
+    static SkyModel uniform();
+
+    // L / L_z towards a sky element; 0 below the horizon. `dir` need not be normalised.
+    double relative_luminance(const Vec3& dir) const;
+    double relative_luminance(double zenith_rad, double azimuth_rad) const;
+
+    // E_h / L_z in sr (lx per cd/m2): the illuminance the sky alone gives an unobstructed
+    // horizontal plane, integral of (L / L_z) cos Z dOmega over the upper hemisphere.
+    double horizontal_illuminance_per_zenith_luminance_sr() const;
+    // E_v / L_z in sr on an unobstructed vertical plane whose normal points to
+    // `facing_azimuth_rad` (the sky only; no ground).
+    double vertical_illuminance_per_zenith_luminance_sr(double facing_azimuth_rad) const;
+
+    // 1-16, or 0 for the uniform sky.
+    int cie_type() const { return type_; }
+    double sun_zenith_rad() const { return sun_zenith_rad_; }
+    double sun_azimuth_rad() const { return sun_azimuth_rad_; }
+
+private:
+    SkyModel(int type, CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad);
+    double gradation(double cos_zenith) const;
+    double indicatrix(double chi_rad) const;
+    // Integral of (L / L_z)(Z, alpha) w(Z, alpha) sin Z over Z in [0, pi/2] and alpha in
+    // [alpha0, alpha1], with the sun's zenith angle and azimuth as breakpoints.
+    template <class Weight>
+    double integrate(double alpha0_rad, double alpha1_rad, const Weight& w) const;
+
+    int type_ = 0;
+    CieSkyParameters p_{};
+    double sun_zenith_rad_ = 0.0, sun_azimuth_rad_ = 0.0;
+    double norm_ = 1.0;  // 1 / (f(Z_s) phi(0))
+};
+
+}  // namespace luxtrace

@@ -316,6 +316,11 @@ TEST_F(GlareRun, LightScenesDimTheLuminairesTheyView) {
     const ResultReader r(out);
     const std::string plain = "/observers/desk", half = "/light_scenes/half/observers/desk",
                       near = "/light_scenes/near_only/observers/desk";
+    // The plain eye counts are every group's together: E_ind is eq. (8)'s value on them.
+    const double e_plain = r.attr_f64(plain, "indirect_vertical_illuminance_lx");
+    EXPECT_NEAR(e_plain,
+                r.attr_f64("/", "flux_per_photon_lm") * static_cast<double>(r.u64(plain + "/eye_count").at(0)) / 0.04,
+                1e-9 * e_plain);
     EXPECT_NEAR(r.attr_f64(half, "ugr"), r.attr_f64(plain, "ugr") + 8.0 * std::log10(0.5), 1e-9);
     EXPECT_NEAR(r.attr_f64(half, "ugr_sigma"), r.attr_f64(plain, "ugr_sigma"), 1e-12);
     const HandTerms t = hand_terms(Vec3(0.5, 2, 1.2), Vec3(3, 1, 2.9));

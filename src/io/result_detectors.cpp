@@ -28,22 +28,6 @@ void write_cylinders(hid_t g, const Detector& d, std::size_t bands, const std::o
     attr(g, "modelling_ratio_max", m.max);
 }
 
-// Sobol's replicates: each replicate's counts and photons received (docs/QMC.md).
-void write_replicates(hid_t g, const Detector& d, std::size_t di, std::size_t bands, const TallyLayout& L,
-                      const std::vector<std::uint64_t>& data) {
-    const std::size_t R = L.replicates(), B = bands;
-    std::vector<std::uint64_t> rn(R * d.cells() * B), rt(R);
-    for (std::size_t r = 0; r < R; ++r)
-        for (std::size_t lg = 0; lg < L.groups(); ++lg) {
-            rt[r] += data[L.detector_replicate_total_n(di, r, lg)];
-            for (int c = 0; c < d.cells(); ++c)
-                for (std::size_t b = 0; b < B; ++b)
-                    rn[(r * d.cells() + c) * B + b] += data[L.detector_replicate_n(di, r, c, b, lg)];
-        }
-    dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
-    attr(g, "replicate_total", rt);
-}
-
 }  // namespace
 
 // Eavg, Emin, Emax, U0 of a grid or task area (illuminance_metrics.hpp), initial and
@@ -95,6 +79,39 @@ void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceM
     }
 }
 
+std::vector<std::uint64_t> detector_sums(const TallyLayout& L, const std::vector<std::uint64_t>& data, std::size_t di,
+                                         std::size_t cells, bool sumsq, std::size_t first_group,
+                                         std::size_t last_group) {
+    const std::size_t B = L.bands();
+    std::vector<std::uint64_t> out(cells * B, 0);
+    for (std::size_t lg = first_group; lg < last_group; ++lg)
+        for (std::size_t c = 0; c < cells; ++c)
+            for (std::size_t b = 0; b < B; ++b)
+                out[c * B + b] += data[sumsq ? L.detector_q(di, c, b, lg) : L.detector_n(di, c, b, lg)];
+    return out;
+}
+
+void write_detector_counts(hid_t g, const Detector& d, std::size_t di, std::size_t B, const TallyLayout& L,
+                           const std::vector<std::uint64_t>& data, std::size_t first_group, std::size_t last_group) {
+    const std::size_t cells = static_cast<std::size_t>(d.cells());
+    const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
+    dataset(g, "count", dims, detector_sums(L, data, di, cells, false, first_group, last_group).data());
+    dataset(g, "sumsq", dims, detector_sums(L, data, di, cells, true, first_group, last_group).data());
+    if (const std::size_t R = L.replicates(); R > 0) {
+        // sobol: each replicate's counts and its sum over the grid (docs/QMC.md).
+        std::vector<std::uint64_t> rn(R * cells * B, 0), rt(R, 0);
+        for (std::size_t r = 0; r < R; ++r)
+            for (std::size_t lg = first_group; lg < last_group; ++lg) {
+                rt[r] += data[L.detector_replicate_total_n(di, r, lg)];
+                for (std::size_t c = 0; c < cells; ++c)
+                    for (std::size_t b = 0; b < B; ++b)
+                        rn[(r * cells + c) * B + b] += data[L.detector_replicate_n(di, r, c, b, lg)];
+            }
+        dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
+        attr(g, "replicate_total", rt);
+    }
+}
+
 void write_detector_summary(hid_t g, const DetectorEstimate& e) {
     attr(g, "sigma_rel_arithmetic", e.sigma_rel_arithmetic);
     attr(g, "sigma_rel_quadratic", e.sigma_rel_quadratic);
@@ -115,16 +132,8 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         const DetectorEstimate& e = est.detectors[di];
         const Id g = create_group(dets, d.name, "group /detectors/" + d.name);
         const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
-        std::vector<std::uint64_t> n(d.cells() * B), q(d.cells() * B);
         // The plain run's counts: every light group's together.
-        for (std::size_t lg = 0; lg < L.groups(); ++lg)
-            for (int c = 0; c < d.cells(); ++c)
-                for (std::size_t b = 0; b < B; ++b) {
-                    n[c * B + b] += data[L.detector_n(di, c, b, lg)];
-                    q[c * B + b] += data[L.detector_q(di, c, b, lg)];
-                }
-        dataset(g, "count", dims, n.data());
-        dataset(g, "sumsq", dims, q.data());
+        write_detector_counts(g, d, di, B, L, data, 0, L.groups());
         dataset(g, "value", dims, e.value.data());
         dataset(g, "sigma_rel", dims, e.sigma_rel.data());
         attr(g, "type", detector_type_name(d.type));
@@ -140,7 +149,6 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         // photons, or the spread of the R replicate means (sobol) with R - 1 dof.
         attr(g, "error_estimator", e.replicate_spread ? "replicate_spread" : "independent_photons_eq8");
         attr(g, "error_dof", static_cast<std::uint64_t>(e.dof));
-        if (L.replicates() > 0) write_replicates(g, d, di, B, L, data);
         write_task_areas(g, d, e.metrics, est.maintained_metrics[di]);
         if (d.type == DetectorType::luminance) {
             attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});

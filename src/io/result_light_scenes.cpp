@@ -13,29 +13,10 @@ namespace {
 void write_group_detector(hid_t parent, const Detector& d, std::size_t di, std::size_t B, const TallyLayout& L,
                           const std::vector<std::uint64_t>& data, std::size_t group) {
     const Id g = create_group(parent, d.name, "group detectors/" + d.name);
-    const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
-    std::vector<std::uint64_t> n(d.cells() * B), q(d.cells() * B);
-    for (int c = 0; c < d.cells(); ++c)
-        for (std::size_t b = 0; b < B; ++b) {
-            n[c * B + b] = data[L.detector_n(di, c, b, group)];
-            q[c * B + b] = data[L.detector_q(di, c, b, group)];
-        }
-    dataset(g, "count", dims, n.data());
-    dataset(g, "sumsq", dims, q.data());
+    write_detector_counts(g, d, di, B, L, data, group, group + 1);
     attr(g, "photons_received", data[L.detector_received(di, group)]);
     attr(g, "total_count", data[L.detector_total_n(di, group)]);
     attr(g, "total_sumsq", data[L.detector_total_q(di, group)]);
-    if (const std::size_t R = L.replicates(); R > 0) {
-        std::vector<std::uint64_t> rn(R * d.cells() * B), rt(R);
-        for (std::size_t r = 0; r < R; ++r) {
-            rt[r] = data[L.detector_replicate_total_n(di, r, group)];
-            for (int c = 0; c < d.cells(); ++c)
-                for (std::size_t b = 0; b < B; ++b)
-                    rn[(r * d.cells() + c) * B + b] = data[L.detector_replicate_n(di, r, c, b, group)];
-        }
-        dataset(g, "replicate_count", {R, static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B}, rn.data());
-        attr(g, "replicate_total", rt);
-    }
 }
 
 void write_scene_global(hid_t parent, const Scene& scene, const ResultEstimates& est) {

@@ -78,13 +78,9 @@ void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const
         attr(g, "in_cie117_range", static_cast<std::uint64_t>(u.in_cie117_range() ? 1 : 0));
         if (!o.notes.empty()) attr_strings(g, "notes", o.notes, false);
         // The eye detector's n and q per band (one cell), as a detector's count / sumsq.
-        std::vector<std::uint64_t> n(B), q(B);
-        for (std::size_t b = 0; b < B; ++b) {
-            n[b] = data[L.detector_n(di, 0, b)];
-            q[b] = data[L.detector_q(di, 0, b)];
-        }
-        dataset(g, "eye_count", {B}, n.data());
-        dataset(g, "eye_sumsq", {B}, q.data());
+        // Every light group's together, as the plain detectors'.
+        dataset(g, "eye_count", {B}, detector_sums(L, data, di, 1, false, 0, L.groups()).data());
+        dataset(g, "eye_sumsq", {B}, detector_sums(L, data, di, 1, true, 0, L.groups()).data());
         if (!o.sources.empty()) write_glare_sources(g, o.sources);
     }
 }

@@ -31,6 +31,16 @@ void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& layout
 // [first_group, last_group) together.
 void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& layout,
                           const std::vector<std::uint64_t>& tallies, std::size_t first_group, std::size_t last_group);
+// A detector's n_c (sumsq: q_c) per cell and band, [cells][B], of the light groups
+// [first_group, last_group) together.
+std::vector<std::uint64_t> detector_sums(const TallyLayout& layout, const std::vector<std::uint64_t>& tallies,
+                                         std::size_t detector, std::size_t cells, bool sumsq, std::size_t first_group,
+                                         std::size_t last_group);
+// A detector's counts in `g`: count and sumsq [ny, nx, B] (and sobol's replicate_count
+// [R, ny, nx, B] and replicate_total [R]) of the light groups [first_group, last_group).
+void write_detector_counts(hid_t g, const Detector& d, std::size_t detector, std::size_t bands,
+                           const TallyLayout& layout, const std::vector<std::uint64_t>& tallies,
+                           std::size_t first_group, std::size_t last_group);
 // The estimated maps and the global estimate's attributes in `g`.
 void write_surface_estimates(hid_t g, const Scene& scene, const SurfaceMaps& maps, const GlobalEstimate& global);
 // A detector's summary: its means and errors over the grid.

@@ -70,11 +70,10 @@ ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, do
                                                      scene.bands.size()));
         else r.modelling.emplace_back();
     }
-    std::vector<double> weights(scene.light_groups.size(), 1.0);
-    for (std::size_t g = 0; g < weights.size() && !w.plain(); ++g) weights[g] = w.weight(g);
     for (const Observer& o : scene.observers)
-        r.observers.push_back(estimate_observer(w.plain() ? o : dimmed(o, scene, weights), r.detectors[o.eye_detector],
-                                                mf, scene.lights.maintenance_factor_uniform()));
+        r.observers.push_back(estimate_observer(w.plain() ? o : dimmed(o, scene, w.weights()),
+                                                r.detectors[o.eye_detector], mf,
+                                                scene.lights.maintenance_factor_uniform()));
     return r;
 }
 

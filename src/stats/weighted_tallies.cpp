@@ -29,49 +29,32 @@ WeightedTallies::WeightedTallies(const TallyLayout& layout, std::span<const std:
 }
 
 double WeightedTallies::side_sumsq(std::size_t i, std::size_t band) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < map_squares_.size(); ++g) {
-        const std::uint64_t n = data_[layout_.side_slot(i, band, TallyLayout::kCountOdd, g)] +
-                                data_[layout_.side_slot(i, band, TallyLayout::kCountEven, g)] +
-                                data_[layout_.side_slot(i, band, TallyLayout::kRepeats, g)];
-        s += map_squares_[g] * static_cast<double>(n);
-    }
-    return s;
+    return sum(map_squares_, [&](std::size_t g) {
+        return data_[layout_.side_slot(i, band, TallyLayout::kCountOdd, g)] +
+               data_[layout_.side_slot(i, band, TallyLayout::kCountEven, g)] +
+               data_[layout_.side_slot(i, band, TallyLayout::kRepeats, g)];
+    });
 }
 
 double WeightedTallies::side_replicate(std::size_t i, std::size_t band, std::size_t r) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < map_weights_.size(); ++g)
-        s += map_weights_[g] * static_cast<double>(data_[layout_.map_replicate(i, layout_.map_column(band, g), r)]);
-    return s;
+    return sum(map_weights_,
+               [&](std::size_t g) { return data_[layout_.map_replicate(i, layout_.map_column(band, g), r)]; });
 }
 
 double WeightedTallies::cell_n(std::size_t det, std::size_t cell, std::size_t band) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < weights_.size(); ++g)
-        s += weights_[g] * static_cast<double>(data_[layout_.detector_n(det, cell, band, g)]);
-    return s;
+    return sum(weights_, [&](std::size_t g) { return data_[layout_.detector_n(det, cell, band, g)]; });
 }
 
 double WeightedTallies::cell_q(std::size_t det, std::size_t cell, std::size_t band) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < squares_.size(); ++g)
-        s += squares_[g] * static_cast<double>(data_[layout_.detector_q(det, cell, band, g)]);
-    return s;
+    return sum(squares_, [&](std::size_t g) { return data_[layout_.detector_q(det, cell, band, g)]; });
 }
 
 double WeightedTallies::total_n(std::size_t det) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < weights_.size(); ++g)
-        s += weights_[g] * static_cast<double>(data_[layout_.detector_total_n(det, g)]);
-    return s;
+    return sum(weights_, [&](std::size_t g) { return data_[layout_.detector_total_n(det, g)]; });
 }
 
 double WeightedTallies::total_q(std::size_t det) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < squares_.size(); ++g)
-        s += squares_[g] * static_cast<double>(data_[layout_.detector_total_q(det, g)]);
-    return s;
+    return sum(squares_, [&](std::size_t g) { return data_[layout_.detector_total_q(det, g)]; });
 }
 
 std::uint64_t WeightedTallies::received(std::size_t det) const {
@@ -82,17 +65,11 @@ std::uint64_t WeightedTallies::received(std::size_t det) const {
 }
 
 double WeightedTallies::replicate_n(std::size_t det, std::size_t r, std::size_t cell, std::size_t band) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < weights_.size(); ++g)
-        s += weights_[g] * static_cast<double>(data_[layout_.detector_replicate_n(det, r, cell, band, g)]);
-    return s;
+    return sum(weights_, [&](std::size_t g) { return data_[layout_.detector_replicate_n(det, r, cell, band, g)]; });
 }
 
 double WeightedTallies::replicate_total_n(std::size_t det, std::size_t r) const {
-    double s = 0.0;
-    for (std::size_t g = 0; g < weights_.size(); ++g)
-        s += weights_[g] * static_cast<double>(data_[layout_.detector_replicate_total_n(det, r, g)]);
-    return s;
+    return sum(weights_, [&](std::size_t g) { return data_[layout_.detector_replicate_total_n(det, r, g)]; });
 }
 
 }  // namespace luxtrace

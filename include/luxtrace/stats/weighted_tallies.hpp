@@ -26,17 +26,14 @@ public:
     std::uint64_t counter(TallyLayout::Counter c) const { return data_[layout_.counter(c)]; }
     // Every group at weight 1: the plain run.
     bool plain() const { return plain_; }
-    double weight(std::size_t group) const { return weights_[group]; }
+    std::span<const double> weights() const { return weights_; }  // per group
     // The surface map can be weighted: it keeps the groups apart, or the weights are plain.
     bool map_available() const { return plain_ || layout_.map_groups() == layout_.groups(); }
 
     // Side i (TallyLayout::side_index), one band: a slot weighted by w_g, and the second
     // moment sum over photons of (w n)^2 = sum_g w_g^2 (count + repeats).
     double side(std::size_t i, std::size_t band, TallyLayout::SurfaceSlot slot) const {
-        double s = 0.0;
-        for (std::size_t g = 0; g < map_weights_.size(); ++g)
-            s += map_weights_[g] * static_cast<double>(data_[layout_.side_slot(i, band, slot, g)]);
-        return s;
+        return sum(map_weights_, [&](std::size_t g) { return data_[layout_.side_slot(i, band, slot, g)]; });
     }
     double side_sumsq(std::size_t i, std::size_t band) const;
     double side_replicate(std::size_t i, std::size_t band, std::size_t r) const;
@@ -53,6 +50,14 @@ public:
     std::uint64_t replicate_photons(std::size_t r) const { return data_[layout_.replicate_photons(r)]; }
 
 private:
+    // sum_g w[g] x the word at slot(g).
+    template <class Slot>
+    double sum(const std::vector<double>& w, Slot slot) const {
+        double s = 0.0;
+        for (std::size_t g = 0; g < w.size(); ++g) s += w[g] * static_cast<double>(slot(g));
+        return s;
+    }
+
     const TallyLayout& layout_;
     std::span<const std::uint64_t> data_;
     std::vector<double> weights_, squares_;          // per group

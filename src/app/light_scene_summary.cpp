@@ -1,6 +1,7 @@
 #include "light_scene_summary.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/text.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/stats/estimates.hpp"
 
@@ -20,12 +21,6 @@ std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t");
     if (b == std::string::npos) return {};
     return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-std::string joined(const std::vector<std::string>& names) {
-    std::string s;
-    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
 }
 
 // The global map of the combination, estimated by the run's own estimate_global: the
@@ -112,7 +107,7 @@ std::vector<double> parse_scene_weights(const std::string& spec, const std::vect
             throw InputError(where + "'" + item + "' is not GROUP=WEIGHT (e.g. --scene \"a=0.5,b=1\")");
         const auto it = std::find(groups.begin(), groups.end(), name);
         if (it == groups.end())
-            throw InputError(where + "no light group '" + name + "' (the file has: " + joined(groups) + ")");
+            throw InputError(where + "no light group '" + name + "' (the file has: " + comma_list(groups) + ")");
         const std::size_t g = static_cast<std::size_t>(it - groups.begin());
         if (seen[g]) throw InputError(where + "light group '" + name + "' is named twice");
         const std::string value = trim(item.substr(eq + 1));

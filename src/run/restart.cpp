@@ -1,6 +1,7 @@
 #include "luxtrace/run/restart.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/text.hpp"
 #include "luxtrace/scene/run_config.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/tracer.hpp"
@@ -8,14 +9,6 @@
 #include <algorithm>
 
 namespace luxtrace {
-
-namespace {
-std::string joined(const std::vector<std::string>& names) {
-    std::string s;
-    for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-}
-}  // namespace
 
 RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
                                 const std::vector<std::string>& light_groups) {
@@ -35,9 +28,9 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
     const bool shared = layout.groups() > 1 && layout.map_groups() == 1;
     if (ck_groups.size() != layout.groups() || (!ck.light_groups.empty() && ck.light_groups != light_groups) ||
         ck_shared != shared)
-        throw InputError(path + ": the checkpoint keeps the light groups " + joined(ck_groups) +
-                         (ck_shared ? " (one surface map for all)" : "") + ", this scene has " + joined(light_groups) +
-                         (shared ? " (one surface map for all)" : "") +
+        throw InputError(path + ": the checkpoint keeps the light groups " + comma_list(ck_groups) +
+                         (ck_shared ? " (one surface map for all)" : "") + ", this scene has " +
+                         comma_list(light_groups) + (shared ? " (one surface map for all)" : "") +
                          ": restart with the light groups and [run] group_maps the checkpoint was made with");
     // A sobol checkpoint of luxtrace 0.3: the same scene, but no replicate maps per side.
     if (layout.replicates() > 0 && ck.triangles == layout.triangles() && ck.bands == layout.bands() &&

@@ -2,18 +2,14 @@
 // light group, groups it does not name off.
 #include "scene_loader.hpp"
 
+#include "luxtrace/core/text.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace luxtrace::detail {
 
 namespace {
-
-std::string group_list(const std::vector<std::string>& groups) {
-    std::string s;
-    for (const std::string& g : groups) s += (s.empty() ? "" : ", ") + g;
-    return s;
-}
 
 LightScene parse_light_scene(const SceneLoad& load, const toml::table& t, std::size_t i) {
     const Scene& scene = load.scene;
@@ -36,7 +32,7 @@ LightScene parse_light_scene(const SceneLoad& load, const toml::table& t, std::s
         const auto g = std::find(scene.light_groups.begin(), scene.light_groups.end(), group);
         if (g == scene.light_groups.end())
             r.fail_nested(key, node,
-                          "no light group is named '" + group + "' (the groups: " + group_list(scene.light_groups) +
+                          "no light group is named '" + group + "' (the groups: " + comma_list(scene.light_groups) +
                               ")");
         const std::optional<double> w = node.value<double>();
         if (!w || !std::isfinite(*w) || *w < 0.0) r.fail_nested(key, node, "expected a weight, a number >= 0");

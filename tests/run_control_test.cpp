@@ -31,6 +31,9 @@
 
 using namespace luxtrace;
 
+// The scenes here have no light groups: every light is in the one group, index 0.
+constexpr std::size_t kGroup = 0;
+
 namespace {
 
 // Every photon of [0, budget) in exactly one item of exactly one rank.
@@ -242,16 +245,17 @@ TEST(WorkerPool, SobolTalliesAreBitIdenticalOverThreadsAndReplicatesAddUp) {
     const std::size_t R = layout.replicates(), bands = layout.bands();
     for (std::size_t det = 0; det < scene.detectors.size(); ++det) {
         std::uint64_t total = 0;
-        for (std::size_t r = 0; r < R; ++r) total += d[layout.detector_replicate_total_n(det, r)];
-        EXPECT_EQ(total, d[layout.detector_total_n(det)]) << "detector " << det;
+        for (std::size_t r = 0; r < R; ++r) total += d[layout.detector_replicate_total_n(det, r, kGroup)];
+        EXPECT_EQ(total, d[layout.detector_total_n(det, kGroup)]) << "detector " << det;
         for (int cell = 0; cell < scene.detectors[det].cells(); ++cell)
             for (std::size_t b = 0; b < bands; ++b) {
                 std::uint64_t sum = 0;
-                for (std::size_t r = 0; r < R; ++r) sum += d[layout.detector_replicate_n(det, r, cell, b)];
-                EXPECT_EQ(sum, d[layout.detector_n(det, cell, b)]) << "detector " << det << " cell " << cell;
+                for (std::size_t r = 0; r < R; ++r) sum += d[layout.detector_replicate_n(det, r, cell, b, kGroup)];
+                EXPECT_EQ(sum, d[layout.detector_n(det, cell, b, kGroup)]) << "detector " << det << " cell " << cell;
             }
     }
-    for (std::size_t r = 0; r < R; ++r) EXPECT_GT(d[layout.detector_replicate_total_n(0, r)], 0u) << "replicate " << r;
+    for (std::size_t r = 0; r < R; ++r)
+        EXPECT_GT(d[layout.detector_replicate_total_n(0, r, kGroup)], 0u) << "replicate " << r;
     // 200,000 photons in whole rounds of R: as many of each replicate.
     for (std::size_t r = 0; r < R; ++r) EXPECT_EQ(d[layout.replicate_photons(r)], 200000u / R) << "replicate " << r;
 }
@@ -282,8 +286,8 @@ Calibration calibrate_sobol_cells(const std::string& scene_file) {
         for (int c = 0; c < cells; ++c) {
             double n = 0.0, q = 0.0;
             for (std::size_t b = 0; b < layout.bands(); ++b) {
-                n += double(store.data()[layout.detector_n(0, c, b)]);
-                q += double(store.data()[layout.detector_q(0, c, b)]);
+                n += double(store.data()[layout.detector_n(0, c, b, kGroup)]);
+                q += double(store.data()[layout.detector_q(0, c, b, kGroup)]);
             }
             EXPECT_GT(n, 0.0);
             // The band-summed cell as the eq. (9) summaries see it: a one-cell range.

@@ -88,8 +88,7 @@ public:
     // arrival, and a closed room's lit fronts lie together), then the repeats of every
     // side and column, touched only when a photon comes back, then (sobol) every side's
     // arrivals per column and replicate.
-    std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s,
-                        std::size_t group = 0) const {
+    std::size_t surface(std::size_t tri, std::size_t side, std::size_t band, SurfaceSlot s, std::size_t group) const {
         return map_slot(side_index(tri, side), map_column(band, group), s);
     }
     // Sides are numbered side * T + tri; `i` below is such a number.
@@ -99,7 +98,7 @@ public:
     std::size_t map_slot(std::size_t i, std::size_t column, SurfaceSlot s) const {
         return s == kRepeats ? repeats_begin(i) + column : counts_begin(i) + column * kCountSlots + s;
     }
-    std::size_t side_slot(std::size_t i, std::size_t band, SurfaceSlot s, std::size_t group = 0) const {
+    std::size_t side_slot(std::size_t i, std::size_t band, SurfaceSlot s, std::size_t group) const {
         return map_slot(i, map_column(band, group), s);
     }
     // Arrivals of replicate r on side i in `column` (sobol only).
@@ -122,35 +121,31 @@ public:
     std::size_t detector_cell(std::size_t det, std::size_t cell, std::size_t column) const {
         return det_offset_[det] + (cell * detector_columns() + column) * 2;
     }
-    std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band, std::size_t group = 0) const {
+    std::size_t detector_n(std::size_t det, std::size_t cell, std::size_t band, std::size_t group) const {
         return detector_cell(det, cell, detector_column(band, group));
     }
-    std::size_t detector_q(std::size_t det, std::size_t cell, std::size_t band, std::size_t group = 0) const {
+    std::size_t detector_q(std::size_t det, std::size_t cell, std::size_t band, std::size_t group) const {
         return detector_n(det, cell, band, group) + 1;
     }
     // Per light group, photons that registered at least once in the detector, and the
     // whole grid as one cell: sum over photons of E (registrations anywhere in the
     // detector) and of E^2, for the error of the detector's mean value.
-    std::size_t detector_received(std::size_t det, std::size_t group = 0) const {
+    std::size_t detector_received(std::size_t det, std::size_t group) const {
         return det_offset_[det] + det_cells_[det] * detector_columns() * 2 + group * 3;
     }
-    std::size_t detector_total_n(std::size_t det, std::size_t group = 0) const {
-        return detector_received(det, group) + 1;
-    }
-    std::size_t detector_total_q(std::size_t det, std::size_t group = 0) const {
-        return detector_received(det, group) + 2;
-    }
+    std::size_t detector_total_n(std::size_t det, std::size_t group) const { return detector_received(det, group) + 1; }
+    std::size_t detector_total_q(std::size_t det, std::size_t group) const { return detector_received(det, group) + 2; }
 
     // Per replicate (R > 0 only): n_c of the photons of replicate r, and their sum of E.
     std::size_t detector_replicate_n(std::size_t det, std::size_t r, std::size_t cell, std::size_t band,
-                                     std::size_t group = 0) const {
+                                     std::size_t group) const {
         return rep_offset_[det] + (r * det_cells_[det] + cell) * detector_columns() + detector_column(band, group);
     }
     // The replicate-r slot of the cell and column whose n_c sits at `n_index`.
     std::size_t detector_replicate_of(std::size_t det, std::size_t n_index, std::size_t r) const {
         return rep_offset_[det] + r * det_cells_[det] * detector_columns() + (n_index - det_offset_[det]) / 2;
     }
-    std::size_t detector_replicate_total_n(std::size_t det, std::size_t r, std::size_t group = 0) const {
+    std::size_t detector_replicate_total_n(std::size_t det, std::size_t r, std::size_t group) const {
         return rep_offset_[det] + dims_.replicates * det_cells_[det] * detector_columns() + r * dims_.groups + group;
     }
     // Photons traced of replicate r (the last R slots).

@@ -54,6 +54,10 @@ struct Light {
     // values are maintenance_factor times the initial ones.
     double multiplier = 1.0, lamp_factor = 1.0, dimming = 1.0, tilt_factor = 1.0;
     double maintenance_factor = 1.0;
+    // Daylight (sun and sky, issue 23): the illuminance this light alone gives an
+    // unobstructed horizontal plane from above (ground glow excluded), from its model,
+    // not from the run: the E_h,ext of daylight factors. 0 for electric light.
+    double unobstructed_horizontal_lx = 0.0;
     // area
     EmitterSurface surface;
     // directional: a disk of radius `beam_radius` centred on the scene's bounding sphere,

@@ -273,35 +273,22 @@ TEST_F(Loader, GlazingBadInput) {
                {"'refractive_index'", "[1.2, 3]"});
     expect_bad(head + "transmittance = 0.8\nrefractive_index = 5\n" + kPaneRest, "refractive_index",
                {"'refractive_index'"});
+    // A pane given by a table, its three columns as TOML arrays.
+    auto pane = [&](const std::string& angles, const std::string& t, const std::string& r) {
+        return head + "angles_deg = " + angles + "\ntransmittance_at = " + t + "\nreflectance_at = " + r + "\n" +
+               kPaneRest;
+    };
     const std::string table = "angles_deg = [0, 40, 60]\ntransmittance_at = [0.8, 0.75, 0.6]\n"
                               "reflectance_at = [0.08, 0.09, 0.15]\n";
     expect_bad(head + "transmittance = 0.8\n" + table + kPaneRest, "transmittance = 0.8",
                {"'transmittance'", "not both"});
-    expect_bad(head +
-                   "angles_deg = [0, 60, 40]\ntransmittance_at = [0.8, 0.75, 0.6]\n"
-                   "reflectance_at = [0.08, 0.09, 0.15]\n" +
-                   kPaneRest,
-               "angles_deg", {"'angles_deg'", "increase"});
-    expect_bad(head +
-                   "angles_deg = [0, 40, 100]\ntransmittance_at = [0.8, 0.75, 0.6]\n"
-                   "reflectance_at = [0.08, 0.09, 0.15]\n" +
-                   kPaneRest,
-               "angles_deg", {"'angles_deg'", "[0, 90]"});
-    expect_bad(head +
-                   "angles_deg = [0, 40, 60]\ntransmittance_at = [0.8, 0.75, 1.6]\n"
-                   "reflectance_at = [0.08, 0.09, 0.15]\n" +
-                   kPaneRest,
-               "transmittance_at", {"'transmittance_at'", "[0, 1]"});
-    expect_bad(head +
-                   "angles_deg = [0, 40, 60]\ntransmittance_at = [0.8, 0.75, 0.6]\n"
-                   "reflectance_at = [0.08, 0.3, 0.15]\n" +
-                   kPaneRest,
-               "transmittance_at", {"'transmittance_at'", "> 1"});
-    expect_bad(head +
-                   "angles_deg = [0, 40, 60]\ntransmittance_at = [0.8, 0.75]\n"
-                   "reflectance_at = [0.08, 0.09, 0.15]\n" +
-                   kPaneRest,
-               "transmittance_at", {"'transmittance_at'", "2 values for 3 angles"});
+    const std::string t = "[0.8, 0.75, 0.6]", r = "[0.08, 0.09, 0.15]";
+    expect_bad(pane("[0, 60, 40]", t, r), "angles_deg", {"'angles_deg'", "increase"});
+    expect_bad(pane("[0, 40, 100]", t, r), "angles_deg", {"'angles_deg'", "[0, 90]"});
+    expect_bad(pane("[0, 40, 60]", "[0.8, 0.75, 1.6]", r), "transmittance_at", {"'transmittance_at'", "[0, 1]"});
+    expect_bad(pane("[0, 40, 60]", t, "[0.08, 0.3, 0.15]"), "transmittance_at", {"'transmittance_at'", "> 1"});
+    expect_bad(pane("[0, 40, 60]", "[0.8, 0.75]", r), "transmittance_at",
+               {"'transmittance_at'", "2 values for 3 angles"});
     expect_bad(head + "angles_deg = [0, 40, 60]\ntransmittance_at = [0.8, 0.75, 0.6]\n" + kPaneRest, "",
                {"reflectance_at"});
     expect_bad(head + table + "refractive_index = 1.5\n" + kPaneRest, "refractive_index", {"'refractive_index'"});

@@ -285,6 +285,19 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         }
         break;
     }
+    case MaterialType::glazing: {
+        // A thin pane: the mirror branch and the straight-through branch, per band.
+        if (!m.glazing) break;
+        std::vector<double> r(static_cast<std::size_t>(bands_)), t(static_cast<std::size_t>(bands_));
+        for (int b = 0; b < bands_; ++b) {
+            const PaneOptics o = (*m.glazing)[static_cast<std::size_t>(b)].at(-glm::dot(d, n));
+            r[static_cast<std::size_t>(b)] = o.reflectance;
+            t[static_cast<std::size_t>(b)] = o.transmittance;
+        }
+        follow(&r, 1.0, reflect(d, n));
+        follow(&t, 1.0, d);
+        break;
+    }
     }
 }
 

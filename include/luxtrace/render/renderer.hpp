@@ -6,8 +6,9 @@
 // the light's frame; area lights sampled) and E_secondary the stored map "all minus
 // direct arrivals", smoothed over the mesh (per-vertex area-weighted means of the
 // adjacent triangles, barycentric at p). Mirrors, the specular parts of `general` and
-// glass (Fresnel, both branches) are followed specularly; emitters seen from the front
-// show M / pi; rays leaving the scene see black.
+// glass (Fresnel, both branches) and glazing (reflected and straight through) are
+// followed specularly; emitters seen from the front show M / pi; rays leaving the scene
+// see black.
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/image_io.hpp"
 #include "luxtrace/scene/scene.hpp"

@@ -56,12 +56,16 @@ private:
                double* out) const;
     void direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const;
     void add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const;
-    bool occluded(const Vec3& o, const Vec3& d, double t_far) const;
+    // Whether light travels from o along d to t_far (scene coordinates), and the share of
+    // each band that does (share[b]: 1 in the open, the panes' T(theta) through glazing,
+    // a general material's specular transmittance through it).
+    bool passes(const Vec3& o, const Vec3& d, double t_far, double* share) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     int bands_;
     double eps_;
+    bool has_glazing_ = false;  // or a general material with specular transmittance: shadow rays look through
     std::vector<double> vertex_secondary_;  // [V][2][B]
     std::vector<int> emitter_of_;           // per triangle: area light index or -1
     std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights)

@@ -171,6 +171,37 @@ TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
     EXPECT_EQ(s.detectors[1].task_areas[1].name, "b");
 }
 
+// daylight_factor and en17037 (issue 23): the keys' checks that need no daylight source.
+// Scenes with a sky light (the keys accepted, the mixed-light warning) wait for the sky
+// light's loader.
+TEST_F(Loader, BadDaylightFactorKeysAreRefused) {
+    const std::string head = kMat + kFloor + kLamp + kDesk;
+    expect_bad(head + "daylight_factor = true\n", "daylight_factor",
+               {"[[detector]] #1 'desk'", "key 'daylight_factor'", "needs a daylight source", "E_h,ext"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 0.7 }\n", "en17037",
+               {"key 'en17037'", "needs a daylight source"});
+    expect_bad(head + "daylight_factor = 1\n", "daylight_factor", {"key 'daylight_factor'"});
+    expect_bad(head + "en17037 = 2\n", "en17037", {"key 'en17037'", "expected a table"});
+    expect_bad(head + "en17037 = { target_df = 2 }\n", "", {"en17037", "needs 'target_df'", "'minimum_df'"});
+    expect_bad(head + "en17037 = { target_df = 0, minimum_df = 0.7 }\n", "en17037",
+               {"key 'target_df'", "(0, 100] percent"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 120 }\n", "en17037",
+               {"key 'minimum_df'", "(0, 100] percent"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 0.7, median = 1 }\n", "en17037",
+               {"unknown key 'median'"});
+    expect_bad(head + "daylight_factor = false\nen17037 = { target_df = 2, minimum_df = 0.7 }\n", "daylight_factor",
+               {"key 'daylight_factor'", "is false, but en17037"});
+    expect_bad(kMat + kFloor + kLamp +
+                   "[[detector]]\nname = \"v\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+                   "daylight_factor = true\n",
+               "daylight_factor", {"key 'daylight_factor'", "belong to illuminance detectors", "luminance"});
+    // Off by default, and `false` is accepted without a daylight source.
+    EXPECT_FALSE(load(head).detectors[0].daylight_factor);
+    const Scene off = load(head + "daylight_factor = false\n");
+    EXPECT_FALSE(off.detectors[0].daylight_factor);
+    EXPECT_FALSE(off.detectors[0].en17037.has_value());
+}
+
 TEST_F(Loader, BadTaskAreasAreRefused) {
     const std::string head = kMat + kFloor + kLamp + kDesk + "[[detector.task_area]]\n";  // a 4 x 3 grid
     expect_bad(head + "name = \"t\"\ncells = [0, 5, 0, 3]\n", "cells = [0, 5",

@@ -4,8 +4,13 @@
 // and the exact cell values of an analytic scene (docs/DAYLIGHT.md "Daylight factor and
 // EN 17037", calibration).
 #include "luxtrace/stats/daylight_metrics.hpp"
+#include "app/result_summary.hpp"
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/io/result_data.hpp"
+#include "luxtrace/reduction/communicator.hpp"
+#include "luxtrace/run/simulation.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/stats/result_estimates.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -17,6 +22,7 @@
 #include <iostream>
 #include <limits>
 #include <random>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -204,8 +210,8 @@ TEST(NoisyQuantile, CalibratedOnSyntheticGrids) {
             std::cout << "[daylight] " << name << ", share " << f << ": true " << c.true_q << ", raw mean "
                       << c.raw_mean << " (bias " << c.raw_mean - c.true_q << ", reported " << c.reported_bias
                       << "), corrected mean " << c.corrected_mean << ", scatter " << c.raw_sd << ", reported sigma "
-                      << c.reported_sigma << ", corrected sd " << c.corrected_sd << ", wrong verdicts " << c.false_pass << " pass / " << c.false_fail
-                      << " fail\n";
+                      << c.reported_sigma << ", corrected sd " << c.corrected_sd << ", wrong verdicts " << c.false_pass
+                      << " pass / " << c.false_fail << " fail\n";
             // The sd of 200 draws is itself known to 5 %; the bootstrap's own to 3.5 %.
             EXPECT_NEAR(c.reported_sigma / c.raw_sd, 1.0, 0.15) << name << ' ' << f;
             const double se = 3.0 * c.corrected_sd / std::sqrt(draws);
@@ -218,6 +224,23 @@ TEST(NoisyQuantile, CalibratedOnSyntheticGrids) {
     const Calibration c = calibrate(smooth, 0.95, draws, 7);
     EXPECT_LT(c.raw_mean, c.true_q - 5.0 * c.raw_sd / std::sqrt(draws));
     EXPECT_LT(std::abs(c.corrected_mean - c.true_q), std::abs(c.raw_mean - c.true_q));
+}
+
+// E_h,ext of a run is the sum over its lights, of a light scene the weighted sum over its
+// groups.
+TEST(DaylightReference, SumsTheLightsWeightedByTheirGroups) {
+    Scene scene;
+    std::vector<Light> lights(3);
+    lights[0].unobstructed_horizontal_lx = 8000.0, lights[0].group = 0;  // sky
+    lights[1].unobstructed_horizontal_lx = 2000.0, lights[1].group = 0;  // sun
+    lights[2].group = 1;                                                 // electric: 0
+    for (Light& l : lights) l.flux_lm = 1.0;
+    scene.lights = LightSet(lights);
+    scene.light_groups = {"daylight", "lamps"};
+    EXPECT_DOUBLE_EQ(daylight_reference_lx(scene, {}), 10000.0);
+    const std::vector<double> half{0.5, 1.0}, off{0.0, 1.0};
+    EXPECT_DOUBLE_EQ(daylight_reference_lx(scene, half), 5000.0);
+    EXPECT_EQ(daylight_reference_lx(scene, off), 0.0);
 }
 
 #ifdef LUXTRACE_BINARY
@@ -286,6 +309,78 @@ TEST(DaylightMetricsEndToEnd, SigmaMatchesSeedScatterAndCorrectedQuantilesTheTru
     };
     check("median", median, median_sigma, median_corr, 0.5);
     check("95 %", df95, df95_sigma, df95_corr, 0.95);
+    fs::remove_all(dir);
+}
+
+// A daylight_factor detector through the whole run: the scene's light stands in for the
+// sky with its E_h,ext set by hand (the sky light's loader sets it), a lamp in a second
+// group is electric. The result holds DF = 100 E / E_h,ext per cell, the figures with
+// verdicts on the grid and its task area, each light scene's DF against its own weighted
+// E_h,ext (none where the daylight is off), and `info` prints them.
+TEST(DaylightMetricsEndToEnd, ResultAndSummaryOfADaylightFactorDetector) {
+    const fs::path dir = fs::temp_directory_path() / ("luxtrace_daylight_run_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path file = dir / "scene.toml";
+    std::ofstream(file) << "[[material]]\nname = \"floor\"\ntype = \"black\"\n"
+                           "[[shape]]\ntype = \"rectangle\"\nsize = [6, 6]\nmaterial = \"floor\"\n"
+                           "[[light]]\ntype = \"point\"\nposition = [0, 0, 2]\nflux_lm = 1000\ngroup = \"sky\"\n"
+                           "[[light]]\ntype = \"point\"\nposition = [1, 0, 2]\nflux_lm = 200\ngroup = \"lamp\"\n"
+                           "[[light_scene]]\nname = \"daylight\"\ndimming = { sky = 1 }\n"
+                           "[[light_scene]]\nname = \"half\"\ndimming = { sky = 0.5, lamp = 1 }\n"
+                           "[[light_scene]]\nname = \"night\"\ndimming = { lamp = 1 }\n"
+                           "[[detector]]\nname = \"floor\"\ncenter = [0, 0, 0]\nsize = [4, 4]\ncells = [8, 8]\n"
+                           "[[detector.task_area]]\nname = \"desk\"\ncells = [0, 4, 0, 4]\n"
+                           "[run]\nphotons = 200000\n";
+    Scene scene = load_scene(file);
+    std::vector<Light> lights = scene.lights.lights();
+    lights[0].unobstructed_horizontal_lx = 200.0;
+    scene.lights = LightSet(lights);
+    scene.detectors[0].daylight_factor = true;
+    scene.detectors[0].en17037 = En17037Targets{1.0, 90.0};  // the 95 % value cannot reach 90 %
+    scene.run.output = (dir / "r.h5").string();
+    RunOptions opt;
+    opt.threads = 2;
+    opt.quiet = true;
+    std::ostringstream log;
+    static const Communicator comm(nullptr, nullptr);
+    ASSERT_EQ(run_simulation(scene, comm, opt, log).exit_code, 0) << log.str();
+
+    const ResultFile result(scene.run.output);
+    const ResultReader& r = result.raw();
+    const DetectorData d = result.detector("floor");
+    ASSERT_EQ(d.daylight_factor_pct.size(), 64u);
+    EXPECT_EQ(d.daylight_reference_lx, 200.0);
+    for (std::size_t c = 0; c < 64; ++c) {
+        EXPECT_NEAR(d.daylight_factor_pct[c], 100.0 * d.value[c] / 200.0, 1e-12 * d.daylight_factor_pct[c]) << c;
+        EXPECT_NEAR(d.daylight_factor_sigma_pct[c], d.daylight_factor_pct[c] * d.sigma_rel[c],
+                    1e-9 * d.daylight_factor_pct[c])
+            << c;
+    }
+    const std::string g = "/detectors/floor";
+    EXPECT_EQ(r.attr_str(g, "en17037_minimum_verdict"), "fail");
+    EXPECT_EQ(r.attr_str(g, "en17037_verdict"), "fail");
+    EXPECT_EQ(r.attr_f64(g, "en17037_target_df_pct"), 1.0);
+    EXPECT_GT(r.attr_f64(g, "DF_median_pct"), r.attr_f64(g, "DF_95_pct"));
+    EXPECT_GT(r.attr_f64(g, "DF_median_sigma_pct"), 0.0);
+    EXPECT_NEAR(r.attr_f64(g, "DF_mean_pct"), 100.0 * r.attr_f64(g, "E_avg_lx") / 200.0, 1e-9);
+    const std::string ga = g + "/task_areas/desk";
+    EXPECT_EQ(r.attr_str(ga, "en17037_minimum_verdict"), "fail");
+    EXPECT_NEAR(r.attr_f64(ga, "DF_mean_pct"), 100.0 * r.attr_f64(ga, "E_avg_lx") / 200.0, 1e-9);
+    // Light scenes: DF against their own E_h,ext; the same light at half weight over half
+    // the reference reads the same DF plus the lamp's share.
+    EXPECT_EQ(r.attr_f64("/light_scenes/daylight/detectors/floor", "daylight_reference_lx"), 200.0);
+    EXPECT_EQ(r.attr_f64("/light_scenes/half/detectors/floor", "daylight_reference_lx"), 100.0);
+    EXPECT_GT(r.attr_f64("/light_scenes/half/detectors/floor", "DF_mean_pct"),
+              r.attr_f64("/light_scenes/daylight/detectors/floor", "DF_mean_pct"));
+    EXPECT_FALSE(r.has("/light_scenes/night/detectors/floor/daylight_factor"));
+    EXPECT_FALSE(r.has_attr("/light_scenes/night/detectors/floor", "DF_median_pct"));
+    EXPECT_TRUE(r.has_attr("/light_scenes/daylight/detectors/floor/task_areas/desk", "en17037_verdict"));
+
+    std::ostringstream info;
+    print_result_summary(result, info);
+    for (const char* s : {"E_h,ext 200.0 lx", "DF mean", "median", "exceeded over 95 %", "EN 17037 D_T over 50 % 1 %",
+                          "D_TM over 95 % 90 %: fail", "verdict fail"})
+        EXPECT_NE(info.str().find(s), std::string::npos) << s << " not in:\n" << info.str();
     fs::remove_all(dir);
 }
 #endif

@@ -244,6 +244,10 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
                 << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
                 << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " %\n";
             if (!r.has_attr(g, "U0")) continue;
+            if (r.has_attr(g, "daylight_reference_lx"))
+                out << "  daylight     E_h,ext " << std::setprecision(1) << r.attr_f64(g, "daylight_reference_lx")
+                    << " lx (the scene's weighted daylight)\n"
+                    << std::setprecision(2);
             print_metrics(r, g, "whole grid", out);
             print_daylight(r, g, out);
             for (const std::string& area :

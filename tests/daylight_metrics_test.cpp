@@ -280,7 +280,7 @@ TEST(DaylightMetricsEndToEnd, SigmaMatchesSeedScatterAndCorrectedQuantilesTheTru
     const int seeds = 16;
     std::vector<double> median, df95, median_sigma, df95_sigma, median_corr, df95_corr;
     for (int seed = 1; seed <= seeds; ++seed) {
-        const fs::path out = dir / ("s" + std::to_string(seed) + ".h5");
+        const fs::path out = dir / (std::to_string(seed) + ".h5");  // no literal prefix: GCC 12 -Wrestrict
         const auto run = test_support::run_luxtrace("run " + scene.string() + " --output " + out.string() +
                                                     " --photons 200k --seed " + std::to_string(seed) +
                                                     " --threads 2 --quiet");

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -171,9 +172,8 @@ TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
     EXPECT_EQ(s.detectors[1].task_areas[1].name, "b");
 }
 
-// daylight_factor and en17037 (issue 23): the keys' checks that need no daylight source.
-// Scenes with a sky light (the keys accepted, the mixed-light warning) wait for the sky
-// light's loader.
+// daylight_factor and en17037 (issue 23): refused without a daylight source or on a
+// detector that is not an illuminance grid, and their values checked.
 TEST_F(Loader, BadDaylightFactorKeysAreRefused) {
     const std::string head = kMat + kFloor + kLamp + kDesk;
     expect_bad(head + "daylight_factor = true\n", "daylight_factor",
@@ -200,6 +200,37 @@ TEST_F(Loader, BadDaylightFactorKeysAreRefused) {
     const Scene off = load(head + "daylight_factor = false\n");
     EXPECT_FALSE(off.detectors[0].daylight_factor);
     EXPECT_FALSE(off.detectors[0].en17037.has_value());
+}
+
+// With a sky the keys load; a sun below the horizon is no daylight source. Electric light
+// beside the daylight is warned about unless a light scene lights with the daylight alone.
+TEST_F(Loader, DaylightFactorWithASky) {
+    const std::string sky = "[[light]]\ntype = \"sky\"\nsky = \"uniform\"\ndiffuse_horizontal_lx = 10000\n";
+    const Scene s = load(kMat + kFloor + sky + kDesk + "en17037 = { target_df = 2.1, minimum_df = 0.7 }\n");
+    const Detector& d = s.detectors[0];
+    EXPECT_TRUE(d.daylight_factor);
+    ASSERT_TRUE(d.en17037.has_value());
+    EXPECT_EQ(d.en17037->target_df, 2.1);
+    EXPECT_EQ(d.en17037->minimum_df, 0.7);
+    EXPECT_TRUE(s.warnings.empty());
+    EXPECT_TRUE(load(kMat + kFloor + sky + kDesk + "daylight_factor = true\n").detectors[0].daylight_factor);
+
+    const std::string low_sun = "[[light]]\ntype = \"sun\"\ndirect_normal_lx = 50000\nsun_altitude_deg = -5\n"
+                                "sun_azimuth_deg = 180\n";
+    expect_bad(kMat + kFloor + low_sun + kLamp + kDesk + "daylight_factor = true\n", "daylight_factor",
+               {"needs a daylight source"});
+
+    auto mixed_warning = [](const Scene& scene) {
+        return std::any_of(scene.warnings.begin(), scene.warnings.end(), [](const std::string& w) {
+            return w.find("daylight factor with daylight and electric light together") != std::string::npos;
+        });
+    };
+    const std::string df = kDesk + "daylight_factor = true\n";
+    EXPECT_TRUE(mixed_warning(load(kMat + kFloor + sky + kLamp + df)));
+    const std::string grouped = kMat + kFloor + sky + "group = \"day\"\n" + lamp_in("lamps");
+    EXPECT_TRUE(
+        mixed_warning(load(grouped + "[[light_scene]]\nname = \"all\"\ndimming = { day = 1, lamps = 1 }\n" + df)));
+    EXPECT_FALSE(mixed_warning(load(grouped + "[[light_scene]]\nname = \"day\"\ndimming = { day = 1 }\n" + df)));
 }
 
 TEST_F(Loader, BadTaskAreasAreRefused) {

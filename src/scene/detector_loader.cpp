@@ -266,8 +266,9 @@ namespace {
 // alone: electric light in a DF is counted as daylight, which a user rarely means.
 bool daylight_isolated(const Scene& scene) {
     const auto& lights = scene.lights.lights();
-    auto electric = [](const Light& l) { return l.unobstructed_horizontal_lx <= 0.0 && l.flux_lm > 0.0; };
-    auto daylit = [](const Light& l) { return l.unobstructed_horizontal_lx > 0.0; };
+    // Sun and sky lights, their ground glow included, are daylight.
+    auto daylit = [](const Light& l) { return l.type == LightType::sun || l.type == LightType::sky; };
+    auto electric = [&](const Light& l) { return !daylit(l) && l.flux_lm > 0.0; };
     if (std::none_of(lights.begin(), lights.end(), electric)) return true;
     for (const LightScene& ls : scene.light_scenes) {
         bool any_daylight = false, any_electric = false;

@@ -312,6 +312,40 @@ TEST(DaylightMetricsEndToEnd, SigmaMatchesSeedScatterAndCorrectedQuantilesTheTru
     fs::remove_all(dir);
 }
 
+// Under a real sky (the traditional overcast sky, type 16) an unobstructed horizontal grid
+// above a black floor reads DF = 100 % in every cell: E_h,ext is the sky's own horizontal
+// illuminance. The run, the result and `luxtrace info` agree.
+TEST(DaylightMetricsEndToEnd, UnobstructedGridUnderTheOvercastSkyReadsOneHundredPercent) {
+    const fs::path dir = fs::temp_directory_path() / ("luxtrace_daylight_sky_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path scene = dir / "sky.toml", out = dir / "sky.h5";
+    std::ofstream(scene) << "[[material]]\nname = \"floor\"\ntype = \"black\"\n"
+                            "[[shape]]\ntype = \"rectangle\"\nsize = [4, 4]\nmaterial = \"floor\"\n"
+                            "[[light]]\ntype = \"sky\"\nsky = \"cie\"\ncie_type = 16\ndiffuse_horizontal_lx = 8000\n"
+                            "[[detector]]\nname = \"open\"\ncenter = [0, 0, 0.5]\nsize = [2, 2]\ncells = [4, 4]\n"
+                            "en17037 = { target_df = 90, minimum_df = 80 }\n";
+    const auto run = test_support::run_luxtrace("run " + scene.string() + " --output " + out.string() +
+                                                " --photons 400k --threads 2 --quiet");
+    ASSERT_EQ(run.code, 0) << run.out;
+    const ResultFile result(out);
+    const DetectorData d = result.detector("open");
+    EXPECT_EQ(d.daylight_reference_lx, 8000.0);
+    const ResultReader& r = result.raw();
+    const double mean = r.attr_f64("/detectors/open", "DF_mean_pct");
+    const double sigma = r.attr_f64("/detectors/open", "DF_mean_sigma_pct");
+    std::cout << "[daylight] open grid under CIE 16: DF mean " << mean << " +- " << sigma << " %\n";
+    EXPECT_GT(sigma, 0.0);
+    EXPECT_LT(std::abs(mean - 100.0), 4.0 * sigma);
+    for (std::size_t c = 0; c < d.daylight_factor_pct.size(); ++c)
+        EXPECT_LT(std::abs(d.daylight_factor_pct[c] - 100.0), 5.0 * d.daylight_factor_sigma_pct[c]) << c;
+    EXPECT_EQ(r.attr_str("/detectors/open", "en17037_verdict"), "pass");
+    const auto info = test_support::run_luxtrace("info " + out.string());
+    EXPECT_EQ(info.code, 0);
+    for (const char* s : {"E_h,ext 8000.0 lx", "DF mean", "verdict pass"})
+        EXPECT_NE(info.out.find(s), std::string::npos) << s << " not in:\n" << info.out;
+    fs::remove_all(dir);
+}
+
 // A daylight_factor detector through the whole run: the scene's light stands in for the
 // sky with its E_h,ext set by hand (the sky light's loader sets it), a lamp in a second
 // group is electric. The result holds DF = 100 E / E_h,ext per cell, the figures with

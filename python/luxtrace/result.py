@@ -533,6 +533,11 @@ class Result(_AttrAccess):
         from .light_scenes import LightScene
         return LightScene(self, dict(weights))
 
+    # ``daylight``: the /daylight group (site, time, each sun and sky light's model, sun
+    # position and unobstructed horizontal illuminance) as a :class:`Group`, or None for a
+    # run without sun or sky; set by :func:`open`.
+    daylight = None
+
     def scene_detector(self, scene, name):
         """Detector NAME as the run's ``[[light_scene]]`` SCENE left it in the file
         (/light_scenes/SCENE/detectors/NAME): its values and errors under that scene's
@@ -691,6 +696,7 @@ def _read(f, path):
     history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
     res = Result(attrs, mesh, surface, detectors, observers, history, path=path)
     res.light_group_tallies = group_tallies
+    res.daylight = Group("daylight", _attrs(f["daylight"]), _read_datasets(f["daylight"])) if "daylight" in f else None
     return res
 
 

@@ -174,6 +174,12 @@ def test_pictures_of_a_stored_light_scene(binary, tmp_path):
         np.testing.assert_array_equal(d.value, g["value"][()])
         np.testing.assert_array_equal(d.daylight_factor, g["daylight_factor"][()])
     assert (d.nx, d.ny) == (r.detector("roof_df").nx, r.detector("roof_df").ny)
+    # /daylight: the site's time, and E_h,ext = the sum over the daylight sources.
+    day = r.daylight
+    assert day.attrs["time"] == "2026-06-21T14:30"
+    assert list(day.datasets["model"][:2]) in ([b"sun", b"CIE type 12"], ["sun", "CIE type 12"])
+    assert day.attrs["unobstructed_horizontal_lx"] == pytest.approx(day.datasets["unobstructed_horizontal_lx"].sum())
+    assert d.daylight_reference_lx == pytest.approx(0.5 * day.attrs["unobstructed_horizontal_lx"])
     # Half of every light: the same daylight factors as the whole run, half the values.
     np.testing.assert_allclose(d.value, 0.5 * r.detector("roof_df").value, rtol=1e-12)
     np.testing.assert_allclose(d.daylight_factor, r.detector("roof_df").daylight_factor, rtol=1e-12)

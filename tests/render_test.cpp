@@ -39,9 +39,10 @@ struct Fixture {
     Scene scene;
     std::unique_ptr<EmbreeScene> embree;
     std::unique_ptr<Renderer> renderer;
-    explicit Fixture(Scene s, std::vector<double> secondary = {}) : scene(std::move(s)) {
+    explicit Fixture(Scene s, std::vector<double> secondary = {}, std::vector<double> light_weight = {})
+        : scene(std::move(s)) {
         embree = std::make_unique<EmbreeScene>(scene);
-        renderer = std::make_unique<Renderer>(scene, *embree, std::move(secondary));
+        renderer = std::make_unique<Renderer>(scene, *embree, std::move(secondary), std::move(light_weight));
     }
 };
 
@@ -518,6 +519,92 @@ TEST(RenderFiles, PngAndExrReadableOfTheAskedSize) {
     EXPECT_EQ(cairo_image_surface_get_width(png), 96 + legend_panel_width(64));
     EXPECT_EQ(cairo_image_surface_get_height(png), 64);
     cairo_surface_destroy(png);
+    fs::remove_all(dir);
+}
+
+TEST(RenderFiles, LightScenesAreTheirWeightedMapsAndLights) {
+    // Two point lights in two groups over a plane with a wall (so there is reflected light
+    // in the map): a light scene renders its own stored map with its lights at their
+    // groups' weights, so pictures are linear in the weights: "double" is twice the run,
+    // and "a_only" + "b_only" is the run, to float rounding (the same samples per pixel).
+    const fs::path dir = temp_dir();
+    const fs::path scene = dir / "two_groups.toml";
+    std::ofstream(scene) << R"([[material]]
+name = "grey"
+reflectance = 0.6
+
+[[shape]]
+type = "rectangle"
+size = [6, 6]
+material = "grey"
+subdivisions = 8
+
+[[shape]]
+type = "rectangle"
+center = [0, 2, 1.5]
+normal = [0, -1, 0]
+size = [6, 3]
+material = "grey"
+subdivisions = 8
+
+[[light]]
+type = "point"
+position = [0.3, -0.2, 2]
+flux_lm = 1000
+group = "a"
+
+[[light]]
+type = "point"
+position = [-1, 1, 1.5]
+flux_lm = 400
+group = "b"
+
+[[light_scene]]
+name = "double"
+dimming = { a = 2, b = 2 }
+
+[[light_scene]]
+name = "a_only"
+dimming = { a = 1 }
+
+[[light_scene]]
+name = "b_only"
+dimming = { b = 1 }
+
+[[camera]]
+name = "oblique"
+position = [0, -4, 3]
+target = [0, 0.5, 0.5]
+up = [0, 0, 1]
+fov_deg = 50
+size = [48, 32]
+)";
+    const fs::path result = simulate(scene, dir, "40000");
+    auto image = [&](const std::string& light_scene) {
+        RenderInput in = load_render_input(result, light_scene);
+        const Camera c = in.scene.cameras.at(0);
+        const Fixture f(std::move(in.scene), std::move(in.secondary_lx), std::move(in.light_weight));
+        return f.renderer->render(PinholeCamera(c)).values;
+    };
+    const std::vector<float> run = image(""), twice = image("double"), a = image("a_only"), b = image("b_only");
+    ASSERT_EQ(run.size(), twice.size());
+    double brightest = 0.0;
+    for (float v : run) brightest = std::max(brightest, static_cast<double>(v));
+    ASSERT_GT(brightest, 0.0);
+    for (std::size_t i = 0; i < run.size(); ++i) {
+        EXPECT_NEAR(twice[i], 2.0 * run[i], 1e-5 * brightest) << "pixel " << i;
+        EXPECT_NEAR(a[i] + b[i], run[i], 1e-5 * brightest) << "pixel " << i;
+    }
+    // Both groups light the picture (each one's share is not all zero).
+    EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.0f);
+    EXPECT_GT(*std::max_element(b.begin(), b.end()), 0.0f);
+    std::string log;
+    EXPECT_EQ(run_cli("render " + result.string() + " --view oblique --scene nope -o " + (dir / "n.png").string(),
+                      &log),
+              2);
+    EXPECT_NE(log.find("has no [[light_scene]] named 'nope' (it has: double, a_only, b_only)"), std::string::npos)
+        << log;
+    EXPECT_FALSE(fs::exists(dir / "n.png"));
     fs::remove_all(dir);
 }
 

@@ -76,6 +76,20 @@ TEST(SkyDirections, UniformSkyAndGroundGlowIntegrateInClosedForm) {
     EXPECT_THROW(SkyDirections(std::nullopt, 0.0, 0.0), std::invalid_argument);
 }
 
+TEST(SkyDirections, LuminanceIsTheCellsMean) {
+    // Pictures read the table's luminance: the sky's own at cell centres to the cells'
+    // resolution, the ground glow's below the horizon.
+    const SkyModel sky = SkyModel::cie(12, deg(50.0), deg(170.0));
+    const SkyDirections table(sky, 2000.0, 150.0);
+    for (const double zenith : {5.5, 30.5, 60.5, 85.5})
+        for (const double azimuth : {0.5, 90.5, 170.5, 300.5}) {
+            const double exact = 2000.0 * sky.relative_luminance(deg(zenith), deg(azimuth));
+            EXPECT_NEAR(table.luminance_cd_m2(sky_direction(deg(zenith), deg(azimuth))) / exact, 1.0, 2e-3)
+                << zenith << " " << azimuth;
+        }
+    EXPECT_NEAR(table.luminance_cd_m2(Vec3(0.3, 0.2, -0.9) / glm::length(Vec3(0.3, 0.2, -0.9))), 150.0, 1e-9);
+}
+
 TEST(SkyDirections, DrawnDirectionsFollowTheTable) {
     // Chi-square of drawn directions in 9 x 12 bins of 10 x 30 degrees (upper hemisphere,
     // with the ground below as one more bin) against the table's cell probabilities,

@@ -19,6 +19,7 @@ struct RenderArgs {
     std::optional<double> falsecolour_max;  // cd/m^2 at the top of the scale
     int samples = 4;                        // rays per pixel (anti-aliasing)
     int threads = 0;
+    std::string light_scene;  // --scene: render a [[light_scene]] of the run
 };
 
 // `luxtrace render`: exit code 0, or throws InputError for bad input.

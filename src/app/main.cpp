@@ -226,6 +226,7 @@ int main(int argc, char** argv) {
     render->add_option("result", rd.result, "result file (.h5)")->required();
     render->add_option("--camera", rd.camera, "position,target[,up] as 6 or 9 comma-separated numbers");
     render->add_option("--view", rd.camera_name, "name of a [[camera]] in the scene file");
+    render->add_option("--scene", rd.light_scene, "render a [[light_scene]] of the run (its map and dimmed lights)");
     render->add_option("--fov", rd.fov_deg, "horizontal field of view in degrees");
     render->add_option("--size", rd.size, "image size WxH, e.g. 800x600");
     render->add_option("-o,--output", rd.output, "image file (.png; luminance also as .exr)");

@@ -116,11 +116,11 @@ int cmd_render(const RenderArgs& args) {
     if (!args.camera.empty()) parse_camera_option(args.camera);
     // Everything is read and checked before anything is written. (Detector pictures are
     // drawn by the Python package: python3 -m luxtrace.plot, scripts/plot_detector.py.)
-    RenderInput input = load_render_input(args.result);
+    RenderInput input = load_render_input(args.result, args.light_scene);
     const std::vector<ViewJob> jobs = plan_views(args, input.scene);
 
     const EmbreeScene embree(input.scene);
-    const Renderer renderer(input.scene, embree, std::move(input.secondary_lx));
+    const Renderer renderer(input.scene, embree, std::move(input.secondary_lx), std::move(input.light_weight));
     RenderOptions opt;
     opt.samples = args.samples;
     opt.threads = args.threads;

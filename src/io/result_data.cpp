@@ -95,16 +95,16 @@ SurfaceShape ResultFile::surface_shape(const std::string& dataset, const std::ve
     return {dims[0], surface_sides(), dims.back()};
 }
 
-SurfaceIlluminance ResultFile::surface_illuminance() const {
-    for (const char* ds : {"/global/illuminance", "/global/illuminance_direct"})
-        if (!reader_.has(ds)) throw InputError(path().string() + ": has no dataset " + std::string(ds));
+SurfaceIlluminance ResultFile::surface_illuminance(const std::string& group) const {
+    const std::string total = group + "/illuminance", direct = group + "/illuminance_direct";
+    for (const std::string& ds : {total, direct})
+        if (!reader_.has(ds)) throw InputError(path().string() + ": has no dataset " + ds);
     SurfaceIlluminance s;
     std::vector<std::size_t> dims, direct_dims;
-    s.total_lx = reader_.f64("/global/illuminance", &dims);
-    s.direct_lx = reader_.f64("/global/illuminance_direct", &direct_dims);
-    s.shape = surface_shape("/global/illuminance", dims);
-    if (direct_dims != dims)
-        throw InputError(path().string() + ": /global/illuminance_direct differs in shape from /global/illuminance");
+    s.total_lx = reader_.f64(total, &dims);
+    s.direct_lx = reader_.f64(direct, &direct_dims);
+    s.shape = surface_shape(total, dims);
+    if (direct_dims != dims) throw InputError(path().string() + ": " + direct + " differs in shape from " + total);
     return s;
 }
 

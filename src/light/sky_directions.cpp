@@ -105,6 +105,17 @@ Vec3 SkyDirections::sample(double u1, double u2) const {
     return {s * (sin_0 * cos_d + cos_0 * sin_d), s * (cos_0 * cos_d - sin_0 * sin_d), mu};
 }
 
+double SkyDirections::luminance_cd_m2(const Vec3& dir) const {
+    const double zenith_deg = std::acos(std::clamp(dir.z, -1.0, 1.0)) / kDegree;
+    double azimuth_deg = std::atan2(dir.x, dir.y) / kDegree;
+    if (azimuth_deg < 0.0) azimuth_deg += 360.0;
+    const int row = std::min(kRows - 1, static_cast<int>(zenith_deg));
+    const int col = std::min(kColumns - 1, static_cast<int>(azimuth_deg));
+    const auto r = static_cast<std::size_t>(row);
+    const double solid_angle_sr = (mu_[r] - mu_[r + 1]) * kDegree;
+    return total_ * cell_probability(row, col) / solid_angle_sr;
+}
+
 double SkyDirections::cell_probability(int row, int column) const {
     return weight_.at(static_cast<std::size_t>(row) * kColumns + static_cast<std::size_t>(column));
 }

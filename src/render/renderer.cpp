@@ -72,8 +72,12 @@ double intensity_cd(const Light& l, const Vec3& out) {
 
 }  // namespace
 
-Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx)
-    : scene_(scene), embree_(embree), bands_(scene.band_count()), eps_(4.0 * scene.ray_epsilon_m()) {
+Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx,
+                   std::vector<double> light_weight)
+    : scene_(scene), embree_(embree), bands_(scene.band_count()), eps_(4.0 * scene.ray_epsilon_m()),
+      light_weight_(std::move(light_weight)) {
+    if (light_weight_.empty()) light_weight_.assign(scene.lights.lights().size(), 1.0);
+    if (light_weight_.size() != scene.lights.lights().size()) throw std::logic_error("Renderer: one weight per light");
     if (bands_ > kMaxBands)
         throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
     for (const Material& m : scene.materials)
@@ -108,7 +112,7 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
         if (l.type != LightType::area || !(l.surface.area_m2 > 0.0)) continue;
         for (int t : l.surface.scene_triangle) emitter_of_[static_cast<std::size_t>(t)] = static_cast<int>(i);
         for (std::size_t b = 0; b < B; ++b)  // Lambertian: L = M / pi, M = flux / area
-            emitted_radiance_[i * B + b] = l.flux_lm * l.band_share[b] / (kPi * l.surface.area_m2);
+            emitted_radiance_[i * B + b] = light_weight_[i] * l.flux_lm * l.band_share[b] / (kPi * l.surface.area_m2);
     }
 }
 
@@ -142,10 +146,15 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
     const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
     constexpr double kFar = std::numeric_limits<double>::infinity();
     double share[kMaxBands], sum[kMaxBands];
+    const auto& lights = scene_.lights.lights();
+    double weight = 1.0;  // the light's in the picture (a light scene's weight of its group)
     auto add = [&](const Light& l, double ev, const double* per_band) {
-        for (int b = 0; b < bands_; ++b) e[b] += ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
+        for (int b = 0; b < bands_; ++b) e[b] += weight * ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
     };
-    for (const Light& l : scene_.lights.lights()) {
+    for (std::size_t li = 0; li < lights.size(); ++li) {
+        const Light& l = lights[li];
+        weight = light_weight_[li];
+        if (weight == 0.0) continue;
         switch (l.type) {
         case LightType::point:
         case LightType::spot: {
@@ -246,7 +255,16 @@ void Renderer::add_secondary(std::size_t tri, std::size_t side, const Vec3& p, d
 void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int depth, Rng& rng, const RenderOptions& opt,
                      double* out) const {
     const Hit hit = embree_.intersect(o, d);
-    if (!hit.found) return;  // leaves the scene: black
+    if (!hit.found) {  // leaves the scene: the sky and the ground glow there are, else black
+        const auto& lights = scene_.lights.lights();
+        for (std::size_t li = 0; li < lights.size(); ++li) {
+            const Light& l = lights[li];
+            if (l.type != LightType::sky || light_weight_[li] == 0.0) continue;
+            const double lum = light_weight_[li] * l.sky->luminance_cd_m2(l.horizon.to_local(d));
+            for (int b = 0; b < bands_; ++b) out[b] += weight[b] * lum * l.band_share[static_cast<std::size_t>(b)];
+        }
+        return;
+    }
     const std::size_t tri = hit.triangle;
     const Vec3 p = o + static_cast<double>(hit.t) * d;
     const Vec3& ng = scene_.triangle_normal[tri];
@@ -363,7 +381,7 @@ LuminanceImage Renderer::render(const PinholeCamera& camera, const RenderOptions
     return image;
 }
 
-RenderInput load_render_input(const fs::path& result) {
+RenderInput load_render_input(const fs::path& result, const std::string& light_scene) {
     const ResultFile r(result);
     const std::string name = result.string();
     if (r.run_info().scene_file.empty())
@@ -372,10 +390,26 @@ RenderInput load_render_input(const fs::path& result) {
     const fs::path scene_file = r.run_info().scene_file;
     if (!fs::is_regular_file(scene_file))
         throw InputError(name + ": its scene file " + scene_file.string() + " does not exist any more");
-    const SurfaceIlluminance map = r.surface_illuminance();
     const std::vector<double> vertices = r.vertices();
-    RenderInput in{load_scene(scene_file), {}};
+    RenderInput in{load_scene(scene_file), {}, {}};
     const Scene& s = in.scene;
+    std::string map_group = "/global";
+    if (!light_scene.empty()) {
+        const auto it = std::find_if(s.light_scenes.begin(), s.light_scenes.end(),
+                                     [&](const LightScene& ls) { return ls.name == light_scene; });
+        if (it == s.light_scenes.end()) {
+            std::string have;
+            for (const LightScene& ls : s.light_scenes) have += (have.empty() ? "" : ", ") + ls.name;
+            throw InputError("--scene: " + scene_file.string() + " has no [[light_scene]] named '" + light_scene +
+                             "' (it has: " + (have.empty() ? "none" : have) + ")");
+        }
+        map_group = "/light_scenes/" + light_scene + "/global";
+        if (!r.raw().has(map_group))
+            throw InputError("--scene: " + name + " holds no surface map of light scene '" + light_scene +
+                             "' (the run kept one map for all light groups: [run] group_maps = false)");
+        for (const Light& l : s.lights.lights()) in.light_weight.push_back(it->weights.at(l.group));
+    }
+    const SurfaceIlluminance map = r.surface_illuminance(map_group);
     bool same = map.shape.triangles == s.triangle_count() && map.shape.bands == s.bands.size() &&
                 vertices.size() == 3 * s.vertices.size();
     for (std::size_t v = 0; same && v < s.vertices.size(); ++v)

@@ -112,7 +112,8 @@ public:
     // map (files before luxtrace 0.2 lack it).
     bool has_surface_illuminance() const;
     bool has_odd_even_difference() const;
-    SurfaceIlluminance surface_illuminance() const;
+    // The illuminance maps of /global, or of a light scene's map ("/light_scenes/NAME/global").
+    SurfaceIlluminance surface_illuminance(const std::string& group = "/global") const;
     SurfaceCounts surface_counts() const;
 
     std::vector<std::string> detector_names() const;

@@ -43,6 +43,9 @@ public:
     // horizontal plane, as the photons deliver it: each cell's integral of L times the
     // mean cos Z over the cell.
     double horizontal_illuminance_lx() const { return horizontal_lx_; }
+    // The luminance towards unit `dir` (sky frame) as the table holds it: its cell's mean
+    // (for pictures; photons are drawn with the linear densities within the cells).
+    double luminance_cd_m2(const Vec3& dir) const;
     // The probability of cell (row, column), for tests.
     double cell_probability(int row, int column) const;
 

@@ -37,7 +37,10 @@ public:
     // secondary_lx: per triangle, side and band ([T][2][B], lux; side 0 the front) the
     // stored illuminance minus its direct part; empty means none (direct light only). Throws InputError for scenes
     // with more than kMaxBands bands.
-    Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx);
+    // light_weight: per light of the scene, its weight in the picture (a light scene's
+    // weight of its group); empty: every light at 1.
+    Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx,
+             std::vector<double> light_weight = {});
 
     LuminanceImage render(const PinholeCamera& camera, const RenderOptions& opt = {}) const;
 
@@ -68,16 +71,19 @@ private:
     bool has_glazing_ = false;  // or a general material with specular transmittance: shadow rays look through
     std::vector<double> vertex_secondary_;  // [V][2][B]
     std::vector<int> emitter_of_;           // per triangle: area light index or -1
-    std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights)
+    std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights), times its weight
+    std::vector<double> light_weight_;      // per light
 };
 
 // What `luxtrace render` needs from a result: the scene reloaded from the file named by
 // its scene_file attribute, checked against the stored mesh, and the secondary map.
 // Throws InputError naming what is wrong (no scene file, file gone, mesh changed).
+// With `light_scene`, the map and the lights' weights are that [[light_scene]]'s.
 struct RenderInput {
     Scene scene;
     std::vector<double> secondary_lx;  // [T][2][B]
+    std::vector<double> light_weight;  // per light; empty: all 1
 };
-RenderInput load_render_input(const std::filesystem::path& result);
+RenderInput load_render_input(const std::filesystem::path& result, const std::string& light_scene = "");
 
 }  // namespace luxtrace

@@ -9,6 +9,7 @@
 // (altitude 60 deg, azimuth 180 deg, as the report fixes it).
 #include "daylight_reference.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,31 @@ std::vector<Case> report_cases();
 
 // The exact sky component at one point of a case, in %.
 double exact_sc_percent(const Case& c, const Point& p, int cie_type);
+
+// The luxtrace runs (tests/data/cie171/*.toml; the geometry here must match the scene
+// files): a detector strip of 0.5 m x 0.5 m cells centred on a line of report points.
+inline constexpr double kDiffuseHorizontalLx = 10000.0;
+
+struct Strip {
+    std::string name;
+    Vec3 first_center, step, normal, across;  // across: the cell's other side (unit)
+    int cells;
+};
+
+struct RunCase {
+    std::string scene;
+    std::string section;
+    int cie_type;
+    bool glazed;
+    daylight_reference::Polygon opening;
+    std::vector<daylight_reference::Polygon> obstructions;
+    std::vector<Strip> strips;
+    std::uint64_t photons, seed;
+};
+
+std::vector<RunCase> run_cases();
+
+// The exact illuminance (lx) averaged over cell k of a strip (4 x 4 Gauss-Legendre points).
+double exact_cell_lx(const RunCase& rc, const Strip& s, int k);
 
 }  // namespace luxtrace::cie171

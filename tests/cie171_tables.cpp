@@ -26,4 +26,13 @@ int main() {
             std::printf("\n");
         }
     }
+    std::printf("\n### Cell averages of the luxtrace runs\n\n| scene | CIE type | detector | exact SC per cell, %% "
+                "(cell 0 first) |\n|---|---:|---|---|\n");
+    for (const RunCase& rc : run_cases())
+        for (const Strip& s : rc.strips) {
+            std::printf("| %s (%s) | %d | %s |", rc.scene.c_str(), rc.section.c_str(), rc.cie_type, s.name.c_str());
+            for (int k = 0; k < s.cells; ++k)
+                std::printf(" %.3f", 100.0 * exact_cell_lx(rc, s, k) / kDiffuseHorizontalLx);
+            std::printf(" |\n");
+        }
 }

@@ -126,7 +126,8 @@ TEST(Reference, EveryAcceptedSceneKeyIsDocumentedAndEveryDocumentedKeyIsAccepted
 // and must load, so each listed key is one a user can really give.
 TEST(Reference, ScenesThatUseEverySchemaKeyLoad) {
     Keys used;
-    for (const fs::path& f : {kData / "scenes" / "every_key.toml", kData / "reference" / "more_keys.toml"}) {
+    for (const fs::path& f : {kData / "scenes" / "every_key.toml", kData / "reference" / "more_keys.toml",
+                              kData / "reference" / "daylight_keys.toml"}) {
         EXPECT_NO_THROW(luxtrace::load_scene(f)) << f;
         collect(toml::parse_file(f.string()), "", used);
     }

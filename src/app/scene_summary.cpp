@@ -82,6 +82,16 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         if (l.dimming != 1.0) out << ", dimmed to " << l.dimming;
         if (l.maintenance_factor != 1.0) out << ", MF " << l.maintenance_factor;
         if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
+        if (l.type == LightType::sun || (l.type == LightType::sky && l.unobstructed_horizontal_lx > 0.0)) {
+            if (l.type == LightType::sky) out << ", " << l.sky_description;
+            if (l.type == LightType::sun || l.sky_description != "CIE type 16")
+                out << ", sun at altitude " << std::setprecision(4) << l.sun_altitude_deg << " deg, azimuth "
+                    << l.sun_azimuth_deg << " deg";
+            if (l.type == LightType::sun) out << ", " << std::setprecision(6) << l.illuminance_lx << " lx normal";
+            out << ", " << std::setprecision(6) << l.unobstructed_horizontal_lx << " lx on the horizontal";
+        } else if (l.type == LightType::sky) {
+            out << ", " << l.sky_description;
+        }
         out << '\n';
     }
     print_light_groups(s, out);

@@ -46,6 +46,11 @@ bool Detector::cone_below_plane() const {
     return cos_t * cos_half_angle - sin_t * sin_a < -1e-12;
 }
 
+namespace {
+// A surface within about 2.6 degrees of a detector's plane counts as the one it lies on.
+constexpr double kParallelCos = 0.999;
+}  // namespace
+
 int Detector::cell_at(const Vec3& p) const {
     const Vec3 r = p - center;
     const double a = glm::dot(r, u_axis) / size_u + 0.5;
@@ -56,12 +61,16 @@ int Detector::cell_at(const Vec3& p) const {
     return j * nx + i;
 }
 
-int Detector::crossing(const Vec3& o, const Vec3& d, double t_max) const {
+int Detector::crossing(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal) const {
     const double denom = glm::dot(d, normal);
     if (denom >= 0.0) return -1;  // moving away from the front side, or parallel
     const double t = glm::dot(center - o, normal) / denom;
-    // A detector lying on a surface is crossed just at the hit: allow a hair beyond it.
+    // A detector lying on a surface is crossed just at the hit: allow a hair beyond it,
+    // but only when the surface hit is that surface (parallel to the plane). Otherwise
+    // a photon stopped by a wall within the hair of the plane would still count, and
+    // sunlight on a wall's outside would leak onto the floor inside.
     if (!(t > 0.0 && t <= t_max + plane_tolerance_m)) return -1;
+    if (t > t_max && std::abs(glm::dot(hit_normal, normal)) < kParallelCos) return -1;
     return cell_at(o + t * d);
 }
 

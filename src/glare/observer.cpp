@@ -61,8 +61,9 @@ bool luminous_terms(const Light& l, const Vec3& eye, GlareSource& s, std::string
         s.solid_angle_sr = omega;
         return true;
     }
-    if (l.type == LightType::directional) {
-        why = "a directional beam is not a luminaire (CIE 117 rates luminaires)";
+    if (l.beam()) {
+        why = l.type == LightType::directional ? "a directional beam is not a luminaire (CIE 117 rates luminaires)"
+                                               : "daylight is not a luminaire (CIE 117 rates luminaires)";
         return false;
     }
     if (l.type == LightType::spot || !l.photometry) {
@@ -114,7 +115,7 @@ std::vector<GlareSource> glare_sources(Observer& o, const LightSet& lights) {
             // Lights that cannot be placed in the field are left out of the sum; say so
             // only for those in front of the eye, the others could not count anyway.
             const bool behind = glm::dot(l.position - o.position, o.view_direction) <= 0.0;
-            if (l.type != LightType::directional && behind) continue;
+            if (!l.beam() && behind) continue;
             o.notes.push_back(who + l.label + " is left out of UGR: " + why);
             continue;
         }

@@ -19,6 +19,12 @@ Vec3 sample_uniform_cone(double cos_max, double u1, double u2) {
     return unit_at_azimuth(std::sqrt(std::max(0.0, 1.0 - z * z)), z, u2);
 }
 
+Vec3 disk_point(double radius, double u1, double u2) {
+    const double r = radius * std::sqrt(u1);
+    const double phi = 2.0 * kPi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), 0.0};
+}
+
 std::size_t sample_cdf(const std::vector<double>& cdf, double u) {
     const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
     return std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1);
@@ -51,11 +57,15 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
         return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2), surface.scene_triangle[i], a, b};
     }
-    case LightType::directional: {
-        const double r = beam_radius * std::sqrt(up1);
-        const double phi = 2.0 * kPi * up2;
-        const Vec3 p = beam_center + frame.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), 0.0));
-        return {p, aim};
+    case LightType::directional: return {beam_center + frame.to_world(disk_point(beam_radius, up1, up2)), aim};
+    case LightType::sun:
+        return {beam_center + frame.to_world(disk_point(beam_radius, up1, up2)),
+                frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
+    case LightType::sky: {
+        // Travel away from the sky element, starting on the disk that covers the scene's
+        // sphere as seen from that direction.
+        const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));
+        return {beam_center - 1.01 * beam_radius * d + Frame::around(d).to_world(disk_point(beam_radius, up1, up2)), d};
     }
     }
     return {};

@@ -140,6 +140,28 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
                 e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
             break;
         }
+        case LightType::sun: {
+            // The disc's centre stands for the disc in a picture.
+            const double cos_s = -glm::dot(n, l.aim);
+            if (cos_s <= 0.0 || occluded(o, -l.aim, std::numeric_limits<double>::infinity())) break;
+            for (int b = 0; b < bands_; ++b)
+                e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
+            break;
+        }
+        case LightType::sky: {
+            // Directions drawn in proportion to L: E = (integral of L) x mean of
+            // cos x visibility (sky_directions.hpp).
+            const int count = std::max(1, opt.area_light_samples);
+            double sum = 0.0;
+            for (int k = 0; k < count; ++k) {
+                const Vec3 w = l.horizon.to_world(l.sky->sample((k + rng.next()) / count, rng.next()));
+                const double cos_s = glm::dot(n, w);
+                if (cos_s > 0.0 && !occluded(o, w, std::numeric_limits<double>::infinity())) sum += cos_s;
+            }
+            const double ev = l.sky->luminance_integral_cd_m2_sr() * sum / count;
+            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            break;
+        }
         case LightType::area: {
             // Stratified points on the emitter, uniform in area:
             // E = sum (M/pi) cos_s cos_e / d^2 * A / N over unshadowed points.

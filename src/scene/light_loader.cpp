@@ -1,14 +1,18 @@
 // [[light]] -> the scene's lights (docs/REFERENCE.md §2): point lights with or without a
-// luminaire's photometry, spots, area lights on a named [[shape]], directional beams.
+// luminaire's photometry, spots, area lights on a named [[shape]], directional beams, and
+// daylight: the sun and the sky (docs/DAYLIGHT.md).
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/luminaire_file.hpp"
 #include "luxtrace/light/orientation.hpp"
+#include "luxtrace/light/sky_model.hpp"
+#include "luxtrace/light/sun_position.hpp"
 #include "scene_loader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 namespace luxtrace::detail {
@@ -23,6 +27,142 @@ struct LightReader : StepReader {
     std::map<std::string, std::pair<std::shared_ptr<const Photometry>, std::shared_ptr<const PhotometryDistribution>>>
         photometry_cache;
     std::vector<std::string> groups;  // in order of first appearance
+    // The first sky light's ground reflectance, the default of every sun's ground glow, and
+    // each sun light's own `ground_reflectance` (by label), applied once all are read.
+    std::optional<double> sky_ground_reflectance;
+    std::map<std::string, std::optional<double>> sun_ground_reflectance;
+
+    struct SunAt {
+        double altitude_deg = 0.0, azimuth_deg = 0.0;
+        std::string when;  // for messages: "at TIME" or "as given"
+    };
+    // The sun's position a sun or sky light refers to: its own `sun_altitude_deg` and
+    // `sun_azimuth_deg`, or the [site] at its `time` (NREL SPA, sun_position.hpp).
+    SunAt sun_at(TableReader& r, const std::string& type) {
+        const bool alt = r.has("sun_altitude_deg"), az = r.has("sun_azimuth_deg");
+        if (alt != az)
+            r.fail(alt ? "sun_altitude_deg" : "sun_azimuth_deg",
+                   "give 'sun_altitude_deg' and 'sun_azimuth_deg' together");
+        if (alt) {
+            SunAt s{*r.number("sun_altitude_deg"), *r.number("sun_azimuth_deg"), "as given"};
+            if (!(s.altitude_deg >= -90.0 && s.altitude_deg <= 90.0))
+                r.fail("sun_altitude_deg", "must lie in [-90, 90]");
+            if (!(s.azimuth_deg >= 0.0 && s.azimuth_deg <= 360.0))
+                r.fail("sun_azimuth_deg", "must lie in [0, 360] (clockwise from north: 90 east, 180 south)");
+            return s;
+        }
+        const Site& site = scene.site;
+        if (!site.time)
+            r.fail_entry("type '" + type +
+                         "' needs the sun's position: 'sun_altitude_deg' and 'sun_azimuth_deg', or a [site] with "
+                         "'latitude_deg', 'longitude_deg', 'utc_offset_h' and 'time'");
+        try {
+            const SunPosition p = sun_position(*site.time, site.sun_site);
+            return {p.altitude_deg, p.azimuth_deg, "at " + site.time_text};
+        } catch (const std::invalid_argument& e) {
+            throw InputError(fname + ": [site]: " + e.what());
+        }
+    }
+
+    void read_sun(TableReader& r, Light& l) {
+        l.type = LightType::sun;
+        const SunAt s = sun_at(r, "sun");
+        l.sun_altitude_deg = s.altitude_deg;
+        l.sun_azimuth_deg = s.azimuth_deg;
+        const auto e = r.number("direct_normal_lx");
+        if (!e) r.fail_entry("type 'sun' needs 'direct_normal_lx'");
+        if (!(*e > 0.0)) r.fail("direct_normal_lx", "must be positive, got " + fmt_number(*e));
+        l.illuminance_lx = *e * l.dimming;
+        l.horizon = scene.site.horizon();
+        l.aim = -l.horizon.to_world(sky_direction_deg(s.altitude_deg, s.azimuth_deg));
+        l.frame = Frame::around(l.aim);
+        l.cos_half_angle = std::cos(kSunHalfAngleDeg * kPi / 180.0);
+        if (!(s.altitude_deg > 0.0)) {
+            scene.warnings.push_back(l.label + ": the sun is below the horizon " + s.when + " (altitude " +
+                                     fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
+                                     " degrees): it emits nothing");
+            l.illuminance_lx = 0.0;
+        }
+        // E_n sin(h): the cone's mean direction is the aim, so this is exact for the disc.
+        l.unobstructed_horizontal_lx = l.illuminance_lx * std::max(0.0, std::sin(s.altitude_deg * kPi / 180.0));
+        sun_ground_reflectance[l.label] = ground_reflectance(r);
+    }
+
+    std::optional<double> ground_reflectance(TableReader& r) {
+        const auto rho = r.number("ground_reflectance");
+        if (rho && !(*rho >= 0.0 && *rho <= 1.0)) r.fail("ground_reflectance", "must lie in [0, 1]");
+        return rho;
+    }
+
+    void read_sky(TableReader& r, Light& l) {
+        l.type = LightType::sky;
+        const auto model = r.string("sky");
+        if (!model) r.fail_entry("type 'sky' needs 'sky' (\"cie\" or \"uniform\")");
+        std::optional<SkyModel> sky;
+        if (*model == "cie") {
+            const auto type = r.integer("cie_type");
+            if (!type)
+                r.fail_entry("sky = \"cie\" needs 'cie_type' (1 to 15: the CIE standard general skies; 16: "
+                             "the traditional CIE overcast sky)");
+            if (*type < 1 || *type > 16) r.fail("cie_type", "must be 1 to 16, got " + std::to_string(*type));
+            l.sky_description = "CIE type " + std::to_string(*type);
+            if (*type == 16) {
+                sky = SkyModel::cie(16, 0.0, 0.0);
+            } else {
+                const SunAt s = sun_at(r, "sky");
+                if (s.altitude_deg < 0.0)
+                    r.fail(r.has("sun_altitude_deg") ? "sun_altitude_deg" : "cie_type",
+                           "the sun is below the horizon " + s.when + " (altitude " +
+                               fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
+                               " degrees): the CIE general skies (types 1 to 15) are defined for a sun above it; "
+                               "use cie_type 16 or sky = \"uniform\"");
+                l.sun_altitude_deg = s.altitude_deg;
+                l.sun_azimuth_deg = s.azimuth_deg;
+                sky = SkyModel::cie(static_cast<int>(*type), (90.0 - s.altitude_deg) * kPi / 180.0,
+                                    s.azimuth_deg * kPi / 180.0);
+            }
+        } else if (*model == "uniform") {
+            sky = SkyModel::uniform();
+            l.sky_description = "uniform";
+        } else {
+            r.fail("sky", "must be \"cie\" or \"uniform\", got '" + *model + "'");
+        }
+        const bool by_horizontal = r.has("diffuse_horizontal_lx"), by_zenith = r.has("zenith_luminance_cd_m2");
+        if (by_horizontal == by_zenith)
+            r.fail_entry("type 'sky' needs one of 'diffuse_horizontal_lx' and 'zenith_luminance_cd_m2'");
+        const char* key = by_horizontal ? "diffuse_horizontal_lx" : "zenith_luminance_cd_m2";
+        const double v = *r.number(key);
+        if (!(v > 0.0 && std::isfinite(v))) r.fail(key, "must be positive, got " + fmt_number(v));
+        const double per_zenith_sr = sky->horizontal_illuminance_per_zenith_luminance_sr();
+        const double zenith_cd_m2 = (by_horizontal ? v / per_zenith_sr : v) * l.dimming;
+        l.unobstructed_horizontal_lx = zenith_cd_m2 * per_zenith_sr;
+        const double rho = ground_reflectance(r).value_or(0.0);
+        if (!sky_ground_reflectance) sky_ground_reflectance = rho;
+        // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h / pi.
+        l.sky = std::make_shared<const SkyDirections>(sky, zenith_cd_m2, rho * l.unobstructed_horizontal_lx / kPi);
+        l.horizon = scene.site.horizon();
+    }
+
+    // The sun's light reflected by the ground, a uniform lower hemisphere of luminance
+    // rho E_n sin(h) / pi, as its own emitter in the sun's group.
+    void add_sun_ground_glow(std::vector<Light>& lights) {
+        const std::size_t n = lights.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const Light& sun = lights[i];
+            if (sun.type != LightType::sun) continue;
+            const double rho = sun_ground_reflectance[sun.label].value_or(sky_ground_reflectance.value_or(0.0));
+            if (!(rho > 0.0 && sun.unobstructed_horizontal_lx > 0.0)) continue;
+            Light glow = sun;
+            glow.type = LightType::sky;
+            glow.label = sun.label + " ground glow";
+            glow.sky_description = "ground glow of " + sun.label + " (reflectance " + fmt_number(rho) + ")";
+            glow.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0,
+                                                             rho * sun.unobstructed_horizontal_lx / kPi);
+            glow.unobstructed_horizontal_lx = 0.0;
+            glow.illuminance_lx = 0.0;
+            lights.push_back(std::move(glow));
+        }
+    }
 
     // `group`: the index of the entry's light group. Without the key the light is in the
     // default group, which therefore exists only if some light has no `group`.
@@ -224,8 +364,12 @@ struct LightReader : StepReader {
             l.aim = unit_vector(r, "direction", *d);
             l.frame = Frame::around(l.aim);
             l.illuminance_lx = flux("illuminance_lx") * l.dimming;
+        } else if (type == "sun") {
+            read_sun(r, l);
+        } else if (type == "sky") {
+            read_sky(r, l);
         } else {
-            r.fail("type", "unknown light type '" + type + "' (expected point, spot, area or directional)");
+            r.fail("type", "unknown light type '" + type + "' (expected point, spot, area, directional, sun or sky)");
         }
         const std::size_t nb = scene.bands.size();
         l.band_share.assign(nb, 1.0);
@@ -255,16 +399,48 @@ struct LightReader : StepReader {
     }
 };
 
-// Directional beams cover the scene's bounding sphere, started just outside it.
-void place_directional_beams(const Scene& scene, std::vector<Light>& lights) {
-    const Vec3 mid = 0.5 * (scene.bounds_min + scene.bounds_max);
-    const double radius = 0.5 * glm::length(scene.bounds_max - scene.bounds_min) * 1.001 + 1e-6;
+// Beams cover the sphere around the box [lo, hi], started just outside it; their flux is
+// what crosses the disk.
+void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
+    const Vec3 mid = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-6;
     for (Light& l : lights)
         if (l.type == LightType::directional) {
             l.beam_radius = radius;
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
+        } else if (l.type == LightType::sun) {
+            // Rays up to the disc's half angle off the aim drift sideways by at most
+            // 2.02 r tan(a) before they leave the sphere: the disk is that much larger.
+            const double half = kSunHalfAngleDeg * kPi / 180.0;
+            l.beam_radius = radius * (1.0 + 2.1 * std::tan(half));
+            l.beam_center = mid - 1.01 * radius * l.aim;
+            l.flux_lm = l.illuminance_lx * kPi * l.beam_radius * l.beam_radius;
+        } else if (l.type == LightType::sky) {
+            l.beam_radius = radius;
+            l.beam_center = mid;
+            l.flux_lm = l.sky->luminance_integral_cd_m2_sr() * kPi * radius * radius;
         }
+}
+
+// Every light emits a positive, finite flux except a sun below the horizon; the scene's
+// total is positive and finite.
+void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
+    double total_flux = 0.0;
+    std::string dark;
+    for (const Light& l : lights) {
+        total_flux += l.flux_lm;
+        if (l.type == LightType::sun && l.illuminance_lx == 0.0) {
+            dark = l.label;
+            continue;
+        }
+        if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
+            throw InputError(fname + ": " + l.label + ": its flux (" + fmt_number(l.flux_lm) +
+                             " lm) makes the total flux of the scene too large or not positive");
+    }
+    if (!(total_flux > 0.0))
+        throw InputError(fname + ": no light emits: " + dark +
+                         " is below the horizon and the scene has no other light (give a sky, or another time)");
 }
 
 }  // namespace
@@ -284,21 +460,39 @@ void read_lights(SceneLoad& load, TableReader& root) {
     for (std::size_t i = 0; i < tables.size(); ++i)
         for (Light& l : reader.parse_light(*tables[i], i)) lights.push_back(std::move(l));
     if (lights.empty()) throw InputError(load.fname + ": the scene has no [[light]]");
-    place_directional_beams(load.scene, lights);
-    double total_flux = 0.0;
-    for (const Light& l : lights) {
-        total_flux += l.flux_lm;
-        if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
-            throw InputError(load.fname + ": " + l.label + ": its flux (" + fmt_number(l.flux_lm) +
-                             " lm) makes the total flux of the scene too large or not positive");
-    }
+    reader.add_sun_ground_glow(lights);
     Scene& scene = load.scene;
+    place_beams(scene.bounds_min, scene.bounds_max, lights);
+    check_fluxes(load.fname, lights);
     scene.lights = LightSet(std::move(lights));
     scene.light_groups = std::move(reader.groups);
     if (!scene.lights.maintenance_factor_uniform())
         scene.warnings.push_back("maintenance factors differ between lights: results are initial values, and the "
                                  "maintained ones luxtrace reports use the flux-weighted mean factor (" +
                                  fmt_number(scene.lights.maintenance_factor()) + ")");
+}
+
+void cover_detectors_with_beams(SceneLoad& load) {
+    Scene& scene = load.scene;
+    const auto& lights = scene.lights.lights();
+    if (std::none_of(lights.begin(), lights.end(), [](const Light& l) { return l.beam(); })) return;
+    Vec3 lo = scene.bounds_min, hi = scene.bounds_max;
+    for (const Detector& d : scene.detectors) {
+        // The rectangle's corners; cylinders reach half their height off the plane.
+        const double depth = d.cylinders() ? 0.5 * d.height_m : 0.0;
+        for (const double a : {-0.5, 0.5})
+            for (const double b : {-0.5, 0.5})
+                for (const double c : {-1.0, 1.0}) {
+                    const Vec3 p = d.center + a * d.size_u * d.u_axis + b * d.size_v * d.v_axis + c * depth * d.normal;
+                    lo = glm::min(lo, p);
+                    hi = glm::max(hi, p);
+                }
+    }
+    if (lo == scene.bounds_min && hi == scene.bounds_max) return;
+    std::vector<Light> placed = lights;
+    place_beams(lo, hi, placed);
+    check_fluxes(load.fname, placed);
+    scene.lights = LightSet(std::move(placed));
 }
 
 }  // namespace luxtrace::detail

@@ -97,11 +97,13 @@ Scene load_scene(const fs::path& file) {
     refuse_unknown_tables(root_table, load.fname);
     detail::TableReader root(root_table, load.fname, "top level", "");
     detail::read_scene_table(load, root);
+    detail::read_site(load, root);
     detail::read_geometry(load, root);
     detail::read_lights(load, root);
     detail::read_light_scenes(load, root);
     detail::read_detectors(load, root);
     detail::read_observers(load, root);
+    detail::cover_detectors_with_beams(load);
     detail::read_cameras(load, root);
     detail::read_run(load, root);
     root.finish();

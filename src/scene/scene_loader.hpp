@@ -51,6 +51,8 @@ void check_group_name(const TableReader& r, const std::string& key, const std::s
 
 // The steps of load_scene(), in order.
 void read_scene_table(SceneLoad& load, TableReader& root);  // scene_loader.cpp
+// [site]: Scene::site (the sun and sky lights read it).
+void read_site(SceneLoad& load, TableReader& root);
 // [[material]], [[mesh]], [[shape]]; the scene's bounds. Refuses a scene without surfaces.
 void read_geometry(SceneLoad& load, TableReader& root);
 // [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
@@ -63,6 +65,9 @@ void read_detectors(SceneLoad& load, TableReader& root);
 // [[observer]]: each with its eye detector appended after the user's detectors (needs the lights).
 void read_observers(SceneLoad& load, TableReader& root);
 void read_cameras(SceneLoad& load, TableReader& root);
+// Beams (directional, sun, sky) cover the sphere around the geometry and every detector, so
+// no detector lies outside the light they bring; their fluxes follow from it (light_loader.cpp).
+void cover_detectors_with_beams(SceneLoad& load);
 // [run] and its [[run.target]] (needs the light scenes, detectors and observers).
 void read_run(SceneLoad& load, TableReader& root);
 

@@ -15,7 +15,11 @@ const std::vector<SceneTableSchema>& scene_schema() {
     // unit). Kept as a table, one scene table per entry, not one key per line:
     // clang-format off
     static const std::vector<SceneTableSchema> schema = {
-        {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer"}},
+        {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
+             "site"}},
+        {"site",
+         {"latitude_deg", "longitude_deg", "utc_offset_h", "elevation_m", "north", "time", "pressure_mbar",
+          "temperature_c", "delta_t_s"}},
         {"scene", {"name", "bands", "maintenance_factor"}},
         {"material",
          {"name", "type", "reflectance", "specular_reflectance", "ior", "transmittance", "diffuse_reflectance",
@@ -26,7 +30,9 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"light",
          {"type", "position", "positions", "grid", "flux_lm", "photometry", "ies", "multiplier", "lamp_factor",
           "lamp_set", "emission", "aim", "direction", "c0", "rotation_deg", "tilt_deg", "roll_deg", "spin_deg",
-          "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour", "group"}},
+          "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour", "group", "direct_normal_lx",
+          "sun_altitude_deg", "sun_azimuth_deg", "sky", "cie_type", "diffuse_horizontal_lx", "zenith_luminance_cd_m2",
+          "ground_reflectance"}},
         {"light.grid", {"first", "spacing", "count"}},
         {"light_scene", {"name", "dimming"}},
         {"detector",

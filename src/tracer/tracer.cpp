@@ -47,8 +47,7 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     const std::size_t replicate = layout_.replicates() > 0 ? sampler_.stream_of(k) : 0;
     p.tally.begin(layout_.bin(static_cast<std::size_t>(p.band), light.group, replicate, (k & 1u) != 0));
     double u_pos1 = 0.5, u_pos2 = 0.5;
-    if (light.type == LightType::area || light.type == LightType::directional ||
-        light.opening.shape != LuminousOpening::Shape::point) {
+    if (light.type == LightType::area || light.beam() || light.opening.shape != LuminousOpening::Shape::point) {
         const auto b1 = sampler_.block(k, 1);
         u_pos1 = PhiloxSampler::uniform(b1[0]);
         u_pos2 = PhiloxSampler::uniform(b1[1]);
@@ -76,7 +75,9 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     // The flight just intersected, through the detectors it crosses.
     if (detectors_.sees_flights()) {
         const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
-        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, p.bounce, p.tally.registrations());
+        const Vec3 hit_normal = hit.found ? Vec3(surfaces_.triangle(hit.triangle).normal) : Vec3(0.0);
+        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, hit_normal, p.bounce,
+                          p.tally.registrations());
     }
     if (!hit.found) {
         end(p, TallyLayout::kEscaped, out);

@@ -78,8 +78,11 @@ struct Detector {
     // Cell index of a point in the detector plane, or -1 outside the rectangle.
     int cell_at(const Vec3& p) const;
     // Illuminance: the cell where the ray o + t d, 0 < t <= t_max, crosses the plane from
-    // the front side, or -1.
-    int crossing(const Vec3& o, const Vec3& d, double t_max) const;
+    // the front side, or -1. `hit_normal`: the unit normal of the surface the ray ends on
+    // at t_max (zero without one). A detector lying on that surface is crossed just past
+    // the hit, within plane_tolerance_m; a surface across the plane (a wall standing on
+    // the floor a detector lies on) stops the ray before it, however close.
+    int crossing(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal) const;
     // Luminance: the cell where a photon leaving point p along d registers, or -1.
     int leaving(const Vec3& p, const Vec3& d) const;
     // Cylinders: append to `cells` every point whose cylinder the ray o + t d,

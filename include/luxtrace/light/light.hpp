@@ -5,6 +5,7 @@
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/photometry.hpp"
 #include "luxtrace/light/photometry_distribution.hpp"
+#include "luxtrace/light/sky_directions.hpp"
 
 #include <memory>
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace luxtrace {
 
-enum class LightType { point, spot, area, directional };
+enum class LightType { point, spot, area, directional, sun, sky };
 
 struct EmittedRay {
     Vec3 origin;
@@ -61,13 +62,31 @@ struct Light {
     // area
     EmitterSurface surface;
     // directional: a disk of radius `beam_radius` centred on the scene's bounding sphere,
-    // set back along -direction, emits parallel rays.
+    // set back along -direction, emits parallel rays. sun: the same disk, perpendicular
+    // to `aim` (the direction of travel from the sun's centre), emits rays spread evenly
+    // over the solar disc (cos_half_angle); illuminance_lx is the direct normal
+    // illuminance. sky: `beam_center` is the sphere's centre and each photon starts on the
+    // disk perpendicular to its own direction.
     double illuminance_lx = 0.0;
     Vec3 beam_center{0.0};
     double beam_radius = 0.0;
+    // sun and sky (docs/DAYLIGHT.md): the sun's position they refer to (for the sky, the
+    // one its luminance distribution is centred on; unused by types 16 and uniform).
+    double sun_altitude_deg = 0.0, sun_azimuth_deg = 0.0;
+    // sky: where its photons come from (sky frame), and the sky frame in the scene
+    // (site.hpp: t = east, b = north, n = up).
+    std::shared_ptr<const SkyDirections> sky;
+    Frame horizon{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    std::string sky_description;  // e.g. "CIE type 16", "uniform", "ground glow of light 2 (sun)"
 
     EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
+    // Whether its photons start on a beam disk (directional, sun, sky): they then draw
+    // two uniforms for the position.
+    bool beam() const { return type == LightType::directional || type == LightType::sun || type == LightType::sky; }
 };
+
+// The solar disc seen from the Earth: 0.533 degrees across.
+inline constexpr double kSunHalfAngleDeg = 0.2665;
 
 // Choice of light and band for a photon, both by inversion of cumulative tables.
 class LightSet {
@@ -95,6 +114,8 @@ private:
 // Uniform direction on the unit sphere and inside a cone around +z (local frame).
 Vec3 sample_uniform_sphere(double u1, double u2);
 Vec3 sample_uniform_cone(double cos_max, double u1, double u2);
+// Uniform point on the disk of `radius` around the origin in the z = 0 plane.
+Vec3 disk_point(double radius, double u1, double u2);
 // Index of the first cdf entry > u (cdf normalised, last entry 1).
 std::size_t sample_cdf(const std::vector<double>& cdf, double u);
 

@@ -6,6 +6,7 @@
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/glare/observer.hpp"
 #include "luxtrace/light/light.hpp"
+#include "luxtrace/light/site.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/scene/run_config.hpp"
 
@@ -44,6 +45,8 @@ struct Scene {
     std::vector<double> triangle_area_m2;
     std::vector<Vec3> triangle_normal;  // unit geometric normal (front side)
     LightSet lights;
+    // [site]: where and when, for the sun's position (daylight, docs/DAYLIGHT.md).
+    Site site;
     // The light groups, in order of first appearance; lights without `group` are in
     // kDefaultLightGroup. A scene without groups has exactly that one.
     static constexpr const char* kDefaultLightGroup = "default";

@@ -20,13 +20,15 @@ namespace luxtrace {
 class DetectorFilters {
 public:
     explicit DetectorFilters(const std::vector<Detector>& detectors);
-    // `bounce`: surface arrivals before this flight (0: straight from the light).
+    // `bounce`: surface arrivals before this flight (0: straight from the light);
+    // `hit_normal`: the unit normal of the surface it ends on (zero if it escapes).
     // Inline: it runs for every flight of every photon.
-    void flight(const Vec3& origin, const Vec3& direction, double t_max, int bounce, std::vector<Registration>& out) {
-        cross(planes_, origin, direction, t_max, out);
+    void flight(const Vec3& origin, const Vec3& direction, double t_max, const Vec3& hit_normal, int bounce,
+                std::vector<Registration>& out) {
+        cross(planes_, origin, direction, t_max, hit_normal, out);
         if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, out);
         // Indirect only: the flight from the light (bounce 0) is the direct one.
-        if (bounce > 0) cross(indirect_planes_, origin, direction, t_max, out);
+        if (bounce > 0) cross(indirect_planes_, origin, direction, t_max, hit_normal, out);
     }
     void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
     bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }
@@ -34,9 +36,9 @@ public:
 
 private:
     void cross(const std::vector<std::uint32_t>& planes, const Vec3& o, const Vec3& d, double t_max,
-               std::vector<Registration>& out) const {
+               const Vec3& hit_normal, std::vector<Registration>& out) const {
         for (std::uint32_t di : planes) {
-            const int cell = detectors_[di].crossing(o, d, t_max);
+            const int cell = detectors_[di].crossing(o, d, t_max, hit_normal);
             if (cell >= 0) out.push_back({di, static_cast<std::uint32_t>(cell)});
         }
     }

@@ -1,0 +1,350 @@
+// Daylight end to end (docs/VALIDATION.md, "Daylight"): the real luxtrace binary runs sky
+// and sun lights and every detector is judged by the run's own error estimate.
+//  - Every sky (CIE types 1-16 and uniform, the sun at 30 and at 60 degrees) gives an
+//    unobstructed horizontal plane its diffuse_horizontal_lx (or L_z times the quadrature
+//    of sky_model.hpp) and vertical planes facing the four points of the compass what
+//    the quadrature says.
+//  - Energy: a closed black box's outer faces receive exactly what sky, sun and ground
+//    glow give such faces.
+//  - A sun patch through a window falls where geometry puts it at three times of a day,
+//    with the sun's illuminance inside it, nothing outside, and the window's flux in all.
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/light/site.hpp"
+#include "luxtrace/light/sky_model.hpp"
+#include "luxtrace/light/sun_position.hpp"
+
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kZMax = 5.0;
+
+double deg(double d) { return d * kPi / 180.0; }
+
+struct Reading {
+    double value = 0.0, sigma = 0.0;  // lx, absolute
+};
+
+// The whole-grid mean of a one-band detector and its standard error (eq. 8).
+Reading grid_mean(const ResultReader& r, const std::string& name) {
+    const std::string g = "/detectors/" + name;
+    const double v = r.attr_f64(g, "mean_value");
+    return {v, v * r.attr_f64(g, "mean_sigma_rel")};
+}
+
+// Runs a scene text; the result file's path.
+fs::path run_scene(const test_support::ScratchDir& dir, const std::string& name, const std::string& text) {
+    const fs::path scene = dir.path() / (name + ".toml"), out = dir.path() / (name + ".h5");
+    std::ofstream(scene) << text;
+    const auto o = test_support::run_luxtrace("run \"" + scene.string() + "\" --output \"" + out.string() +
+                                              "\" --quiet --threads 2");
+    EXPECT_EQ(o.code, 0) << o.out;
+    return out;
+}
+
+// z values of several readings against references, pooled: each within kZMax and their
+// mean square near 1 (chi-square with K degrees of freedom over K).
+class ZPool {
+public:
+    void add(const std::string& what, const Reading& r, double reference) {
+        const double z = (r.value - reference) / r.sigma;
+        EXPECT_LT(std::abs(z), kZMax) << what << ": " << r.value << " +- " << r.sigma << " lx, reference " << reference;
+        sum_z2_ += z * z;
+        ++count_;
+    }
+    void check(const std::string& what) const {
+        const double mean = sum_z2_ / count_, band = kZMax * std::sqrt(2.0 / count_);
+        EXPECT_NEAR(mean, 1.0, band) << what << ": mean z^2 over " << count_ << " readings";
+        std::cout << "[daylight] " << what << ": " << count_ << " readings, mean z^2 " << mean << " (allowed 1 +- "
+                  << band << ")\n";
+    }
+
+private:
+    double sum_z2_ = 0.0;
+    int count_ = 0;
+};
+
+constexpr const char* kBlackSpeck = R"([[material]]
+name = "black"
+type = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, 0, -0.6]
+normal = [0, 0, 1]
+size = [0.05, 0.05]
+material = "black"
+)";
+
+// A 1 m square detector at the origin facing `normal`.
+std::string unit_detector(const std::string& name, const std::string& normal, const std::string& up) {
+    return "[[detector]]\nname = \"" + name + "\"\ntype = \"illuminance\"\ncenter = [0, 0, 0]\nnormal = " + normal +
+           "\nup = " + up + "\nsize = [1, 1]\ncells = [1, 1]\n";
+}
+
+TEST(DaylightSky, EverySkyLightsUnobstructedPlanesAsQuadratureSays) {
+    test_support::ScratchDir dir("daylight_skies");
+    struct Case {
+        std::string sky;  // scene keys
+        SkyModel model;
+        bool by_zenith;
+    };
+    std::vector<Case> cases{{"sky = \"uniform\"\n", SkyModel::uniform(), false},
+                            {"sky = \"cie\"\ncie_type = 16\n", SkyModel::cie(16, 0.0, 0.0), true}};
+    for (int type = 1; type <= 15; ++type)
+        for (const auto& [altitude, azimuth] : {std::pair{30.0, 180.0}, std::pair{60.0, 250.0}}) {
+            std::ostringstream keys;
+            keys << "sky = \"cie\"\ncie_type = " << type << "\nsun_altitude_deg = " << altitude
+                 << "\nsun_azimuth_deg = " << azimuth << "\n";
+            cases.push_back({keys.str(), SkyModel::cie(type, deg(90.0 - altitude), deg(azimuth)), altitude == 60.0});
+        }
+    const std::array<std::pair<const char*, double>, 4> facades{
+        {{"north", 0.0}, {"east", 90.0}, {"south", 180.0}, {"west", 270.0}}};
+    ZPool pool;
+    int run = 0;
+    for (const Case& c : cases) {
+        // Normalised by the horizontal illuminance or by the zenith luminance, alternately.
+        const double zenith_cd_m2 = 3000.0, horizontal_lx = 12000.0;
+        std::string text = std::string(kBlackSpeck) + "\n[[light]]\ntype = \"sky\"\n" + c.sky +
+                           (c.by_zenith ? "zenith_luminance_cd_m2 = 3000\n" : "diffuse_horizontal_lx = 12000\n") +
+                           "\n" + unit_detector("up", "[0, 0, 1]", "[0, 1, 0]");
+        for (const auto& [name, facing] : facades) {
+            const Vec3 n = sky_direction(0.5 * kPi, deg(facing));
+            std::ostringstream normal;
+            normal << "[" << n.x << ", " << n.y << ", 0]";
+            text += "\n" + unit_detector(name, normal.str(), "[0, 0, 1]");
+        }
+        text += "\n[run]\nphotons = 400000\nseed = " + std::to_string(101 + run) + "\n";
+        const fs::path out = run_scene(dir, "sky" + std::to_string(run++), text);
+        const ResultReader r(out);
+        const double lz = c.by_zenith ? zenith_cd_m2
+                                      : horizontal_lx / c.model.horizontal_illuminance_per_zenith_luminance_sr();
+        const std::string what = c.sky.substr(0, c.sky.find('\n', c.sky.find("type") + 1)) + " sun " +
+                                 std::to_string(c.model.sun_zenith_rad());
+        pool.add(what + " horizontal", grid_mean(r, "up"),
+                 lz * c.model.horizontal_illuminance_per_zenith_luminance_sr());
+        for (const auto& [name, facing] : facades)
+            pool.add(what + " " + name, grid_mean(r, name),
+                     lz * c.model.vertical_illuminance_per_zenith_luminance_sr(deg(facing)));
+    }
+    pool.check("unobstructed planes under every sky");
+}
+
+TEST(DaylightEnergy, ClosedBoxFacesReceiveWhatSkySunAndGroundGive) {
+    // A black 1 m cube under the traditional overcast sky (10 klx), a sun of 60 klx
+    // normal at altitude 35 degrees, azimuth 200, and a ground of reflectance 0.2:
+    // its top gets E_dh + E_n sin h, its bottom the ground glow's pi L_g = rho E_h,global,
+    // a vertical face the sky's share (quadrature), the sun's E_n cos h cos(a - a_s) when
+    // it faces the sun, and half the ground's pi L_g. Detectors 1 mm off each face.
+    test_support::ScratchDir dir("daylight_box");
+    const double e_dh = 10000.0, e_n = 60000.0, h = 35.0, a_s = 200.0, rho = 0.2;
+    std::ostringstream s;
+    s << "[[material]]\nname = \"black\"\ntype = \"black\"\n\n[[shape]]\ntype = \"box\"\ncenter = [0, 0, 0]\n"
+         "size = [1, 1, 1]\nmaterial = \"black\"\n\n"
+      << "[[light]]\ntype = \"sky\"\nsky = \"cie\"\ncie_type = 16\ndiffuse_horizontal_lx = " << e_dh
+      << "\nground_reflectance = " << rho << "\n\n[[light]]\ntype = \"sun\"\ndirect_normal_lx = " << e_n
+      << "\nsun_altitude_deg = " << h << "\nsun_azimuth_deg = " << a_s << "\n\n";
+    const double e_global = e_dh + e_n * std::sin(deg(h));
+    const SkyModel overcast = SkyModel::cie(16, 0.0, 0.0);
+    const double lz = e_dh / overcast.horizontal_illuminance_per_zenith_luminance_sr();
+    struct Face {
+        std::string name;
+        Vec3 normal;
+        double expected;
+    };
+    std::vector<Face> faces{{"top", {0, 0, 1}, e_global}, {"bottom", {0, 0, -1}, rho * e_global}};
+    for (const double facing : {0.0, 90.0, 180.0, 270.0}) {
+        const Vec3 n = sky_direction(0.5 * kPi, deg(facing));
+        const double sun = e_n * std::cos(deg(h)) * std::max(0.0, std::cos(deg(facing - a_s)));
+        faces.push_back(
+            {"facing" + std::to_string(int(facing)), n,
+             lz * overcast.vertical_illuminance_per_zenith_luminance_sr(deg(facing)) + sun + 0.5 * rho * e_global});
+    }
+    for (const Face& f : faces) {
+        const Vec3 c = 0.501 * f.normal;
+        s << "[[detector]]\nname = \"" << f.name << "\"\ntype = \"illuminance\"\ncenter = [" << c.x << ", " << c.y
+          << ", " << c.z << "]\nnormal = [" << f.normal.x << ", " << f.normal.y << ", " << f.normal.z
+          << "]\nup = " << (std::abs(f.normal.z) > 0.5 ? "[0, 1, 0]" : "[0, 0, 1]")
+          << "\nsize = [1, 1]\ncells = [1, 1]\n\n";
+    }
+    s << "[run]\nphotons = 3000000\nseed = 7\n";
+    const ResultReader r(run_scene(dir, "box", s.str()));
+    ZPool pool;
+    for (const Face& f : faces) pool.add(f.name, grid_mean(r, f.name), f.expected);
+    pool.check("closed box faces");
+}
+
+// A black room 3 m x 2 m x 2 m with a 0.6 m x 0.6 m opening in its south wall (y = -1,
+// x in [-0.3, 0.3], z in [0.9, 1.5]) and a floor detector of 5 cm cells.
+std::string sun_patch_scene(const std::string& time) {
+    return std::string(R"([site]
+latitude_deg = 45.0
+longitude_deg = 9.0
+utc_offset_h = 1
+time = ")") +
+           time + R"("
+
+[[material]]
+name = "black"
+type = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, 0, 0]
+normal = [0, 0, 1]
+size = [3, 2]
+up = [0, 1, 0]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, 0, 2]
+normal = [0, 0, -1]
+size = [3, 2]
+up = [0, 1, 0]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, 1, 1]
+normal = [0, -1, 0]
+size = [3, 2]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [1.5, 0, 1]
+normal = [-1, 0, 0]
+size = [2, 2]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [-1.5, 0, 1]
+normal = [1, 0, 0]
+size = [2, 2]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, -1, 0.45]
+normal = [0, 1, 0]
+size = [3, 0.9]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, -1, 1.75]
+normal = [0, 1, 0]
+size = [3, 0.5]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [-0.9, -1, 1.2]
+normal = [0, 1, 0]
+size = [1.2, 0.6]
+material = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0.9, -1, 1.2]
+normal = [0, 1, 0]
+size = [1.2, 0.6]
+material = "black"
+
+[[light]]
+type = "sun"
+direct_normal_lx = 80000
+
+[[detector]]
+name = "floor"
+type = "illuminance"
+center = [0, 0, 0.001]
+normal = [0, 0, 1]
+up = [0, 1, 0]
+size = [3, 2]
+cells = [60, 40]
+
+[run]
+photons = 3000000
+seed = 11
+)";
+}
+
+TEST(DaylightSun, PatchThroughAWindowFallsWhereGeometryPutsIt) {
+    test_support::ScratchDir dir("daylight_patch");
+    constexpr double kEn = 80000.0, kCell = 0.05;
+    constexpr double kMargin = 0.03;  // the penumbra: about 2.5 m x tan(0.27 deg) = 1.2 cm, and rounding
+    SunSite site;
+    site.latitude_deg = 45.0;
+    site.longitude_deg = 9.0;
+    int t = 0;
+    for (const char* time : {"2026-03-21T11:00", "2026-03-21T12:30", "2026-03-21T14:00"}) {
+        LocalStandardTime when = *parse_local_time(time);
+        when.utc_offset_h = 1.0;
+        const SunPosition sun = sun_position(when, site);
+        const Vec3 d = -sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);  // travel (north = +y)
+        const ResultReader r(run_scene(dir, "patch" + std::to_string(t++), sun_patch_scene(time)));
+        const std::vector<double> value = r.f64("/detectors/floor/value"),
+                                  sigma_rel = r.f64("/detectors/floor/sigma_rel");
+        // Where a floor point's ray back to the sun crosses the wall plane y = -1, in
+        // window coordinates; inside the window shrunk (or grown) by `margin`?
+        auto through_window = [&](double x, double y, double margin) {
+            const double s = (y + 1.0) / d.y;  // back along -d to y = -1
+            const double wx = x - s * d.x, wz = 0.001 - s * d.z;
+            return wx > -0.3 + margin && wx < 0.3 - margin && wz > 0.9 + margin && wz < 1.5 - margin;
+        };
+        ZPool inside;
+        double flux = 0.0, flux_var = 0.0;
+        int lit = 0, dark = 0;
+        for (int j = 0; j < 40; ++j)
+            for (int i = 0; i < 60; ++i) {
+                const std::size_t c = static_cast<std::size_t>(j * 60 + i);
+                const double x0 = -1.5 + i * kCell, y0 = -1.0 + j * kCell;
+                bool all_in = true, all_out = true;
+                for (const double x : {x0, x0 + kCell})
+                    for (const double y : {y0, y0 + kCell}) {
+                        all_in = all_in && through_window(x, y, kMargin);
+                        all_out = all_out && !through_window(x, y, -kMargin);
+                    }
+                flux += value[c] * kCell * kCell;
+                if (value[c] > 0.0) flux_var += std::pow(sigma_rel[c] * value[c] * kCell * kCell, 2);
+                if (all_in) {
+                    ++lit;
+                    inside.add(std::string(time) + " cell " + std::to_string(c), {value[c], sigma_rel[c] * value[c]},
+                               kEn * std::sin(deg(sun.altitude_deg)));
+                } else if (all_out) {
+                    ++dark;
+                    EXPECT_EQ(value[c], 0.0) << time << ": cell " << i << "," << j << " lies outside the patch";
+                }
+            }
+        EXPECT_GT(lit, 40) << time;
+        EXPECT_GT(dark, 1500) << time;
+        inside.check(std::string(time) + " inside the patch");
+        // All the beam the window lets in lands on the floor (the cells' errors are
+        // nearly independent: a photon registers in one cell).
+        const double window_flux = kEn * 0.36 * std::max(0.0, d.y);
+        const double z = (flux - window_flux) / std::sqrt(flux_var);
+        EXPECT_LT(std::abs(z), kZMax) << time << ": floor flux " << flux << " lm, window " << window_flux << " lm";
+        std::cout << "[daylight] " << time << ": sun altitude " << sun.altitude_deg << ", azimuth " << sun.azimuth_deg
+                  << "; " << lit << " cells inside, " << dark << " outside; floor flux " << flux << " lm vs "
+                  << window_flux << " (z " << z << ")\n";
+    }
+}
+
+}  // namespace
+}  // namespace luxtrace

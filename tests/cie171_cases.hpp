@@ -47,12 +47,15 @@ std::vector<Case> report_cases();
 double exact_sc_percent(const Case& c, const Point& p, int cie_type);
 
 // The luxtrace runs (tests/data/cie171/*.toml; the geometry here must match the scene
-// files): a detector strip of 0.5 m x 0.5 m cells centred on a line of report points.
+// files): a detector strip of cells 0.5 m long, one per report point along a line, and
+// `width_m` across it (wider than the report's points so that enough sky photons land:
+// they start on a disc covering the whole scene, and the openings pass a few per mille).
 inline constexpr double kDiffuseHorizontalLx = 10000.0;
 
 struct Strip {
     std::string name;
     Vec3 first_center, step, normal, across;  // across: the cell's other side (unit)
+    double width_m;                           // the cell's extent along `across`
     int cells;
 };
 
@@ -69,7 +72,8 @@ struct RunCase {
 
 std::vector<RunCase> run_cases();
 
-// The exact illuminance (lx) averaged over cell k of a strip (4 x 4 Gauss-Legendre points).
+// The exact illuminance (lx) averaged over cell k of a strip: 4 x 4 Gauss-Legendre points on
+// each 1 m (across) x 0.5 m (along) part of the cell.
 double exact_cell_lx(const RunCase& rc, const Strip& s, int k);
 
 }  // namespace luxtrace::cie171

@@ -7,11 +7,14 @@
 //  - Energy: a closed black box's outer faces receive exactly what sky, sun and ground
 //    glow give such faces.
 //  - A sun patch through a window falls where geometry puts it at three times of a day,
-//    with the sun's illuminance inside it, nothing outside, and the window's flux in all.
+//    with the sun's illuminance inside it, nothing outside, and the window's flux in all;
+//    through a glazed window the patch is the pane's T(theta) times that, and it is
+//    direct light in the surface map (going straight through a pane turns nothing).
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/site.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "luxtrace/light/sun_position.hpp"
+#include "luxtrace/material/glazing.hpp"
 
 #include "test_support.hpp"
 
@@ -188,8 +191,9 @@ TEST(DaylightEnergy, ClosedBoxFacesReceiveWhatSkySunAndGroundGive) {
 }
 
 // A black room 3 m x 2 m x 2 m with a 0.6 m x 0.6 m opening in its south wall (y = -1,
-// x in [-0.3, 0.3], z in [0.9, 1.5]) and a floor detector of 5 cm cells.
-std::string sun_patch_scene(const std::string& time) {
+// x in [-0.3, 0.3], z in [0.9, 1.5]), glazed by `pane` (scene text) if given, and a
+// floor detector of 5 cm cells. The floor is the first shape: triangles 0 and 1.
+std::string sun_patch_scene(const std::string& time, const std::string& pane = "") {
     return std::string(R"([site]
 latitude_deg = 45.0
 longitude_deg = 9.0
@@ -269,6 +273,7 @@ material = "black"
 [[light]]
 type = "sun"
 direct_normal_lx = 80000
+)" + pane + R"(
 
 [[detector]]
 name = "floor"
@@ -285,64 +290,108 @@ seed = 11
 )";
 }
 
-TEST(DaylightSun, PatchThroughAWindowFallsWhereGeometryPutsIt) {
-    test_support::ScratchDir dir("daylight_patch");
+// The patch a run of sun_patch_scene(time, pane) leaves on the floor detector against
+// geometry: cells wholly inside it read `transmittance` x E_n sin h, cells wholly outside
+// nothing, and the floor receives the window's flux. Returns the result file.
+fs::path check_sun_patch(const test_support::ScratchDir& dir, const std::string& name, const char* time,
+                         const std::string& pane, double transmittance) {
     constexpr double kEn = 80000.0, kCell = 0.05;
     constexpr double kMargin = 0.03;  // the penumbra: about 2.5 m x tan(0.27 deg) = 1.2 cm, and rounding
     SunSite site;
     site.latitude_deg = 45.0;
     site.longitude_deg = 9.0;
-    int t = 0;
-    for (const char* time : {"2026-03-21T11:00", "2026-03-21T12:30", "2026-03-21T14:00"}) {
-        LocalStandardTime when = *parse_local_time(time);
-        when.utc_offset_h = 1.0;
-        const SunPosition sun = sun_position(when, site);
-        const Vec3 d = -sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);  // travel (north = +y)
-        const ResultReader r(run_scene(dir, "patch" + std::to_string(t++), sun_patch_scene(time)));
-        const std::vector<double> value = r.f64("/detectors/floor/value"),
-                                  sigma_rel = r.f64("/detectors/floor/sigma_rel");
-        // Where a floor point's ray back to the sun crosses the wall plane y = -1, in
-        // window coordinates; inside the window shrunk (or grown) by `margin`?
-        auto through_window = [&](double x, double y, double margin) {
-            const double s = (y + 1.0) / d.y;  // back along -d to y = -1
-            const double wx = x - s * d.x, wz = 0.001 - s * d.z;
-            return wx > -0.3 + margin && wx < 0.3 - margin && wz > 0.9 + margin && wz < 1.5 - margin;
-        };
-        ZPool inside;
-        double flux = 0.0, flux_var = 0.0;
-        int lit = 0, dark = 0;
-        for (int j = 0; j < 40; ++j)
-            for (int i = 0; i < 60; ++i) {
-                const std::size_t c = static_cast<std::size_t>(j * 60 + i);
-                const double x0 = -1.5 + i * kCell, y0 = -1.0 + j * kCell;
-                bool all_in = true, all_out = true;
-                for (const double x : {x0, x0 + kCell})
-                    for (const double y : {y0, y0 + kCell}) {
-                        all_in = all_in && through_window(x, y, kMargin);
-                        all_out = all_out && !through_window(x, y, -kMargin);
-                    }
-                flux += value[c] * kCell * kCell;
-                if (value[c] > 0.0) flux_var += std::pow(sigma_rel[c] * value[c] * kCell * kCell, 2);
-                if (all_in) {
-                    ++lit;
-                    inside.add(std::string(time) + " cell " + std::to_string(c), {value[c], sigma_rel[c] * value[c]},
-                               kEn * std::sin(deg(sun.altitude_deg)));
-                } else if (all_out) {
-                    ++dark;
-                    EXPECT_EQ(value[c], 0.0) << time << ": cell " << i << "," << j << " lies outside the patch";
+    LocalStandardTime when = *parse_local_time(time);
+    when.utc_offset_h = 1.0;
+    const SunPosition sun = sun_position(when, site);
+    const Vec3 d = -sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);  // travel (north = +y)
+    const fs::path out = run_scene(dir, name, sun_patch_scene(time, pane));
+    const ResultReader r(out);
+    const std::vector<double> value = r.f64("/detectors/floor/value"), sigma_rel = r.f64("/detectors/floor/sigma_rel");
+    // Where a floor point's ray back to the sun crosses the wall plane y = -1, in window
+    // coordinates; inside the window shrunk (or grown) by `margin`?
+    auto through_window = [&](double x, double y, double margin) {
+        const double s = (y + 1.0) / d.y;  // back along -d to y = -1
+        const double wx = x - s * d.x, wz = 0.001 - s * d.z;
+        return wx > -0.3 + margin && wx < 0.3 - margin && wz > 0.9 + margin && wz < 1.5 - margin;
+    };
+    ZPool inside;
+    double flux = 0.0, flux_var = 0.0;
+    int lit = 0, dark = 0;
+    for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 60; ++i) {
+            const std::size_t c = static_cast<std::size_t>(j * 60 + i);
+            const double x0 = -1.5 + i * kCell, y0 = -1.0 + j * kCell;
+            bool all_in = true, all_out = true;
+            for (const double x : {x0, x0 + kCell})
+                for (const double y : {y0, y0 + kCell}) {
+                    all_in = all_in && through_window(x, y, kMargin);
+                    all_out = all_out && !through_window(x, y, -kMargin);
                 }
+            flux += value[c] * kCell * kCell;
+            if (value[c] > 0.0) flux_var += std::pow(sigma_rel[c] * value[c] * kCell * kCell, 2);
+            if (all_in) {
+                ++lit;
+                inside.add(name + " cell " + std::to_string(c), {value[c], sigma_rel[c] * value[c]},
+                           transmittance * kEn * std::sin(deg(sun.altitude_deg)));
+            } else if (all_out) {
+                ++dark;
+                EXPECT_EQ(value[c], 0.0) << name << ": cell " << i << "," << j << " lies outside the patch";
             }
-        EXPECT_GT(lit, 40) << time;
-        EXPECT_GT(dark, 1500) << time;
-        inside.check(std::string(time) + " inside the patch");
-        // All the beam the window lets in lands on the floor (the cells' errors are
-        // nearly independent: a photon registers in one cell).
-        const double window_flux = kEn * 0.36 * std::max(0.0, d.y);
-        const double z = (flux - window_flux) / std::sqrt(flux_var);
-        EXPECT_LT(std::abs(z), kZMax) << time << ": floor flux " << flux << " lm, window " << window_flux << " lm";
-        std::cout << "[daylight] " << time << ": sun altitude " << sun.altitude_deg << ", azimuth " << sun.azimuth_deg
-                  << "; " << lit << " cells inside, " << dark << " outside; floor flux " << flux << " lm vs "
-                  << window_flux << " (z " << z << ")\n";
+        }
+    EXPECT_GT(lit, 40) << name;
+    EXPECT_GT(dark, 1500) << name;
+    inside.check(name + " inside the patch");
+    // All the beam the window lets in lands on the floor (the cells' errors are nearly
+    // independent: a photon registers in one cell).
+    const double window_flux = transmittance * kEn * 0.36 * std::max(0.0, d.y);
+    const double z = (flux - window_flux) / std::sqrt(flux_var);
+    EXPECT_LT(std::abs(z), kZMax) << name << ": floor flux " << flux << " lm, window " << window_flux << " lm";
+    std::cout << "[daylight] " << name << " " << time << ": sun altitude " << sun.altitude_deg << ", azimuth "
+              << sun.azimuth_deg << "; " << lit << " cells inside, " << dark << " outside; floor flux " << flux
+              << " lm vs " << window_flux << " (z " << z << ")\n";
+    return out;
+}
+
+TEST(DaylightSun, PatchThroughAWindowFallsWhereGeometryPutsIt) {
+    test_support::ScratchDir dir("daylight_patch");
+    int t = 0;
+    for (const char* time : {"2026-03-21T11:00", "2026-03-21T12:30", "2026-03-21T14:00"})
+        check_sun_patch(dir, "patch" + std::to_string(t++), time, "", 1.0);
+}
+
+TEST(DaylightSun, PatchThroughGlazingIsThePanesShareAndDirectLight) {
+    // A 6 mm clear pane (T_n 0.88, n 1.52) in the opening: the patch is T(theta) of the
+    // sun's incidence on the pane, and on the black floor every arrival is direct.
+    test_support::ScratchDir dir("daylight_glazed_patch");
+    const char* time = "2026-03-21T14:00";
+    SunSite site;
+    site.latitude_deg = 45.0;
+    site.longitude_deg = 9.0;
+    LocalStandardTime when = *parse_local_time(time);
+    when.utc_offset_h = 1.0;
+    const SunPosition sun = sun_position(when, site);
+    const double cos_i = sky_direction_deg(sun.altitude_deg, sun.azimuth_deg).y * -1.0;  // pane normal: south
+    const double t = pane_optics(cos_i, 1.52, pane_transmissivity(0.88, 1.52)).transmittance;
+    const std::string pane = R"(
+[[material]]
+name = "clear6mm"
+type = "glazing"
+transmittance = 0.88
+refractive_index = 1.52
+
+[[shape]]
+type = "rectangle"
+center = [0, -1, 1.2]
+normal = [0, -1, 0]
+size = [0.6, 0.6]
+material = "clear6mm"
+)";
+    const ResultReader r(check_sun_patch(dir, "glazed", time, pane, t));
+    const std::vector<std::uint64_t> count = r.u64("/global/count_odd"), direct = r.u64("/global/direct_odd");
+    // The floor's two triangles, their front sides: [T, 2, B] with one band.
+    for (const std::size_t i : {std::size_t{0}, std::size_t{2}}) {
+        EXPECT_GT(count[i], 100u);
+        EXPECT_EQ(direct[i], count[i]) << "floor slot " << i;
     }
 }
 

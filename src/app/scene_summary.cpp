@@ -15,6 +15,7 @@ const char* type_name(MaterialType t) {
     case MaterialType::glass: return "glass";
     case MaterialType::general: return "general";
     case MaterialType::black: return "black";
+    case MaterialType::glazing: return "glazing";
     }
     return "?";
 }

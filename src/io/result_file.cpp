@@ -19,6 +19,7 @@ void write_result(const std::filesystem::path& path, const Scene& scene, const T
         write_observers(file, scene, layout, tallies, estimates);
         write_light_groups(file, scene, layout, tallies);
         write_light_scenes(file, scene, estimates);
+        write_daylight(file, scene);
         write_history(file, history, info);
         if (checkpoint != nullptr) write_checkpoint(file, layout, *checkpoint);
     });

@@ -62,6 +62,8 @@ void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& layou
                         const std::vector<std::uint64_t>& tallies);
 // /light_scenes/NAME: each [[light_scene]]'s maps, detectors and observers with their errors.
 void write_light_scenes(hid_t file, const Scene& scene, const ResultEstimates& est);
+// /daylight (scenes with sun or sky lights): the site, time and each daylight source.
+void write_daylight(hid_t file, const Scene& scene);
 // /history: one row per reduction.
 void write_history(hid_t file, const std::vector<HistoryRow>& history, const RunInfo& info);
 // /checkpoint: the state a restart continues from.

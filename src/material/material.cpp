@@ -45,6 +45,9 @@ ScatterModel scatter_model(const Material& m, int band) {
         s.ior = m.ior;
         s.transmittance = m.transmittance.empty() ? 1.0 : at(m.transmittance, band);
         break;
+    case MaterialType::glazing:
+        if (m.glazing) s.glazing = &(*m.glazing)[static_cast<size_t>(band)];
+        break;
     }
     return s;
 }
@@ -81,6 +84,14 @@ Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double
         const Vec3 refracted = glm::normalize(eta * dir + (eta * cos_i - cos_t) * n);
         return {ScatterEvent::refraction, refracted, -1};
     }
+    case MaterialType::glazing: {
+        // A thin pane, alike from both sides: mirror reflection or straight through.
+        if (m.glazing == nullptr) return s;
+        const PaneOptics o = m.glazing->at(-glm::dot(dir, n));
+        if (u < o.reflectance) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        if (u < o.reflectance + o.transmittance) return {ScatterEvent::specular_transmission, dir, -1};
+        return s;
+    }
     }
     return s;
 }
@@ -97,6 +108,11 @@ double albedo(const Material& m, int band) {
         return m.transmittance.empty() ? 1.0
                                        : std::max(fresnel_dielectric(1.0, 1.0 / m.ior), 0.0) +
                                              (1.0 - fresnel_dielectric(1.0, 1.0 / m.ior)) * at(m.transmittance, band);
+    case MaterialType::glazing: {
+        if (!m.glazing) return 0.0;
+        const PaneOptics o = (*m.glazing)[static_cast<size_t>(band)].at(1.0);
+        return o.reflectance + o.transmittance;
+    }
     }
     return 0.0;
 }

@@ -76,6 +76,9 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
     : scene_(scene), embree_(embree), bands_(scene.band_count()), eps_(4.0 * scene.ray_epsilon_m()) {
     if (bands_ > kMaxBands)
         throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
+    for (const Material& m : scene.materials)
+        has_glazing_ = has_glazing_ || m.type == MaterialType::glazing ||
+                       (m.type == MaterialType::general && !m.specular_transmittance.empty());
     const std::size_t T = scene.triangle_count(), B = static_cast<std::size_t>(bands_);
     constexpr std::size_t kS = TallyLayout::kSides;
     if (!secondary_lx.empty() && secondary_lx.size() != T * kS * B)
@@ -109,13 +112,40 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
     }
 }
 
-bool Renderer::occluded(const Vec3& o, const Vec3& d, double t_far) const {
-    return embree_.occluded(o, d,
-                            std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity());
+bool Renderer::passes(const Vec3& o, const Vec3& d, double t_far, double* share) const {
+    for (int b = 0; b < bands_; ++b) share[b] = 1.0;
+    const float far = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
+    if (!embree_.occluded(o, d, far)) return true;
+    if (!has_glazing_) return false;
+    // Straight through glazing (and a general material's specular transmittance) light
+    // keeps its direction and the tracer counts it as direct, not in the stored secondary
+    // map: follow the ray through each such surface, times its transmittance.
+    float near = 0.0f;
+    for (int pane = 0; pane < 64; ++pane) {
+        const Hit h = embree_.intersect(o, d, near, far);
+        if (!h.found) return true;
+        const Material& m = scene_.materials[scene_.triangle_material[h.triangle]];
+        const double cos_i = std::abs(glm::dot(d, scene_.triangle_normal[h.triangle]));
+        for (int b = 0; b < bands_; ++b) {
+            const auto band = static_cast<std::size_t>(b);
+            if (m.type == MaterialType::glazing && m.glazing) share[b] *= (*m.glazing)[band].at(cos_i).transmittance;
+            else if (m.type == MaterialType::general && !m.specular_transmittance.empty())
+                share[b] *= m.specular_transmittance[band];
+            else return false;
+        }
+        near = h.t + std::max(1e-6f * h.t, static_cast<float>(eps_));
+    }
+    return false;
 }
 
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
     const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
+    constexpr double kFar = std::numeric_limits<double>::infinity();
+    double share[kMaxBands], sum[kMaxBands];
+    auto add = [&](const Light& l, double ev, const double* per_band) {
+        for (int b = 0; b < bands_; ++b)
+            e[b] += ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
+    };
     for (const Light& l : scene_.lights.lights()) {
         switch (l.type) {
         case LightType::point:
@@ -128,38 +158,30 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
             const double cos_s = glm::dot(n, dir);
             if (cos_s <= 0.0) break;
             const double i_cd = intensity_cd(l, -dir);
-            if (!(i_cd > 0.0) || occluded(o, dir, glm::length(l.position - o) - eps_)) break;
-            const double ev = i_cd * cos_s / (dist * dist);
-            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            if (!(i_cd > 0.0) || !passes(o, dir, glm::length(l.position - o) - eps_, share)) break;
+            add(l, i_cd * cos_s / (dist * dist), share);
             break;
         }
-        case LightType::directional: {
-            const double cos_s = -glm::dot(n, l.aim);
-            if (cos_s <= 0.0 || occluded(o, -l.aim, std::numeric_limits<double>::infinity())) break;
-            for (int b = 0; b < bands_; ++b)
-                e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
-            break;
-        }
+        case LightType::directional:
         case LightType::sun: {
-            // The disc's centre stands for the disc in a picture.
+            // A sun's disc is stood for by its centre in a picture.
             const double cos_s = -glm::dot(n, l.aim);
-            if (cos_s <= 0.0 || occluded(o, -l.aim, std::numeric_limits<double>::infinity())) break;
-            for (int b = 0; b < bands_; ++b)
-                e[b] += l.illuminance_lx * cos_s * l.band_share[static_cast<std::size_t>(b)];
+            if (cos_s <= 0.0 || !passes(o, -l.aim, kFar, share)) break;
+            add(l, l.illuminance_lx * cos_s, share);
             break;
         }
         case LightType::sky: {
             // Directions drawn in proportion to L: E = (integral of L) x mean of
             // cos x visibility (sky_directions.hpp).
             const int count = std::max(1, opt.area_light_samples);
-            double sum = 0.0;
+            std::fill(sum, sum + bands_, 0.0);
             for (int k = 0; k < count; ++k) {
                 const Vec3 w = l.horizon.to_world(l.sky->sample((k + rng.next()) / count, rng.next()));
                 const double cos_s = glm::dot(n, w);
-                if (cos_s > 0.0 && !occluded(o, w, std::numeric_limits<double>::infinity())) sum += cos_s;
+                if (cos_s > 0.0 && passes(o, w, kFar, share))
+                    for (int b = 0; b < bands_; ++b) sum[b] += cos_s * share[b];
             }
-            const double ev = l.sky->luminance_integral_cd_m2_sr() * sum / count;
-            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            add(l, l.sky->luminance_integral_cd_m2_sr() / count, sum);
             break;
         }
         case LightType::area: {
@@ -167,7 +189,7 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
             // E = sum (M/pi) cos_s cos_e / d^2 * A / N over unshadowed points.
             const EmitterSurface& s = l.surface;
             const int count = std::max(1, opt.area_light_samples);
-            double sum = 0.0;
+            std::fill(sum, sum + bands_, 0.0);
             for (int k = 0; k < count; ++k) {
                 const double u = (k + rng.next()) / count;
                 const std::size_t i = sample_cdf(s.cdf, u);
@@ -186,11 +208,10 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
                 const double dist = std::sqrt(d2);
                 const Vec3 dir = v / dist;
                 const double cos_s = glm::dot(n, dir), cos_e = -glm::dot(s.normal[i], dir);
-                if (cos_s <= 0.0 || cos_e <= 0.0 || occluded(o, dir, glm::length(q - o) - 2.0 * eps_)) continue;
-                sum += cos_s * cos_e / d2;
+                if (cos_s <= 0.0 || cos_e <= 0.0 || !passes(o, dir, glm::length(q - o) - 2.0 * eps_, share)) continue;
+                for (int b = 0; b < bands_; ++b) sum[b] += cos_s * cos_e / d2 * share[b];
             }
-            const double ev = l.flux_lm / kPi * sum / count;  // (F / (pi A)) * A / N * sum
-            for (int b = 0; b < bands_; ++b) e[b] += ev * l.band_share[static_cast<std::size_t>(b)];
+            add(l, l.flux_lm / kPi / count, sum);  // (F / (pi A)) * A / N * sum
             break;
         }
         }
@@ -283,6 +304,19 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
             const Vec3 refracted = glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
             follow(m.transmittance.empty() ? nullptr : &m.transmittance, 1.0 - r, refracted);
         }
+        break;
+    }
+    case MaterialType::glazing: {
+        // A thin pane: the mirror branch and the straight-through branch, per band.
+        if (!m.glazing) break;
+        std::vector<double> r(static_cast<std::size_t>(bands_)), t(static_cast<std::size_t>(bands_));
+        for (int b = 0; b < bands_; ++b) {
+            const PaneOptics o = (*m.glazing)[static_cast<std::size_t>(b)].at(-glm::dot(d, n));
+            r[static_cast<std::size_t>(b)] = o.reflectance;
+            t[static_cast<std::size_t>(b)] = o.transmittance;
+        }
+        follow(&r, 1.0, reflect(d, n));
+        follow(&t, 1.0, d);
         break;
     }
     }

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <optional>
 
 namespace luxtrace::detail {
 
@@ -79,12 +81,65 @@ struct GeometryReader : StepReader {
             }
         } else if (type == "black") {
             m.type = MaterialType::black;
+        } else if (type == "glazing") {
+            m.type = MaterialType::glazing;
+            parse_glazing(r, m);
         } else {
-            r.fail("type", "unknown material type '" + type + "' (expected diffuse, mirror, glass, general or black)");
+            r.fail("type",
+                   "unknown material type '" + type + "' (expected diffuse, mirror, glass, general, black or glazing)");
         }
         r.finish();
         material_index[m.name] = static_cast<std::uint32_t>(scene.materials.size());
         scene.materials.push_back(std::move(m));
+    }
+
+    // An array of numbers of any length (a glazing table's column).
+    static std::vector<double> column(TableReader& r, const std::string& key) {
+        const toml::array* a = r.array(key);
+        if (a == nullptr) r.fail_entry("a glazing table needs 'angles_deg', 'transmittance_at' and 'reflectance_at'");
+        std::vector<double> out;
+        for (const toml::node& e : *a) {
+            const std::optional<double> v = e.value<double>();
+            if (!v || !std::isfinite(*v)) r.fail(key, "expected an array of numbers");
+            out.push_back(*v);
+        }
+        return out;
+    }
+
+    // type = "glazing": a pane given by its normal transmittance and index, or a maker's
+    // table against the angle of incidence (glazing.hpp); one curve per band.
+    void parse_glazing(TableReader& r, Material& m) const {
+        const std::size_t nb = scene.bands.size();
+        const bool table = r.has("angles_deg") || r.has("transmittance_at") || r.has("reflectance_at");
+        auto curves = std::make_shared<std::vector<GlazingCurve>>();
+        if (table) {
+            if (r.has("transmittance"))
+                r.fail("transmittance", "give either 'transmittance' or the table 'angles_deg', 'transmittance_at', "
+                                        "'reflectance_at', not both");
+            GlazingTable t{column(r, "angles_deg"), column(r, "transmittance_at"), column(r, "reflectance_at")};
+            const GlazingTableError e = check_glazing_table(t);
+            if (!e.key.empty()) r.fail(e.key, e.what);
+            curves->assign(nb, table_curve(t));
+        } else {
+            const auto t = r.per_band("transmittance", nb);
+            if (!t)
+                r.fail_entry("type 'glazing' needs 'transmittance' (normal incidence) or a table 'angles_deg', "
+                             "'transmittance_at', 'reflectance_at'");
+            m.ior = r.number("refractive_index").value_or(1.52);
+            if (!(m.ior >= 1.2 && m.ior <= 3.0)) r.fail("refractive_index", "must lie in [1.2, 3]");
+            const double t_max = max_pane_transmittance(m.ior);
+            for (std::size_t b = 0; b < nb; ++b) {
+                const double tb = (*t)[b];
+                if (!(tb > 0.0 && tb < 1.0)) r.fail("transmittance", "must lie in (0, 1), got " + fmt_number(tb));
+                if (tb > t_max * (1.0 + 1e-12))
+                    r.fail("transmittance", fmt_number(tb) + " is more than a pane of refractive index " +
+                                                fmt_number(m.ior) + " can transmit (" + fmt_number(t_max) +
+                                                ", with no absorption)");
+                curves->push_back(pane_curve(std::min(tb, t_max), m.ior));
+            }
+            m.transmittance = *t;
+        }
+        m.glazing = std::move(curves);
     }
 
     std::uint32_t material_ref(TableReader& r, const std::string& key, bool required) {

@@ -38,6 +38,7 @@ const PhotonSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
 void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0) {
     p.k = k;
     p.bounce = 0;
+    p.direct = true;
     const LightSet& lights = scene_.lights;
     const std::size_t li = lights.pick_light(PhiloxSampler::uniform(b0[0]));
     p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
@@ -76,7 +77,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     if (detectors_.sees_flights()) {
         const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
         const Vec3 hit_normal = hit.found ? Vec3(surfaces_.triangle(hit.triangle).normal) : Vec3(0.0);
-        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, hit_normal, p.bounce,
+        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, hit_normal, p.direct,
                           p.tally.registrations());
     }
     if (!hit.found) {
@@ -84,11 +85,11 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
         return false;
     }
     // The surface map: the side it arrives on (a photon travelling against the normal
-    // arrives on the front); the first arrival is the direct one.
+    // arrives on the front); arrivals before any event turned it are direct.
     const TriangleRecord& t = surfaces_.triangle(hit.triangle);
     const Vec3 ng(t.normal);
     const bool front = glm::dot(p.direction, ng) < 0.0;
-    p.tally.arrive(layout_, layout_.side_index(hit.triangle, front ? 0 : 1), p.bounce == 0, out);
+    p.tally.arrive(layout_, layout_.side_index(hit.triangle, front ? 0 : 1), p.direct, out);
 
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
@@ -102,6 +103,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     const Vec3 n_in = front ? ng : -ng;
     p.origin = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), t.margin);
     p.direction = s.direction;
+    p.direct = p.direct && s.event == ScatterEvent::specular_transmission;
     if (detectors_.sees_departures()) depart(p, embree_.to_scene(sp.p));
     if (++p.bounce >= scene_.run.max_bounces) {
         end(p, TallyLayout::kTruncated, out);

@@ -3,13 +3,15 @@
 // reflected, transmitted or absorbed with the material's probabilities for that band,
 // so every tally stays an integer count (SPEC §3).
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/material/glazing.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace luxtrace {
 
-enum class MaterialType { diffuse, mirror, glass, general, black };
+enum class MaterialType { diffuse, mirror, glass, general, black, glazing };
 
 struct Material {
     std::string name;
@@ -23,8 +25,13 @@ struct Material {
     std::vector<double> specular_transmittance;
     // glass: refractive index (Fresnel at each interface) and the probability that a
     // refracted photon survives the crossing (1 = clear glass).
+    // glazing: the same two fields hold the pane's refractive index and its normal
+    // transmittance per band (empty for a maker's table).
     double ior = 1.5;
     std::vector<double> transmittance;
+    // glazing: R and T against the angle of incidence, one curve per band (glazing.hpp),
+    // shared by every copy of the material.
+    std::shared_ptr<const std::vector<GlazingCurve>> glazing;
 };
 
 enum class ScatterEvent {
@@ -53,12 +60,14 @@ Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2);
 // One material in one band, flattened for the tracing path: the event thresholds as
 // cumulative probabilities (u_event below `diffuse_reflection` reflects diffusely, below
 // `specular_reflection` specularly, and so on; above the last one the photon is
-// absorbed), and for glass its index and the survival of a crossing.
+// absorbed), for glass its index and the survival of a crossing, for glazing its curve
+// (owned by the Material, which must outlive the model).
 struct ScatterModel {
     MaterialType type = MaterialType::black;
     double diffuse_reflection = 0.0, specular_reflection = 0.0;
     double diffuse_transmission = 0.0, specular_transmission = 0.0;
     double ior = 1.5, transmittance = 1.0;
+    const GlazingCurve* glazing = nullptr;
 };
 ScatterModel scatter_model(const Material& m, int band);
 

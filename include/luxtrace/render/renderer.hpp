@@ -6,8 +6,9 @@
 // the light's frame; area lights sampled) and E_secondary the stored map "all minus
 // direct arrivals", smoothed over the mesh (per-vertex area-weighted means of the
 // adjacent triangles, barycentric at p). Mirrors, the specular parts of `general` and
-// glass (Fresnel, both branches) are followed specularly; emitters seen from the front
-// show M / pi; rays leaving the scene see black.
+// glass (Fresnel, both branches) and glazing (reflected and straight through) are
+// followed specularly; emitters seen from the front show M / pi; rays leaving the scene
+// see black.
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/image_io.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -55,12 +56,16 @@ private:
                double* out) const;
     void direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const;
     void add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const;
-    bool occluded(const Vec3& o, const Vec3& d, double t_far) const;
+    // Whether light travels from o along d to t_far (scene coordinates), and the share of
+    // each band that does (share[b]: 1 in the open, the panes' T(theta) through glazing,
+    // a general material's specular transmittance through it).
+    bool passes(const Vec3& o, const Vec3& d, double t_far, double* share) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;
     int bands_;
     double eps_;
+    bool has_glazing_ = false;  // or a general material with specular transmittance: shadow rays look through
     std::vector<double> vertex_secondary_;  // [V][2][B]
     std::vector<int> emitter_of_;           // per triangle: area light index or -1
     std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights)

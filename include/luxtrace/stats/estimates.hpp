@@ -84,7 +84,7 @@ std::vector<double> side_replicate_sigma_lx(const WeightedTallies& tallies, std:
 // The surface map's illuminance as the result stores it, per triangle side (front 0).
 struct SurfaceMaps {
     std::vector<double> illuminance_lx;          // [T][2][B]: E0 / A_t (n_odd + n_even)
-    std::vector<double> illuminance_direct_lx;   // [T][2][B]: first arrivals only
+    std::vector<double> illuminance_direct_lx;   // [T][2][B]: direct arrivals only (tracer.hpp)
     std::vector<double> odd_even_difference_lx;  // [T][2], band-summed E_odd - E_even (the terms of eq. 5)
     std::vector<double> sigma_lx;                // [T][2], side_sigma_lx
     std::vector<double> replicate_sigma_lx;      // [T][2], side_replicate_sigma_lx (sobol only)

@@ -20,15 +20,15 @@ namespace luxtrace {
 class DetectorFilters {
 public:
     explicit DetectorFilters(const std::vector<Detector>& detectors);
-    // `bounce`: surface arrivals before this flight (0: straight from the light);
+    // `direct`: the flight is on the straight line from the light (no event turned it);
     // `hit_normal`: the unit normal of the surface it ends on (zero if it escapes).
     // Inline: it runs for every flight of every photon.
-    void flight(const Vec3& origin, const Vec3& direction, double t_max, const Vec3& hit_normal, int bounce,
+    void flight(const Vec3& origin, const Vec3& direction, double t_max, const Vec3& hit_normal, bool direct,
                 std::vector<Registration>& out) {
         cross(planes_, origin, direction, t_max, hit_normal, out);
         if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, out);
-        // Indirect only: the flight from the light (bounce 0) is the direct one.
-        if (bounce > 0) cross(indirect_planes_, origin, direction, t_max, hit_normal, out);
+        // Indirect only: planes that skip direct light (an observer's eye detector).
+        if (!direct) cross(indirect_planes_, origin, direction, t_max, hit_normal, out);
     }
     void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
     bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }

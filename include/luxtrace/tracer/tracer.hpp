@@ -58,6 +58,9 @@ private:
         std::uint64_t k = 0;
         int band = 0;
         int bounce = 0;
+        // Still on the straight line from its light: no event has turned it (going
+        // straight through glazing does not), so its arrivals count as direct light.
+        bool direct = true;
         Vec3f origin;
         Vec3 direction;
         Hit hit;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -169,6 +170,67 @@ TEST_F(Loader, TaskAreasOfIlluminanceDetectors) {
     ASSERT_EQ(s.detectors[1].task_areas.size(), 2u);
     EXPECT_EQ(s.detectors[1].task_areas[0].i0, 3);
     EXPECT_EQ(s.detectors[1].task_areas[1].name, "b");
+}
+
+// daylight_factor and en17037 (issue 23): refused without a daylight source or on a
+// detector that is not an illuminance grid, and their values checked.
+TEST_F(Loader, BadDaylightFactorKeysAreRefused) {
+    const std::string head = kMat + kFloor + kLamp + kDesk;
+    expect_bad(head + "daylight_factor = true\n", "daylight_factor",
+               {"[[detector]] #1 'desk'", "key 'daylight_factor'", "needs a daylight source", "E_h,ext"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 0.7 }\n", "en17037",
+               {"key 'en17037'", "needs a daylight source"});
+    expect_bad(head + "daylight_factor = 1\n", "daylight_factor", {"key 'daylight_factor'"});
+    expect_bad(head + "en17037 = 2\n", "en17037", {"key 'en17037'", "expected a table"});
+    expect_bad(head + "en17037 = { target_df = 2 }\n", "", {"en17037", "needs 'target_df'", "'minimum_df'"});
+    expect_bad(head + "en17037 = { target_df = 0, minimum_df = 0.7 }\n", "en17037",
+               {"key 'target_df'", "(0, 100] percent"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 120 }\n", "en17037",
+               {"key 'minimum_df'", "(0, 100] percent"});
+    expect_bad(head + "en17037 = { target_df = 2, minimum_df = 0.7, median = 1 }\n", "en17037",
+               {"unknown key 'median'"});
+    expect_bad(head + "daylight_factor = false\nen17037 = { target_df = 2, minimum_df = 0.7 }\n", "daylight_factor",
+               {"key 'daylight_factor'", "is false, but en17037"});
+    expect_bad(kMat + kFloor + kLamp +
+                   "[[detector]]\nname = \"v\"\ntype = \"luminance\"\ncenter = [0, 0, 0]\nsize = [1, 1]\n"
+                   "daylight_factor = true\n",
+               "daylight_factor", {"key 'daylight_factor'", "belong to illuminance detectors", "luminance"});
+    // Off by default, and `false` is accepted without a daylight source.
+    EXPECT_FALSE(load(head).detectors[0].daylight_factor);
+    const Scene off = load(head + "daylight_factor = false\n");
+    EXPECT_FALSE(off.detectors[0].daylight_factor);
+    EXPECT_FALSE(off.detectors[0].en17037.has_value());
+}
+
+// With a sky the keys load; a sun below the horizon is no daylight source. Electric light
+// beside the daylight is warned about unless a light scene lights with the daylight alone.
+TEST_F(Loader, DaylightFactorWithASky) {
+    const std::string sky = "[[light]]\ntype = \"sky\"\nsky = \"uniform\"\ndiffuse_horizontal_lx = 10000\n";
+    const Scene s = load(kMat + kFloor + sky + kDesk + "en17037 = { target_df = 2.1, minimum_df = 0.7 }\n");
+    const Detector& d = s.detectors[0];
+    EXPECT_TRUE(d.daylight_factor);
+    ASSERT_TRUE(d.en17037.has_value());
+    EXPECT_EQ(d.en17037->target_df, 2.1);
+    EXPECT_EQ(d.en17037->minimum_df, 0.7);
+    EXPECT_TRUE(s.warnings.empty());
+    EXPECT_TRUE(load(kMat + kFloor + sky + kDesk + "daylight_factor = true\n").detectors[0].daylight_factor);
+
+    const std::string low_sun = "[[light]]\ntype = \"sun\"\ndirect_normal_lx = 50000\nsun_altitude_deg = -5\n"
+                                "sun_azimuth_deg = 180\n";
+    expect_bad(kMat + kFloor + low_sun + kLamp + kDesk + "daylight_factor = true\n", "daylight_factor",
+               {"needs a daylight source"});
+
+    auto mixed_warning = [](const Scene& scene) {
+        return std::any_of(scene.warnings.begin(), scene.warnings.end(), [](const std::string& w) {
+            return w.find("daylight factor with daylight and electric light together") != std::string::npos;
+        });
+    };
+    const std::string df = kDesk + "daylight_factor = true\n";
+    EXPECT_TRUE(mixed_warning(load(kMat + kFloor + sky + kLamp + df)));
+    const std::string grouped = kMat + kFloor + sky + "group = \"day\"\n" + lamp_in("lamps");
+    EXPECT_TRUE(
+        mixed_warning(load(grouped + "[[light_scene]]\nname = \"all\"\ndimming = { day = 1, lamps = 1 }\n" + df)));
+    EXPECT_FALSE(mixed_warning(load(grouped + "[[light_scene]]\nname = \"day\"\ndimming = { day = 1 }\n" + df)));
 }
 
 TEST_F(Loader, BadTaskAreasAreRefused) {

@@ -3,9 +3,10 @@
 # tests/data/scenes/every_key.toml (illuminance and luminance detectors, a task area, three
 # targets) that also writes a checkpoint, and one of tests/data/reference/more_keys.toml
 # (cylindrical with horizontal, semicylindrical, an observer with luminaires in view and
-# notes, a maintenance factor all lights share) and one of tests/data/reference/daylight_keys.toml
-# (sun, skies, ground glow: /daylight); tests/result_reference.py compares the four files with
-# the tables.
+# notes, a maintenance factor all lights share) and one of
+# tests/data/reference/daylight_keys.toml (sun and skies with ground glow: /daylight, a
+# daylight_factor detector with en17037, a task area and a light scene);
+# tests/result_reference.py compares the four files with the tables.
 #   result_reference_test.sh LUXTRACE WORKDIR
 set -euo pipefail
 lux=$1
@@ -18,7 +19,8 @@ mkdir -p "$work"
     --output "$work/r.h5" --threads 2 --quiet
 test -f "$work/ck.h5" || { echo "no checkpoint was written" >&2; exit 1; }
 "$lux" run "$src/tests/data/reference/more_keys.toml" --photons 20k --output "$work/more.h5" --threads 2 --quiet
-"$lux" run "$src/tests/data/reference/daylight_keys.toml" --photons 20k --output "$work/day.h5" --threads 2 --quiet
+"$lux" run "$src/tests/data/reference/daylight_keys.toml" --photons 20k --output "$work/daylight.h5" --threads 2 \
+    --quiet
 /usr/bin/python3 "$src/tests/result_reference.py" "$src/docs/REFERENCE.md" "$work/r.h5" "$work/ck.h5" \
-    "$work/more.h5" "$work/day.h5"
+    "$work/more.h5" "$work/daylight.h5"
 rm -rf "$work"

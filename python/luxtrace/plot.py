@@ -90,6 +90,29 @@ def value_figure(d, bands=None):
     return fig
 
 
+def daylight_factor_figure(d):
+    """The daylight factor map of a ``daylight_factor`` detector in %, with the grid's median
+    and 95 % values (bias-corrected, with their errors) and the EN 17037 verdict when judged."""
+    df = d.daylight_factor
+    fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
+    top = float(np.nanmax(df)) if np.any(df > 0) else 1.0
+    im = ax.imshow(df, origin="lower", extent=_extent(d), cmap="viridis", interpolation="nearest", vmin=0.0, vmax=top)
+    fig.colorbar(im, ax=ax, label="DF (%)")
+    f = d.daylight_figures()
+    line = f"E_h,ext {d.daylight_reference_lx:.4g} lx"
+    if f is not None:
+        m, q = f["median"], f["df_95"]
+        line += (f"; median {m['corrected']:.3g} \u00b1 {m['sigma']:.2g} %, over 95 % {q['corrected']:.3g} "
+                 f"\u00b1 {q['sigma']:.2g} % (bias-corrected)")
+        if "en17037" in f:
+            e = f["en17037"]
+            line += f"\nEN 17037 (D_T {e['target_df']:.3g} %, D_TM {e['minimum_df']:.3g} %): {e['verdict']}"
+    ax.set_title(f"{d.name} \u2014 daylight factor, mean {f['mean'] if f else float(np.mean(df)):.3g} %\n{line}",
+                 fontsize=10)
+    _map_axes(ax, d)
+    return fig
+
+
 def error_figure(d, bands=None):
     """Relative error per cell in % (eq. 8, or the replicate spread of sobol), from 0 to the
     largest; cells without hits are grey with a cross."""
@@ -197,8 +220,9 @@ def save(fig, path):
 
 def detector_pictures(res, name, out_dir, cell=None):
     """Write NAME_value.png, NAME_error.png, NAME_error_hist.png and NAME_sections.png of
-    detector ``name`` of result ``res`` into ``out_dir``; ``cell`` = (i, j) for the
-    sections (default: the brightest cell). Returns the four paths."""
+    detector ``name`` of result ``res`` into ``out_dir`` (and NAME_df.png, the daylight factor
+    map in %, for a ``daylight_factor`` detector); ``cell`` = (i, j) for the sections
+    (default: the brightest cell). Returns the paths."""
     d = res.detector(name)
     i, j = cell if cell is not None else brightest_cell(d)
     if not (0 <= i < d.nx and 0 <= j < d.ny):
@@ -207,6 +231,8 @@ def detector_pictures(res, name, out_dir, cell=None):
     figures = ((value_figure, "value"), (error_figure, "error"), (error_histogram_figure, "error_hist"))
     paths = [save(make(d, res.bands), os.path.join(out_dir, f"{name}_{suffix}.png")) for make, suffix in figures]
     paths.append(save(sections_figure(d, i, j, res.bands), os.path.join(out_dir, f"{name}_sections.png")))
+    if d.is_daylight:
+        paths.append(save(daylight_factor_figure(d), os.path.join(out_dir, f"{name}_df.png")))
     return paths
 
 

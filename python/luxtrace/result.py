@@ -288,6 +288,27 @@ class Detector(_AttrAccess):
     error_estimator = property(lambda self: self._attr("error_estimator", "independent_photons_eq8"))
     error_dof = property(lambda self: self._attr("error_dof", 0), doc="0 (eq. 8), or R - 1 for sobol")
 
+    # ------------------------------------------------------------------ daylight factors
+    daylight_factor = property(lambda self: self.datasets.get("daylight_factor"),
+                               doc="float64 [ny,nx]: DF = 100 E / E_h,ext in %, bands summed (daylight_factor "
+                                   "detectors); None otherwise")
+    daylight_factor_sigma = property(lambda self: self.datasets.get("daylight_factor_sigma"),
+                                     doc="float64 [ny,nx]: its standard error in %; NaN where a cell got no photon")
+    daylight_reference_lx = property(lambda self: self._attr("daylight_reference_lx"),
+                                     doc="E_h,ext (lx), the daylight's unobstructed horizontal illuminance")
+
+    @property
+    def is_daylight(self):
+        """Whether the result holds daylight factors for this detector."""
+        return self.daylight_factor is not None
+
+    def daylight_figures(self, area=None):
+        """The DF figures of the whole grid (``area`` None) or of a task area: a dict with
+        mean, median and df_95 (each value, sigma, bias and the bias-corrected value, in %;
+        docs/DAYLIGHT.md) and, with ``en17037``, its targets and verdicts. None for a
+        detector without daylight factors."""
+        return daylight_figures(self.attrs if area is None else self.task_areas[area].attrs)
+
     @property
     def u(self):
         """Unit vector of the columns: up x normal (as the detector was built)."""
@@ -354,6 +375,30 @@ class Detector(_AttrAccess):
                         row += [repr(float(sv[j, i])), repr(float(sr[j, i])), repr(float(sv[j, i] * sr[j, i]))]
                     w.writerow(row)
         return path
+
+
+def daylight_figures(attrs):
+    """The DF figures stored as attributes (``DF_*``, ``en17037_*``) of a detector, task area
+    or light scene detector group, as a dict; None where there are none."""
+    if "DF_median_pct" not in attrs:
+        return None
+    out = {"cells_without_photons": int(attrs["DF_cells_without_photons"]),
+           "mean": float(attrs["DF_mean_pct"]), "mean_sigma": float(attrs["DF_mean_sigma_pct"])}
+    for key, prefix in (("median", "DF_median"), ("df_95", "DF_95")):
+        value, sigma, bias = (float(attrs[f"{prefix}{s}_pct"]) for s in ("", "_sigma", "_bias"))
+        out[key] = {"value": value, "sigma": sigma, "bias": bias, "corrected": value - bias}
+    if "en17037_verdict" in attrs:
+        out["en17037"] = {
+            "target_df": float(attrs["en17037_target_df_pct"]),
+            "minimum_df": float(attrs["en17037_minimum_df_pct"]),
+            "target_verdict": str(attrs["en17037_target_verdict"]),
+            "target_photons_factor": float(attrs["en17037_target_photons_factor"]),
+            "minimum_verdict": str(attrs["en17037_minimum_verdict"]),
+            "minimum_photons_factor": float(attrs["en17037_minimum_photons_factor"]),
+            "verdict": str(attrs["en17037_verdict"]),
+            "photons_factor": float(attrs["en17037_photons_factor"]),
+        }
+    return out
 
 
 class TargetHistory:

@@ -5,13 +5,14 @@ import os
 import subprocess
 import sys
 
+import h5py
 import matplotlib.image
 import numpy as np
 import pytest
 
 import luxtrace
 from luxtrace import plot
-from conftest import HERE, REPO, simulate, write_v2
+from conftest import HERE, REPO, copy, simulate, write_v2
 
 import matplotlib.pyplot as plt
 
@@ -114,3 +115,46 @@ def test_plot_convergence_script_uses_the_package(room_runs, out_dir):
                        capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     assert {"convergence.png", "wall_value.png", "wall_sections.png"} <= set(os.listdir(out_dir))
+
+
+def _with_daylight_factor(src, dst, reference_lx=250.0):
+    """A copy of a room run whose detector 'table' carries daylight factors as the binary
+    writes them for a daylight_factor detector (the scene's lamp standing in for the sky;
+    the quantile figures and verdicts are stated here, the reader only has to pass them on)."""
+    from luxtrace.result_file import _seal
+    path = copy(src, dst)
+    with h5py.File(path, "r+") as f:
+        g = f["detectors/table"]
+        value = g["value"][()].sum(axis=2)
+        g["daylight_factor"] = 100 * value / reference_lx
+        g["daylight_factor_sigma"] = 100 * value * g["sigma_rel"][()][:, :, 0] / reference_lx
+        g.attrs["daylight_reference_lx"] = reference_lx
+        for k, v in {"DF_cells_without_photons": np.uint64(0), "DF_mean_pct": 2.0, "DF_mean_sigma_pct": 0.01,
+                     "DF_median_pct": 1.9, "DF_median_sigma_pct": 0.05, "DF_median_bias_pct": -0.02,
+                     "DF_95_pct": 0.6, "DF_95_sigma_pct": 0.04, "DF_95_bias_pct": -0.03,
+                     "en17037_target_df_pct": 2.0, "en17037_minimum_df_pct": 0.7,
+                     "en17037_target_verdict": "undecided", "en17037_target_photons_factor": 3.5,
+                     "en17037_minimum_verdict": "fail", "en17037_minimum_photons_factor": 0.0,
+                     "en17037_verdict": "fail", "en17037_photons_factor": 0.0}.items():
+            g.attrs[k] = v
+    _seal(path)
+    return path
+
+
+def test_daylight_factor_map_figures_and_picture(room_runs, tmp_path, out_dir):
+    path = _with_daylight_factor(room_runs["random", 1], tmp_path / "df.h5")
+    r = luxtrace.open(path)
+    d = r.detector("table")
+    assert d.is_daylight and not r.detector("wall").is_daylight
+    assert d.daylight_reference_lx == 250.0
+    value, rel = d.band_sum()
+    np.testing.assert_allclose(d.daylight_factor, 100 * value / 250.0, rtol=1e-12)
+    np.testing.assert_allclose(d.daylight_factor_sigma, d.daylight_factor * rel, rtol=1e-12)
+    f = d.daylight_figures()
+    assert f["median"]["corrected"] == pytest.approx(1.92) and f["df_95"]["corrected"] == pytest.approx(0.63)
+    assert f["en17037"]["verdict"] == "fail" and f["en17037"]["target_photons_factor"] == 3.5
+    assert r.detector("wall").daylight_figures() is None
+    paths = plot.detector_pictures(r, "table", str(out_dir))
+    assert os.path.basename(paths[-1]) == "table_df.png"
+    img = matplotlib.image.imread(paths[-1])
+    assert img.ndim == 3 and min(img.shape[:2]) > 200

@@ -4,11 +4,13 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/stats/daylight_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,51 @@ void print_metrics(const ResultReader& r, const std::string& g, const std::strin
             << "maintained Eavg " << f("E_avg_maintained_lx") << " +- " << f("E_avg_maintained_sigma_lx")
             << " lx, Emin " << f("E_min_maintained_lx") << " +- " << f("E_min_maintained_sigma_lx") << " lx, Emax "
             << f("E_max_maintained_lx") << " lx\n";
+}
+
+// A daylight_factor detector's DF figures of a grid or task area, and its EN 17037 verdict
+// with what would decide it (docs/DAYLIGHT.md).
+void print_daylight(const ResultReader& r, const std::string& g, std::ostream& out) {
+    if (!r.has_attr(g, "DF_median_pct")) return;
+    auto f = [&](const std::string& name) { return r.attr_f64(g, name); };
+    auto quantile = [&](const std::string& q) {
+        std::ostringstream s;
+        s << std::fixed << std::setprecision(2) << f(q + "_pct") << " +- " << f(q + "_sigma_pct") << " %"
+          << std::defaultfloat << std::setprecision(2) << " (bias " << f(q + "_bias_pct") << " %)";
+        return s.str();
+    };
+    out << "  " << std::setw(13) << ""
+        << "DF mean " << std::fixed << std::setprecision(2) << f("DF_mean_pct") << " +- " << f("DF_mean_sigma_pct")
+        << " %, median " << quantile("DF_median") << ", exceeded over 95 % " << quantile("DF_95");
+    if (r.attr_u64(g, "DF_cells_without_photons") > 0)
+        out << "; " << r.attr_u64(g, "DF_cells_without_photons") << " cells without photons (errors too low)";
+    out << '\n';
+    if (!r.has_attr(g, "en17037_verdict")) return;
+    auto criterion = [&](const char* what, const std::string& key, const std::string& q) {
+        const std::string v = r.attr_str(g, "en17037_" + key + "_verdict");
+        const double target = f("en17037_" + key + "_df_pct");
+        out << what << ' ' << std::defaultfloat << std::setprecision(3) << target << " %: " << v;
+        if (v != "undecided") return;
+        const double factor = f("en17037_" + key + "_photons_factor");
+        const double value = f(q + "_pct") - f(q + "_bias_pct");
+        if (std::isfinite(factor))
+            out << " (about " << std::setprecision(3) << factor << " x the photons would decide it)";
+        else
+            out << " (cannot decide: the value equals the target within " << std::setprecision(2)
+                << std::max(std::abs(value - target),
+                            kVerdictSigmas * std::hypot(f(q + "_sigma_pct"), f(q + "_bias_pct")))
+                << " %)";
+    };
+    out << "  " << std::setw(13) << ""
+        << "EN 17037 ";
+    criterion("D_T over 50 %", "target", "DF_median");
+    out << "; ";
+    criterion("D_TM over 95 %", "minimum", "DF_95");
+    out << "; verdict " << r.attr_str(g, "en17037_verdict") << " (95 % one-sided)";
+    const double factor = f("en17037_photons_factor");
+    if (r.attr_str(g, "en17037_verdict") == "undecided" && std::isfinite(factor))
+        out << ", about " << std::setprecision(3) << factor << " x the photons to decide";
+    out << '\n' << std::fixed << std::setprecision(2);
 }
 
 }  // namespace
@@ -131,8 +178,13 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
                 << ")\n"
                 << std::fixed << std::setprecision(2);
         }
+        if (r.has_attr(g, "daylight_reference_lx"))
+            out << "  daylight     E_h,ext " << std::setprecision(1) << r.attr_f64(g, "daylight_reference_lx")
+                << " lx (unobstructed horizontal, from the daylight model)\n"
+                << std::setprecision(2);
         if (r.has_attr(g, "U0")) {
             print_metrics(r, g, "whole grid", out);
+            print_daylight(r, g, out);
             for (const std::string& area : r.children(g + "/task_areas")) {
                 const std::string ga = g + "/task_areas/" + area;
                 std::vector<long> c;
@@ -141,6 +193,7 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
                 out << "  task area '" << area << "' cells [" << c[0] << ":" << c[1] << "," << c[2] << ":" << c[3]
                     << "], " << r.attr_u64(ga, "metrics_cells") << " cells\n";
                 print_metrics(r, ga, "", out);
+                print_daylight(r, ga, out);
             }
             out << std::fixed << std::setprecision(2);
         }
@@ -191,11 +244,17 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
                 << 100.0 * r.attr_f64(g, "mean_sigma_rel") << " %, per-cell error "
                 << 100.0 * r.attr_f64(g, "sigma_rel_arithmetic") << " %\n";
             if (!r.has_attr(g, "U0")) continue;
+            if (r.has_attr(g, "daylight_reference_lx"))
+                out << "  daylight     E_h,ext " << std::setprecision(1) << r.attr_f64(g, "daylight_reference_lx")
+                    << " lx (the scene's weighted daylight)\n"
+                    << std::setprecision(2);
             print_metrics(r, g, "whole grid", out);
+            print_daylight(r, g, out);
             for (const std::string& area :
                  r.has(g + "/task_areas") ? r.children(g + "/task_areas") : std::vector<std::string>{}) {
                 out << "  task area '" << area << "'\n";
                 print_metrics(r, g + "/task_areas/" + area, "", out);
+                print_daylight(r, g + "/task_areas/" + area, out);
             }
             out << std::fixed << std::setprecision(2);
         }

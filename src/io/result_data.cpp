@@ -214,6 +214,15 @@ DetectorData ResultFile::detector(const std::string& name) const {
     d.mean_value = reader_.attr_f64(g, "mean_value");
     d.mean_sigma_rel = reader_.attr_f64(g, "mean_sigma_rel");
     d.photons_received = reader_.attr_u64(g, "photons_received");
+    if (reader_.has(g + "/daylight_factor")) {
+        const std::vector<std::size_t> map_dims{d.ny, d.nx};
+        for (auto [dataset, out] : {std::pair{"/daylight_factor", &d.daylight_factor_pct},
+                                    std::pair{"/daylight_factor_sigma", &d.daylight_factor_sigma_pct}}) {
+            *out = reader_.f64(g + dataset, &shape);
+            if (shape != map_dims) throw InputError(path().string() + ": " + g + dataset + " is not [ny, nx]");
+        }
+        d.daylight_reference_lx = reader_.attr_f64(g, "daylight_reference_lx");
+    }
     return d;
 }
 

@@ -62,11 +62,43 @@ static void write_metrics(hid_t g, const IlluminanceMetrics& initial, const Illu
     attr(g, "U0_unreliable", std::uint64_t{initial.unreliable ? 1u : 0u});
 }
 
+// A daylight_factor detector's DF figures of a grid or task area (daylight_metrics.hpp):
+// the quantiles EN 17037 reads, with their errors and biases, and its verdicts when asked.
+static void write_daylight_metrics(hid_t g, const DaylightAreaMetrics& m) {
+    attr(g, "DF_cells_without_photons", m.cells_without_photons);
+    attr(g, "DF_mean_pct", m.mean_df);
+    attr(g, "DF_mean_sigma_pct", m.mean_df_sigma);
+    using Named = std::pair<std::string, const QuantileEstimate&>;
+    for (const auto& [name, q] : {Named{"DF_median", m.median}, Named{"DF_95", m.df_95}}) {
+        attr(g, name + "_pct", q.value);
+        attr(g, name + "_sigma_pct", q.sigma);
+        attr(g, name + "_bias_pct", q.bias);
+    }
+    if (!m.has_targets) return;
+    attr(g, "en17037_target_df_pct", m.targets.target_df);
+    attr(g, "en17037_minimum_df_pct", m.targets.minimum_df);
+    attr(g, "en17037_target_verdict", verdict_name(m.target_verdict.verdict));
+    attr(g, "en17037_target_photons_factor", m.target_verdict.photons_factor);
+    attr(g, "en17037_minimum_verdict", verdict_name(m.minimum_verdict.verdict));
+    attr(g, "en17037_minimum_photons_factor", m.minimum_verdict.photons_factor);
+    attr(g, "en17037_verdict", verdict_name(m.overall));
+    attr(g, "en17037_photons_factor", m.overall_photons_factor);
+}
+
+void write_daylight_map(hid_t g, const Detector& d, const std::optional<DaylightEstimate>& daylight) {
+    if (!daylight) return;
+    const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx)};
+    dataset(g, "daylight_factor", dims, daylight->df.data());
+    dataset(g, "daylight_factor_sigma", dims, daylight->df_sigma.data());
+    attr(g, "daylight_reference_lx", daylight->reference_lx);
+}
+
 // The whole grid's metrics on the detector's group, each task area's in task_areas/AREA.
 void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceMetrics>& initial,
-                      const std::vector<IlluminanceMetrics>& maint) {
+                      const std::vector<IlluminanceMetrics>& maint, const std::optional<DaylightEstimate>& daylight) {
     if (initial.empty()) return;
     write_metrics(g, initial.front(), maint.front());
+    if (daylight) write_daylight_metrics(g, daylight->areas.front());
     if (initial.size() == 1) return;
     const Id areas = create_group(g, "task_areas", "group /detectors/" + d.name + "/task_areas");
     for (std::size_t k = 1; k < initial.size(); ++k) {
@@ -76,6 +108,7 @@ void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceM
              std::vector<std::uint64_t>{static_cast<std::uint64_t>(m.i0), static_cast<std::uint64_t>(m.i1),
                                         static_cast<std::uint64_t>(m.j0), static_cast<std::uint64_t>(m.j1)});
         write_metrics(a, m, maint[k]);
+        if (daylight) write_daylight_metrics(a, daylight->areas[k]);
     }
 }
 
@@ -149,7 +182,8 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         // photons, or the spread of the R replicate means (sobol) with R - 1 dof.
         attr(g, "error_estimator", e.replicate_spread ? "replicate_spread" : "independent_photons_eq8");
         attr(g, "error_dof", static_cast<std::uint64_t>(e.dof));
-        write_task_areas(g, d, e.metrics, est.maintained_metrics[di]);
+        write_daylight_map(g, d, est.daylight[di]);
+        write_task_areas(g, d, e.metrics, est.maintained_metrics[di], est.daylight[di]);
         if (d.type == DetectorType::luminance) {
             attr(g, "view_direction", std::vector<double>{d.cone_axis.x, d.cone_axis.y, d.cone_axis.z});
             attr(g, "half_angle_deg", d.half_angle_deg);

@@ -37,7 +37,8 @@ void write_scene_detectors(hid_t parent, const Scene& scene, const ResultEstimat
         dataset(g, "sigma_rel", dims, e.sigma_rel.data());
         attr(g, "units", d.units());
         write_detector_summary(g, e);
-        write_task_areas(g, d, e.metrics, est.maintained_metrics[di]);
+        write_daylight_map(g, d, est.daylight[di]);
+        write_task_areas(g, d, e.metrics, est.maintained_metrics[di], est.daylight[di]);
     }
 }
 

@@ -9,6 +9,7 @@
 #include "luxtrace/stats/result_estimates.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace luxtrace {
@@ -53,10 +54,15 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& layout,
 // /observers/NAME: UGR and the luminaires in view, with the eye detector's counts.
 void write_observers(hid_t file, const Scene& scene, const TallyLayout& layout,
                      const std::vector<std::uint64_t>& tallies, const ResultEstimates& est);
-// The whole grid's metrics (Eavg, Emin, Emax, U0; initial and maintained) as attributes
-// of `g`, each task area's in g/task_areas/AREA.
+// The whole grid's metrics (Eavg, Emin, Emax, U0; initial and maintained; a
+// daylight_factor detector's DF quantiles and EN 17037 verdicts) as attributes of `g`,
+// each task area's in g/task_areas/AREA.
 void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceMetrics>& initial,
-                      const std::vector<IlluminanceMetrics>& maintained);
+                      const std::vector<IlluminanceMetrics>& maintained,
+                      const std::optional<DaylightEstimate>& daylight);
+// A daylight_factor detector's daylight_factor and daylight_factor_sigma [ny, nx] (%) and
+// daylight_reference_lx (E_h,ext) in `g`; nothing for other detectors.
+void write_daylight_map(hid_t g, const Detector& d, const std::optional<DaylightEstimate>& daylight);
 // /light_groups/NAME (scenes with more than one light group): each group's own counts.
 void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& layout,
                         const std::vector<std::uint64_t>& tallies);

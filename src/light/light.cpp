@@ -25,6 +25,17 @@ Vec3 disk_point(double radius, double u1, double u2) {
     return {r * std::cos(phi), r * std::sin(phi), 0.0};
 }
 
+namespace {
+// disk_point with the angle's sine and cosine taken in float, as unit_at_azimuth does:
+// positions good to 1e-7 of the radius (what Embree's float origins keep), at a fraction
+// of the double calls' cost; for the sky's per-photon disks.
+Vec3 disk_point_f(double radius, double u1, double u2) {
+    const double r = radius * std::sqrt(u1);
+    const float phi = static_cast<float>(2.0 * kPi * u2);
+    return {r * static_cast<double>(std::cos(phi)), r * static_cast<double>(std::sin(phi)), 0.0};
+}
+}  // namespace
+
 std::size_t sample_cdf(const std::vector<double>& cdf, double u) {
     const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
     return std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1);
@@ -65,7 +76,8 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         // Travel away from the sky element, starting on the disk that covers the scene's
         // sphere as seen from that direction.
         const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));
-        return {beam_center - 1.01 * beam_radius * d + Frame::around(d).to_world(disk_point(beam_radius, up1, up2)), d};
+        return {beam_center - 1.01 * beam_radius * d + Frame::around(d).to_world(disk_point_f(beam_radius, up1, up2)),
+                d};
     }
     }
     return {};

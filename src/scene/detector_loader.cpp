@@ -57,6 +57,38 @@ struct DetectorReader : StepReader {
         }
     }
 
+    // daylight_factor = true and en17037 = { target_df, minimum_df } (percent; implies
+    // daylight_factor): DF = E / E_h,ext needs E_h,ext > 0, so a daylight source.
+    void parse_daylight(TableReader& r, Detector& d) {
+        const std::optional<bool> df = r.boolean("daylight_factor");
+        if (r.has("en17037")) {
+            const toml::table* e = r.table("en17037");
+            if (e == nullptr) r.fail("en17037", "expected a table { target_df = D_T, minimum_df = D_TM } (percent)");
+            TableReader er(*e, fname, r.context() + " en17037", "detector.en17037");
+            const auto target = er.number("target_df");
+            const auto minimum = er.number("minimum_df");
+            if (!target || !minimum)
+                er.fail_entry("needs 'target_df' (D_T, exceeded over 50 % of the cells) and 'minimum_df' (D_TM, over "
+                              "95 %), in percent");
+            if (!(*target > 0.0 && *target <= 100.0)) er.fail("target_df", "must lie in (0, 100] percent");
+            if (!(*minimum > 0.0 && *minimum <= 100.0)) er.fail("minimum_df", "must lie in (0, 100] percent");
+            er.finish();
+            if (df == false) r.fail("daylight_factor", "is false, but en17037 judges daylight factors (leave it out)");
+            d.en17037 = En17037Targets{*target, *minimum};
+        }
+        d.daylight_factor = df.value_or(false) || d.en17037.has_value();
+        if (!d.daylight_factor) return;
+        const std::string key = df ? "daylight_factor" : "en17037";
+        if (d.type != DetectorType::illuminance)
+            r.fail(key, std::string("daylight factors belong to illuminance detectors (this one is ") +
+                            detector_type_name(d.type) + ")");
+        const auto& lights = scene.lights.lights();
+        if (std::none_of(lights.begin(), lights.end(),
+                         [](const Light& l) { return l.unobstructed_horizontal_lx > 0.0; }))
+            r.fail(key, "needs a daylight source ([[light]] type \"sky\" or \"sun\" above the horizon): DF = E / "
+                        "E_h,ext and this scene's lights give no unobstructed horizontal illuminance E_h,ext");
+    }
+
     void parse_detector(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("detector", i, t), "detector");
         Detector d;
@@ -99,6 +131,7 @@ struct DetectorReader : StepReader {
             d.ny = static_cast<int>(ny);
         }
         if (const toml::array* areas = r.array("task_area")) parse_task_areas(r, *areas, d);
+        parse_daylight(r, d);
         if (d.type == DetectorType::luminance) {
             d.view_direction = unit_vector(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
             d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);
@@ -227,11 +260,43 @@ struct DetectorReader : StepReader {
 
 }  // namespace
 
+namespace {
+
+// Whether the run (every light at full output) or some light scene lights with daylight
+// alone: electric light in a DF is counted as daylight, which a user rarely means.
+bool daylight_isolated(const Scene& scene) {
+    const auto& lights = scene.lights.lights();
+    // Sun and sky lights, their ground glow included, are daylight.
+    auto daylit = [](const Light& l) { return l.type == LightType::sun || l.type == LightType::sky; };
+    auto electric = [&](const Light& l) { return !daylit(l) && l.flux_lm > 0.0; };
+    if (std::none_of(lights.begin(), lights.end(), electric)) return true;
+    for (const LightScene& ls : scene.light_scenes) {
+        bool any_daylight = false, any_electric = false;
+        for (const Light& l : lights) {
+            if (!(ls.weights[l.group] > 0.0)) continue;
+            any_daylight = any_daylight || daylit(l);
+            any_electric = any_electric || electric(l);
+        }
+        if (any_daylight && !any_electric) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 void read_detectors(SceneLoad& load, TableReader& root) {
     DetectorReader reader(load);
     const auto tables = tables_of(root, "detector");
     for (std::size_t i = 0; i < tables.size(); ++i) reader.parse_detector(*tables[i], i);
     for (std::size_t i = 0; i < tables.size(); ++i) reader.link_horizontal(*tables[i], i);
+    if (daylight_isolated(load.scene)) return;
+    for (std::size_t i = 0; i < tables.size(); ++i)
+        if (load.scene.detectors[i].daylight_factor)
+            load.scene.warnings.push_back(
+                load.fname + ": " + entry_name("detector", i, *tables[i]) +
+                ": daylight factor with daylight and electric light together, and no [[light_scene]] that lights "
+                "with the daylight alone: DF = E / E_h,ext then counts the electric light as daylight (put the "
+                "daylight in its own light group and add a light scene of it)");
 }
 
 void read_observers(SceneLoad& load, TableReader& root) {

@@ -304,6 +304,8 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const We
             }
             out.metrics.push_back(illuminance_metrics(v, s, det.nx, a, avg_sigma));
         }
+        out.summed_value = std::move(v);
+        out.summed_sigma = std::move(s);
     }
     return out;
 }

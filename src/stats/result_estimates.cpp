@@ -35,6 +35,13 @@ std::vector<double> light_group_flux_lm(const Scene& scene) {
     return flux;
 }
 
+double daylight_reference_lx(const Scene& scene, std::span<const double> weights) {
+    double e = 0.0;
+    for (const Light& l : scene.lights.lights())
+        e += (weights.empty() ? 1.0 : weights[l.group]) * l.unobstructed_horizontal_lx;
+    return e;
+}
+
 LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& ls, const TallyLayout& layout,
                                          std::span<const std::uint64_t> data, double e0, std::uint64_t photons) {
     LightSceneEstimates e;
@@ -69,6 +76,14 @@ ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, do
                                                      r.detectors[static_cast<std::size_t>(det.horizontal_index)],
                                                      scene.bands.size()));
         else r.modelling.emplace_back();
+    }
+    const double reference_lx = daylight_reference_lx(scene, w.plain() ? std::span<const double>{} : w.weights());
+    for (std::size_t d = 0; d < scene.detectors.size(); ++d) {
+        const Detector& det = scene.detectors[d];
+        const DetectorEstimate& e = r.detectors[d];
+        if (det.daylight_factor && reference_lx > 0.0 && !e.summed_value.empty())
+            r.daylight.emplace_back(estimate_daylight(det, e.summed_value, e.summed_sigma, reference_lx));
+        else r.daylight.emplace_back();
     }
     for (const Observer& o : scene.observers)
         r.observers.push_back(estimate_observer(w.plain() ? o : dimmed(o, scene, w.weights()),

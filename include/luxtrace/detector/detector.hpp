@@ -4,6 +4,7 @@
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/detector/cylinder.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,13 @@ const char* detector_type_name(DetectorType type);
 struct TaskArea {
     std::string name;
     int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
+// EN 17037's daylight-factor targets in percent (a detector's en17037 key): D_T, to be
+// exceeded over 50 % of the cells, and the minimum target D_TM, over 95 % of them.
+struct En17037Targets {
+    double target_df = 0.0;
+    double minimum_df = 0.0;
 };
 
 struct Detector {
@@ -48,6 +56,10 @@ struct Detector {
     // Illuminance: count only photons that have scattered at least once (not the direct
     // flight from a light), as an observer's eye detector does for UGR's background.
     bool indirect_only = false;
+    // Illuminance: also store DF = E / E_h,ext (stats/daylight_metrics.hpp), and judge it
+    // against EN 17037 when `en17037` is set (which implies daylight_factor).
+    bool daylight_factor = false;
+    std::optional<En17037Targets> en17037;
     // >= 0: the eye detector of Scene::observers[observer], stored with the observer in
     // the result (/observers/NAME), not among the user's detectors.
     int observer = -1;

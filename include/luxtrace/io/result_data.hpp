@@ -57,6 +57,10 @@ struct DetectorData {
     std::vector<double> value, sigma_rel;     // [ny][nx][bands]
     double mean_value = 0.0, mean_sigma_rel = 0.0;
     std::uint64_t photons_received = 0;
+    // daylight_factor detectors (empty otherwise): DF and its standard error per cell, %,
+    // [ny][nx] band-summed, and the E_h,ext they are relative to.
+    std::vector<double> daylight_factor_pct, daylight_factor_sigma_pct;
+    double daylight_reference_lx = 0.0;
 };
 
 // One light group's own counts of a detector (/light_groups/NAME/detectors/DET), from which

@@ -18,6 +18,7 @@
 #include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/sky_model.hpp"
 
+#include <array>
 #include <optional>
 
 namespace luxtrace {
@@ -48,8 +49,11 @@ public:
 private:
     AliasTable cells_;
     double total_ = 0.0, horizontal_lx_ = 0.0;
-    std::vector<double> weight_;            // per cell, normalised
-    std::vector<float> slope_s_, slope_a_;  // per cell: the linear densities' slopes in cos Z and azimuth
+    std::vector<double> weight_;  // per cell, normalised
+    std::vector<float> slope_s_, slope_a_;
+    std::array<double, kRows + 1> mu_{};  // cos Z at the rows' edges
+    std::array<double, kColumns> sin_edge_{},
+        cos_edge_{};  // of the columns' first azimuths  // per cell: the linear densities' slopes in cos Z and azimuth
 };
 
 }  // namespace luxtrace

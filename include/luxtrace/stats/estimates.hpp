@@ -126,6 +126,9 @@ struct DetectorEstimate {
     // Illuminance detectors, whole-grid estimates only: Eavg, Emin, Emax, U0 of the whole
     // grid (first, area "") and of each of its task areas (illuminance_metrics.hpp).
     std::vector<IlluminanceMetrics> metrics;
+    // The same, whole-grid illuminance only: band-summed cells [ny][nx] and their absolute
+    // standard errors (NaN where a cell got nothing), for daylight factors.
+    std::vector<double> summed_value, summed_sigma;
 };
 
 // A mean from R independent randomisations of a QMC estimator (replicates, issue 11;

@@ -4,6 +4,7 @@
 // a group of estimates (e.g. per light group or light scene): a member here, filled in
 // estimate_result, written by one part of the writer (src/io/result_parts.hpp).
 #include "luxtrace/glare/observer_estimate.hpp"
+#include "luxtrace/stats/daylight_metrics.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/illuminance_metrics.hpp"
 #include "luxtrace/stats/modelling_ratio.hpp"
@@ -29,6 +30,8 @@ struct ResultEstimates {
     std::vector<std::vector<IlluminanceMetrics>> maintained_metrics;
     // Per detector: cylindrical detectors with a `horizontal` detector only.
     std::vector<std::optional<ModellingRatio>> modelling;
+    // Per detector: daylight_factor detectors only, while the lights give E_h,ext > 0.
+    std::vector<std::optional<DaylightEstimate>> daylight;
     std::vector<ObserverEstimate> observers;        // per Scene::observers
     std::vector<LightSceneEstimates> light_scenes;  // per Scene::light_scenes (the plain run's only)
 };
@@ -46,6 +49,9 @@ struct LightSceneEstimates {
 
 // Every light group's flux (lm), per Scene::light_groups.
 std::vector<double> light_group_flux_lm(const Scene& scene);
+// E_h,ext of daylight factors: the sum over the lights of their unobstructed horizontal
+// illuminance, each times its group's weight (empty weights: the plain run, all at 1).
+double daylight_reference_lx(const Scene& scene, std::span<const double> weights);
 
 // e0 = flux per photon (lm), photons = N, the photons emitted so far.
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's first command: install dependencies, build, and simulate the bundled
-# office under mpirun with 2 ranks. Results go to out/office/.
+# office under mpirun with 2 ranks, then the daylit office (examples/daylight). Results go
+# to out/office/ and out/daylight/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install_deps.sh"
@@ -25,3 +26,22 @@ echo "ParaView:      $out/office.xdmf"
 echo "Rendered view: $out/office_view.png (luminance in $out/office_view.exr)"
 echo "Desk pictures: $out/desk_value.png, desk_error.png, desk_error_hist.png, desk_sections.png"
 echo "               (scripts/plot_detector.py; in Python: import luxtrace, README \"Results in Python\")"
+echo
+
+# The daylit office: a side-lit room under the CIE overcast sky (daylight factors, EN 17037)
+# and under the sun of 21 March at 13:00 in Berlin (the sun patch), as two light scenes of
+# one run; pictures of each scene's detector (README "Daylight").
+day="$root/out/daylight"
+mkdir -p "$day"
+"$lux" check "$root/examples/daylight/side_lit_office.toml"
+echo
+mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/daylight/side_lit_office.toml" \
+  --threads 1 --output "$day/side_lit_office.h5"
+echo
+/usr/bin/python3 "$root/scripts/plot_detector.py" "$day/side_lit_office.h5" --scene overcast --detector work_plane \
+  -o "$day/overcast"
+/usr/bin/python3 "$root/scripts/plot_detector.py" "$day/side_lit_office.h5" --scene sunny --detector floor -o "$day/sunny"
+echo
+echo "Daylight:      $day/side_lit_office.h5   (luxtrace info; the light scenes 'overcast' and 'sunny')"
+echo "DF map:        $day/overcast/work_plane_df.png   (daylight factor %, median, 95 % value, EN 17037 verdict)"
+echo "Sun patch:     $day/sunny/floor_value.png"

@@ -218,12 +218,13 @@ def save(fig, path):
     return path
 
 
-def detector_pictures(res, name, out_dir, cell=None):
+def detector_pictures(res, name, out_dir, cell=None, scene=None):
     """Write NAME_value.png, NAME_error.png, NAME_error_hist.png and NAME_sections.png of
     detector ``name`` of result ``res`` into ``out_dir`` (and NAME_df.png, the daylight factor
     map in %, for a ``daylight_factor`` detector); ``cell`` = (i, j) for the sections
-    (default: the brightest cell). Returns the paths."""
-    d = res.detector(name)
+    (default: the brightest cell); ``scene``: the detector as the stored light scene of that
+    name has it (:meth:`Result.scene_detector`). Returns the paths."""
+    d = res.detector(name) if scene is None else res.scene_detector(scene, name)
     i, j = cell if cell is not None else brightest_cell(d)
     if not (0 <= i < d.nx and 0 <= j < d.ny):
         raise ValueError(f"cell {i},{j} is outside detector '{name}' (i in 0..{d.nx - 1}, j in 0..{d.ny - 1})")
@@ -347,6 +348,7 @@ def main(argv=None, prog="python3 -m luxtrace.plot"):
     p.add_argument("--cell", default="", metavar="I,J", help="i,j: the cell the sections go through (default: the brightest)")
     p.add_argument("-o", "--out-dir", metavar="DIR", help="folder for the PNGs (default: beside the result)")
     p.add_argument("--convergence", action="store_true", help="also convergence.png (error against time)")
+    p.add_argument("--scene", metavar="NAME", help="the detectors as the run's [[light_scene]] NAME has them")
     a = p.parse_args(argv)
     if not a.detector and not a.convergence:
         p.error("nothing to draw: give --detector NAME and/or --convergence")
@@ -355,7 +357,7 @@ def main(argv=None, prog="python3 -m luxtrace.plot"):
         res = _result.open(a.result)
         cell = _parse_cell(a.cell) if a.cell else None
         for name in a.detector:  # everything is checked before anything is written
-            d = res.detector(name)
+            d = res.detector(name) if a.scene is None else res.scene_detector(a.scene, name)
             if cell and not (0 <= cell[0] < d.nx and 0 <= cell[1] < d.ny):
                 raise ValueError(f"--cell {a.cell} is outside detector '{name}' "
                                  f"(i in 0..{d.nx - 1}, j in 0..{d.ny - 1})")
@@ -372,7 +374,7 @@ def main(argv=None, prog="python3 -m luxtrace.plot"):
         os.makedirs(out_dir, exist_ok=True)
         written.append(save(convergence_figure(res), os.path.join(out_dir, "convergence.png")))
     for name in a.detector:
-        written += detector_pictures(res, name, out_dir, cell)
+        written += detector_pictures(res, name, out_dir, cell, a.scene)
     for w in written:
         print(w)
     return 0

@@ -533,6 +533,33 @@ class Result(_AttrAccess):
         from .light_scenes import LightScene
         return LightScene(self, dict(weights))
 
+    # ``daylight``: the /daylight group (site, time, each sun and sky light's model, sun
+    # position and unobstructed horizontal illuminance) as a :class:`Group`, or None for a
+    # run without sun or sky; set by :func:`open`.
+    daylight = None
+
+    def scene_detector(self, scene, name):
+        """Detector NAME as the run's ``[[light_scene]]`` SCENE left it in the file
+        (/light_scenes/SCENE/detectors/NAME): its values and errors under that scene's
+        weights and, for a ``daylight_factor`` detector, its daylight factors and EN 17037
+        figures, with the detector's own geometry. KeyError naming what the file has
+        otherwise."""
+        base = self.detector(name)
+        if not self.path:
+            raise KeyError("the combined result has no stored light scenes")
+        with h5py.File(self.path, "r") as f:
+            scenes = f["light_scenes"] if "light_scenes" in f else {}
+            if scene not in scenes:
+                known = ", ".join(sorted(scenes)) or "none"
+                raise KeyError(f"{self.path}: no light scene '{scene}' (the file has: {known})")
+            dets = scenes[scene]["detectors"] if "detectors" in scenes[scene] else {}
+            if name not in dets:
+                raise KeyError(f"{self.path}: light scene '{scene}' has no detector '{name}'")
+            grp = dets[name]
+            areas = grp["task_areas"].items() if "task_areas" in grp else ()
+            return Detector(name, _read_datasets(grp), {**base.attrs, **_attrs(grp)}, self.photons,
+                            task_areas={a: Group(a, _attrs(t), _read_datasets(t)) for a, t in areas})
+
     def detector(self, name):
         """The detector NAME; KeyError naming the detectors there are otherwise."""
         try:
@@ -669,6 +696,7 @@ def _read(f, path):
     history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
     res = Result(attrs, mesh, surface, detectors, observers, history, path=path)
     res.light_group_tallies = group_tallies
+    res.daylight = Group("daylight", _attrs(f["daylight"]), _read_datasets(f["daylight"])) if "daylight" in f else None
     return res
 
 

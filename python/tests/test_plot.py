@@ -158,3 +158,36 @@ def test_daylight_factor_map_figures_and_picture(room_runs, tmp_path, out_dir):
     assert os.path.basename(paths[-1]) == "table_df.png"
     img = matplotlib.image.imread(paths[-1])
     assert img.ndim == 3 and min(img.shape[:2]) > 200
+
+
+def test_pictures_of_a_stored_light_scene(binary, tmp_path):
+    """--scene draws a detector as the run's [[light_scene]] left it: the stored scene's
+    values and daylight factors (half the daylight of tests/data/reference/daylight_keys.toml),
+    with the detector's geometry; an unknown scene writes nothing and exits 2."""
+    from conftest import run_luxtrace
+    scene = os.path.join(REPO, "tests", "data", "reference", "daylight_keys.toml")
+    path = run_luxtrace(binary, scene, tmp_path / "day.h5", "--photons", "100k")
+    r = luxtrace.open(path)
+    d = r.scene_detector("half_daylight", "roof_df")
+    with h5py.File(path, "r") as f:
+        g = f["light_scenes/half_daylight/detectors/roof_df"]
+        np.testing.assert_array_equal(d.value, g["value"][()])
+        np.testing.assert_array_equal(d.daylight_factor, g["daylight_factor"][()])
+    assert (d.nx, d.ny) == (r.detector("roof_df").nx, r.detector("roof_df").ny)
+    # /daylight: the site's time, and E_h,ext = the sum over the daylight sources.
+    day = r.daylight
+    assert day.attrs["time"] == "2026-06-21T14:30"
+    assert list(day.datasets["model"][:2]) in ([b"sun", b"CIE type 12"], ["sun", "CIE type 12"])
+    assert day.attrs["unobstructed_horizontal_lx"] == pytest.approx(day.datasets["unobstructed_horizontal_lx"].sum())
+    assert d.daylight_reference_lx == pytest.approx(0.5 * day.attrs["unobstructed_horizontal_lx"])
+    # Half of every light: the same daylight factors as the whole run, half the values.
+    np.testing.assert_allclose(d.value, 0.5 * r.detector("roof_df").value, rtol=1e-12)
+    np.testing.assert_allclose(d.daylight_factor, r.detector("roof_df").daylight_factor, rtol=1e-12)
+    out = tmp_path / "pics"
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "plot_detector.py"), path, "--detector",
+                        "roof_df", "--scene", "half_daylight", "-o", str(out)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert (out / "roof_df_df.png").exists()
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "plot_detector.py"), path, "--detector",
+                        "roof_df", "--scene", "nope", "-o", str(tmp_path / "none")], capture_output=True, text=True)
+    assert p.returncode == 2 and "no light scene 'nope'" in p.stderr and not (tmp_path / "none").exists()

@@ -143,8 +143,7 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
     constexpr double kFar = std::numeric_limits<double>::infinity();
     double share[kMaxBands], sum[kMaxBands];
     auto add = [&](const Light& l, double ev, const double* per_band) {
-        for (int b = 0; b < bands_; ++b)
-            e[b] += ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
+        for (int b = 0; b < bands_; ++b) e[b] += ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
     };
     for (const Light& l : scene_.lights.lights()) {
         switch (l.type) {

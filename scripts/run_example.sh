@@ -41,7 +41,8 @@ echo
 /usr/bin/python3 "$root/scripts/plot_detector.py" "$day/side_lit_office.h5" --scene overcast --detector work_plane \
   -o "$day/overcast"
 /usr/bin/python3 "$root/scripts/plot_detector.py" "$day/side_lit_office.h5" --scene sunny --detector floor -o "$day/sunny"
+"$lux" render "$day/side_lit_office.h5" --view inside --scene sunny -o "$day/sunny/inside.png"
 echo
 echo "Daylight:      $day/side_lit_office.h5   (luxtrace info; the light scenes 'overcast' and 'sunny')"
 echo "DF map:        $day/overcast/work_plane_df.png   (daylight factor %, median, 95 % value, EN 17037 verdict)"
-echo "Sun patch:     $day/sunny/floor_value.png"
+echo "Sun patch:     $day/sunny/floor_value.png, rendered: $day/sunny/inside.png"

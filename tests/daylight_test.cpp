@@ -193,84 +193,26 @@ TEST(DaylightEnergy, ClosedBoxFacesReceiveWhatSkySunAndGroundGive) {
 // A black room 3 m x 2 m x 2 m with a 0.6 m x 0.6 m opening in its south wall (y = -1,
 // x in [-0.3, 0.3], z in [0.9, 1.5]), glazed by `pane` (scene text) if given, and a
 // floor detector of 5 cm cells. The floor is the first shape: triangles 0 and 1.
+// A black rectangle's [[shape]] text: centre, normal, size (and `up` for the floor and
+// ceiling, whose default up would turn them).
+std::string black_rectangle(const std::string& center, const std::string& normal, const std::string& size,
+                            const std::string& up = "") {
+    return "[[shape]]\ntype = \"rectangle\"\ncenter = " + center + "\nnormal = " + normal + "\nsize = " + size +
+           (up.empty() ? "" : "\nup = " + up) + "\nmaterial = \"black\"\n\n";
+}
+
 std::string sun_patch_scene(const std::string& time, const std::string& pane = "") {
-    return std::string(R"([site]
-latitude_deg = 45.0
-longitude_deg = 9.0
-utc_offset_h = 1
-time = ")") +
-           time + R"("
-
-[[material]]
-name = "black"
-type = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, 0, 0]
-normal = [0, 0, 1]
-size = [3, 2]
-up = [0, 1, 0]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, 0, 2]
-normal = [0, 0, -1]
-size = [3, 2]
-up = [0, 1, 0]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, 1, 1]
-normal = [0, -1, 0]
-size = [3, 2]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [1.5, 0, 1]
-normal = [-1, 0, 0]
-size = [2, 2]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [-1.5, 0, 1]
-normal = [1, 0, 0]
-size = [2, 2]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, -1, 0.45]
-normal = [0, 1, 0]
-size = [3, 0.9]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, -1, 1.75]
-normal = [0, 1, 0]
-size = [3, 0.5]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [-0.9, -1, 1.2]
-normal = [0, 1, 0]
-size = [1.2, 0.6]
-material = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0.9, -1, 1.2]
-normal = [0, 1, 0]
-size = [1.2, 0.6]
-material = "black"
-
-[[light]]
+    return "[site]\nlatitude_deg = 45.0\nlongitude_deg = 9.0\nutc_offset_h = 1\ntime = \"" + time +
+           "\"\n\n[[material]]\nname = \"black\"\ntype = \"black\"\n\n" +
+           black_rectangle("[0, 0, 0]", "[0, 0, 1]", "[3, 2]", "[0, 1, 0]") +   // floor: triangles 0, 1
+           black_rectangle("[0, 0, 2]", "[0, 0, -1]", "[3, 2]", "[0, 1, 0]") +  // ceiling
+           black_rectangle("[0, 1, 1]", "[0, -1, 0]", "[3, 2]") +               // north wall
+           black_rectangle("[1.5, 0, 1]", "[-1, 0, 0]", "[2, 2]") +             // east wall
+           black_rectangle("[-1.5, 0, 1]", "[1, 0, 0]", "[2, 2]") +             // west wall
+           black_rectangle("[0, -1, 0.45]", "[0, 1, 0]", "[3, 0.9]") +          // south wall: below,
+           black_rectangle("[0, -1, 1.75]", "[0, 1, 0]", "[3, 0.5]") +          // above,
+           black_rectangle("[-0.9, -1, 1.2]", "[0, 1, 0]", "[1.2, 0.6]") +      // west and east of the window
+           black_rectangle("[0.9, -1, 1.2]", "[0, 1, 0]", "[1.2, 0.6]") + R"([[light]]
 type = "sun"
 direct_normal_lx = 80000
 )" + pane + R"(

@@ -92,10 +92,12 @@ size = [0.05, 0.05]
 material = "black"
 )";
 
-// A 1 m square detector at the origin facing `normal`.
-std::string unit_detector(const std::string& name, const std::string& normal, const std::string& up) {
-    return "[[detector]]\nname = \"" + name + "\"\ntype = \"illuminance\"\ncenter = [0, 0, 0]\nnormal = " + normal +
-           "\nup = " + up + "\nsize = [1, 1]\ncells = [1, 1]\n";
+// An illuminance detector's text: by default a one-cell 1 m square at the origin.
+std::string unit_detector(const std::string& name, const std::string& normal, const std::string& up,
+                          const std::string& center = "[0, 0, 0]", const std::string& size = "[1, 1]",
+                          const std::string& cells = "[1, 1]") {
+    return "[[detector]]\nname = \"" + name + "\"\ntype = \"illuminance\"\ncenter = " + center +
+           "\nnormal = " + normal + "\nup = " + up + "\nsize = " + size + "\ncells = " + cells + "\n";
 }
 
 TEST(DaylightSky, EverySkyLightsUnobstructedPlanesAsQuadratureSays) {
@@ -215,21 +217,19 @@ std::string sun_patch_scene(const std::string& time, const std::string& pane = "
            black_rectangle("[0.9, -1, 1.2]", "[0, 1, 0]", "[1.2, 0.6]") + R"([[light]]
 type = "sun"
 direct_normal_lx = 80000
-)" + pane + R"(
+)" + pane + "\n" +
+           unit_detector("floor", "[0, 0, 1]", "[0, 1, 0]", "[0, 0, 0.001]", "[3, 2]", "[60, 40]") +
+           "\n[run]\nphotons = 3000000\nseed = 11\n";
+}
 
-[[detector]]
-name = "floor"
-type = "illuminance"
-center = [0, 0, 0.001]
-normal = [0, 0, 1]
-up = [0, 1, 0]
-size = [3, 2]
-cells = [60, 40]
-
-[run]
-photons = 3000000
-seed = 11
-)";
+// The sun over the patch room's site (45 N, 9 E, CET) at local standard `time`.
+SunPosition patch_sun(const char* time) {
+    SunSite site;
+    site.latitude_deg = 45.0;
+    site.longitude_deg = 9.0;
+    LocalStandardTime when = *parse_local_time(time);
+    when.utc_offset_h = 1.0;
+    return sun_position(when, site);
 }
 
 // The patch a run of sun_patch_scene(time, pane) leaves on the floor detector against
@@ -239,12 +239,7 @@ fs::path check_sun_patch(const test_support::ScratchDir& dir, const std::string&
                          const std::string& pane, double transmittance) {
     constexpr double kEn = 80000.0, kCell = 0.05;
     constexpr double kMargin = 0.03;  // the penumbra: about 2.5 m x tan(0.27 deg) = 1.2 cm, and rounding
-    SunSite site;
-    site.latitude_deg = 45.0;
-    site.longitude_deg = 9.0;
-    LocalStandardTime when = *parse_local_time(time);
-    when.utc_offset_h = 1.0;
-    const SunPosition sun = sun_position(when, site);
+    const SunPosition sun = patch_sun(time);
     const Vec3 d = -sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);  // travel (north = +y)
     const fs::path out = run_scene(dir, name, sun_patch_scene(time, pane));
     const ResultReader r(out);
@@ -306,12 +301,7 @@ TEST(DaylightSun, PatchThroughGlazingIsThePanesShareAndDirectLight) {
     // sun's incidence on the pane, and on the black floor every arrival is direct.
     test_support::ScratchDir dir("daylight_glazed_patch");
     const char* time = "2026-03-21T14:00";
-    SunSite site;
-    site.latitude_deg = 45.0;
-    site.longitude_deg = 9.0;
-    LocalStandardTime when = *parse_local_time(time);
-    when.utc_offset_h = 1.0;
-    const SunPosition sun = sun_position(when, site);
+    const SunPosition sun = patch_sun(time);
     const double cos_i = sky_direction_deg(sun.altitude_deg, sun.azimuth_deg).y * -1.0;  // pane normal: south
     const double t = pane_optics(cos_i, 1.52, pane_transmissivity(0.88, 1.52)).transmittance;
     const std::string pane = R"(

@@ -117,6 +117,9 @@ bool Renderer::occluded(const Vec3& o, const Vec3& d, double t_far) const {
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
     const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
     for (const Light& l : scene_.lights.lights()) {
+        // A sun or sky split over portals is one light per opening: a picture's direct
+        // light takes the whole sky or sun once.
+        if (l.portal && l.portal_index > 0) continue;
         switch (l.type) {
         case LightType::point:
         case LightType::spot: {

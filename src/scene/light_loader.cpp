@@ -405,7 +405,9 @@ void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
     const Vec3 mid = 0.5 * (lo + hi);
     const double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-6;
     for (Light& l : lights)
-        if (l.type == LightType::directional) {
+        if (l.portal) {
+            continue;  // its photons start on the opening, its flux is the opening's
+        } else if (l.type == LightType::directional) {
             l.beam_radius = radius;
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
@@ -428,10 +430,12 @@ void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
 void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
     double total_flux = 0.0;
     std::string dark;
+    bool dark_through_portal = false;
     for (const Light& l : lights) {
         total_flux += l.flux_lm;
-        if (l.type == LightType::sun && l.illuminance_lx == 0.0) {
+        if ((l.type == LightType::sun && l.illuminance_lx == 0.0) || (l.portal && l.flux_lm == 0.0)) {
             dark = l.label;
+            dark_through_portal = l.portal != nullptr;
             continue;
         }
         if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
@@ -440,7 +444,8 @@ void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
     }
     if (!(total_flux > 0.0))
         throw InputError(fname + ": no light emits: " + dark +
-                         " is below the horizon and the scene has no other light (give a sky, or another time)");
+                         (dark_through_portal ? " sends nothing through its opening" : " is below the horizon") +
+                         " and the scene has no other light (give a sky, or another time)");
 }
 
 }  // namespace

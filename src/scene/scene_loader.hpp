@@ -58,6 +58,8 @@ void read_geometry(SceneLoad& load, TableReader& root);
 // [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
 // Refuses a scene without lights.
 void read_lights(SceneLoad& load, TableReader& root);
+// [[portal]]: every sun and sky light becomes one light per opening (portal_loader.cpp).
+void read_portals(SceneLoad& load, TableReader& root);
 // [[light_scene]]: Scene::light_scenes, weights per light group.
 void read_light_scenes(SceneLoad& load, TableReader& root);
 // [[detector]] with their task areas and cylinders.

@@ -340,23 +340,7 @@ struct LightReader : StepReader {
             l.flux_lm = flux("flux_lm") * l.dimming;
             const auto shape = r.string("shape");
             if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
-            const auto it = load.named_shapes.find(*shape);
-            if (it == load.named_shapes.end()) r.fail("shape", "no [[shape]] is named '" + *shape + "'");
-            EmitterSurface& s = l.surface;
-            for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
-                const glm::uvec3 v = scene.triangles[tri];
-                const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
-                s.p0.push_back(a);
-                s.e1.push_back(b - a);
-                s.e2.push_back(c - a);
-                s.normal.push_back(scene.triangle_normal[tri]);
-                s.scene_triangle.push_back(static_cast<int>(tri));
-                s.area_m2 += scene.triangle_area_m2[tri];
-                s.cdf.push_back(s.area_m2);
-            }
-            if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
-                r.fail("shape", "shape '" + *shape + "' has no area to emit from (its triangles are degenerate)");
-            for (double& c : s.cdf) c /= s.area_m2;
+            l.surface = shape_surface(load, r, "shape", *shape);
         } else if (type == "directional") {
             l.type = LightType::directional;
             const auto d = r.vec3("direction");
@@ -449,6 +433,29 @@ void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
 }
 
 }  // namespace
+
+EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
+                             const std::string& name) {
+    const auto it = load.named_shapes.find(name);
+    if (it == load.named_shapes.end()) r.fail(key, "no [[shape]] is named '" + name + "'");
+    const Scene& scene = load.scene;
+    EmitterSurface s;
+    for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
+        const glm::uvec3 v = scene.triangles[tri];
+        const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
+        s.p0.push_back(a);
+        s.e1.push_back(b - a);
+        s.e2.push_back(c - a);
+        s.normal.push_back(scene.triangle_normal[tri]);
+        s.scene_triangle.push_back(static_cast<int>(tri));
+        s.area_m2 += scene.triangle_area_m2[tri];
+        s.cdf.push_back(s.area_m2);
+    }
+    if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
+        r.fail(key, "shape '" + name + "' has no area to emit from (its triangles are degenerate)");
+    for (double& c : s.cdf) c /= s.area_m2;
+    return s;
+}
 
 void check_group_name(const TableReader& r, const std::string& key, const std::string& name) {
     if (name.empty()) r.fail(key, "must not be empty");

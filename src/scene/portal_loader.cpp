@@ -40,8 +40,6 @@ void warn_of_exterior_geometry(SceneLoad& load, const Portal& portal, double ext
 std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::vector<std::string>& used) {
     const auto shape = r.string("shape");
     if (!shape) r.fail_entry("needs 'shape' (the name of a planar [[shape]], the opening)");
-    const auto it = load.named_shapes.find(*shape);
-    if (it == load.named_shapes.end()) r.fail("shape", "no [[shape]] is named '" + *shape + "'");
     if (std::find(used.begin(), used.end(), *shape) != used.end())
         r.fail("shape", "shape '" + *shape + "' is already a portal");
     used.push_back(*shape);
@@ -50,25 +48,12 @@ std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::
     const Scene& scene = load.scene;
     auto portal = std::make_shared<Portal>();
     portal->name = *shape;
-    EmitterSurface& s = portal->surface;
+    portal->surface = shape_surface(load, r, "shape", *shape);
+    const EmitterSurface& s = portal->surface;
+    // Planar: one normal (the first triangle's with area), every vertex on its plane.
     Vec3 normal(0.0);
-    for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
-        if (!(scene.triangle_area_m2[tri] > 0.0)) continue;
-        const glm::uvec3 v = scene.triangles[tri];
-        const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
-        if (s.p0.empty()) normal = scene.triangle_normal[tri];
-        s.p0.push_back(a);
-        s.e1.push_back(b - a);
-        s.e2.push_back(c - a);
-        s.normal.push_back(scene.triangle_normal[tri]);
-        s.scene_triangle.push_back(static_cast<int>(tri));
-        s.area_m2 += scene.triangle_area_m2[tri];
-        s.cdf.push_back(s.area_m2);
-    }
-    if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
-        r.fail("shape", "shape '" + *shape + "' has no area (its triangles are degenerate)");
-    for (double& c : s.cdf) c /= s.area_m2;
-    // Planar: one normal, every vertex on the first triangle's plane (to rounding).
+    for (std::size_t i = 0; i < s.p0.size() && normal == Vec3(0.0); ++i)
+        if (scene.triangle_area_m2[static_cast<std::size_t>(s.scene_triangle[i])] > 0.0) normal = s.normal[i];
     double extent = 0.0;
     for (std::size_t i = 0; i < s.p0.size(); ++i)
         extent = std::max({extent, glm::length(s.p0[i] - s.p0[0]), glm::length(s.e1[i]), glm::length(s.e2[i])});
@@ -76,7 +61,8 @@ std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::
         const double off = std::max({std::abs(glm::dot(s.p0[i] - s.p0[0], normal)),
                                      std::abs(glm::dot(s.p0[i] + s.e1[i] - s.p0[0], normal)),
                                      std::abs(glm::dot(s.p0[i] + s.e2[i] - s.p0[0], normal))});
-        if (glm::dot(s.normal[i], normal) < 1.0 - 1e-9 || off > 1e-6 * (1.0 + extent))
+        const bool has_area = scene.triangle_area_m2[static_cast<std::size_t>(s.scene_triangle[i])] > 0.0;
+        if ((has_area && glm::dot(s.normal[i], normal) < 1.0 - 1e-9) || off > 1e-6 * (1.0 + extent))
             r.fail("shape", "shape '" + *shape +
                                 "' is not planar (a portal is one flat opening; its triangles must lie in one plane "
                                 "and face one way)");

@@ -1,6 +1,7 @@
 #include "luxtrace/light/light.hpp"
 
 #include "luxtrace/light/luminous_opening.hpp"
+#include "luxtrace/light/portal.hpp"
 #include "luxtrace/material/material.hpp"
 
 #include <algorithm>
@@ -41,6 +42,26 @@ std::size_t sample_cdf(const std::vector<double>& cdf, double u) {
     return std::min<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), cdf.size() - 1);
 }
 
+SurfacePick surface_point(const EmitterSurface& surface, double u1, double u2) {
+    // Pick a triangle by area, then a uniform point in it (folded square sampling).
+    const std::size_t i = sample_cdf(surface.cdf, u1);
+    const double lo = i == 0 ? 0.0 : surface.cdf[i - 1];
+    const double width = surface.cdf[i] - lo;
+    double a = width > 0.0 ? std::clamp((u1 - lo) / width, 0.0, 1.0) : 0.5;
+    double b = u2;
+    if (a + b > 1.0) {
+        a = 1.0 - a;
+        b = 1.0 - b;
+    }
+    const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
+    return {i, a, b, p};
+}
+
+EmittedRay Light::emit_through_portal(const Vec3& direction, double up1, double up2) const {
+    const SurfacePick s = surface_point(portal->surface, up1, up2);
+    return {s.point, direction, portal->surface.scene_triangle[s.triangle], s.a, s.b, portal->side, true};
+}
+
 EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
     switch (type) {
     case LightType::point:
@@ -54,25 +75,18 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         return {position, sample_uniform_sphere(ud1, ud2)};
     case LightType::spot: return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
     case LightType::area: {
-        // Pick a triangle by area, then a uniform point in it (folded square sampling),
-        // then a Lambertian direction from its front side.
-        const std::size_t i = sample_cdf(surface.cdf, up1);
-        const double lo = i == 0 ? 0.0 : surface.cdf[i - 1];
-        const double width = surface.cdf[i] - lo;
-        double a = width > 0.0 ? std::clamp((up1 - lo) / width, 0.0, 1.0) : 0.5;
-        double b = up2;
-        if (a + b > 1.0) {
-            a = 1.0 - a;
-            b = 1.0 - b;
-        }
-        const Vec3 p = surface.p0[i] + a * surface.e1[i] + b * surface.e2[i];
-        return {p, sample_cosine_hemisphere(surface.normal[i], ud1, ud2), surface.scene_triangle[i], a, b};
+        // A Lambertian direction from the point's front side.
+        const SurfacePick s = surface_point(surface, up1, up2);
+        return {s.point, sample_cosine_hemisphere(surface.normal[s.triangle], ud1, ud2),
+                surface.scene_triangle[s.triangle], s.a, s.b};
     }
     case LightType::directional: return {beam_center + frame.to_world(disk_point(beam_radius, up1, up2)), aim};
     case LightType::sun:
+        if (portal) return emit_through_portal(frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2)), up1, up2);
         return {beam_center + frame.to_world(disk_point(beam_radius, up1, up2)),
                 frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
     case LightType::sky: {
+        if (portal) return emit_through_portal(-portal_sky->sample(ud1, ud2), up1, up2);
         // Travel away from the sky element, starting on the disk that covers the scene's
         // sphere as seen from that direction.
         const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));

@@ -154,7 +154,9 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
     for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& l = lights[li];
         weight = light_weight_[li];
-        if (weight == 0.0) continue;
+        // A sun or sky split over portals is one light per opening: a picture's direct
+        // light takes the whole sky or sun once.
+        if (weight == 0.0 || (l.portal && l.portal_index > 0)) continue;
         switch (l.type) {
         case LightType::point:
         case LightType::spot: {
@@ -259,7 +261,7 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         const auto& lights = scene_.lights.lights();
         for (std::size_t li = 0; li < lights.size(); ++li) {
             const Light& l = lights[li];
-            if (l.type != LightType::sky || light_weight_[li] == 0.0) continue;
+            if (l.type != LightType::sky || light_weight_[li] == 0.0 || (l.portal && l.portal_index > 0)) continue;
             const double lum = light_weight_[li] * l.sky->luminance_cd_m2(l.horizon.to_local(d));
             for (int b = 0; b < bands_; ++b) out[b] += weight[b] * lum * l.band_share[static_cast<std::size_t>(b)];
         }

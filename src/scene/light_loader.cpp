@@ -340,23 +340,7 @@ struct LightReader : StepReader {
             l.flux_lm = flux("flux_lm") * l.dimming;
             const auto shape = r.string("shape");
             if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
-            const auto it = load.named_shapes.find(*shape);
-            if (it == load.named_shapes.end()) r.fail("shape", "no [[shape]] is named '" + *shape + "'");
-            EmitterSurface& s = l.surface;
-            for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
-                const glm::uvec3 v = scene.triangles[tri];
-                const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
-                s.p0.push_back(a);
-                s.e1.push_back(b - a);
-                s.e2.push_back(c - a);
-                s.normal.push_back(scene.triangle_normal[tri]);
-                s.scene_triangle.push_back(static_cast<int>(tri));
-                s.area_m2 += scene.triangle_area_m2[tri];
-                s.cdf.push_back(s.area_m2);
-            }
-            if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
-                r.fail("shape", "shape '" + *shape + "' has no area to emit from (its triangles are degenerate)");
-            for (double& c : s.cdf) c /= s.area_m2;
+            l.surface = shape_surface(load, r, "shape", *shape);
         } else if (type == "directional") {
             l.type = LightType::directional;
             const auto d = r.vec3("direction");
@@ -405,7 +389,9 @@ void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
     const Vec3 mid = 0.5 * (lo + hi);
     const double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-6;
     for (Light& l : lights)
-        if (l.type == LightType::directional) {
+        if (l.portal) {
+            continue;  // its photons start on the opening, its flux is the opening's
+        } else if (l.type == LightType::directional) {
             l.beam_radius = radius;
             l.beam_center = mid - 1.01 * radius * l.aim;
             l.flux_lm = l.illuminance_lx * kPi * radius * radius;
@@ -428,10 +414,12 @@ void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
 void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
     double total_flux = 0.0;
     std::string dark;
+    bool dark_through_portal = false;
     for (const Light& l : lights) {
         total_flux += l.flux_lm;
-        if (l.type == LightType::sun && l.illuminance_lx == 0.0) {
+        if ((l.type == LightType::sun && l.illuminance_lx == 0.0) || (l.portal && l.flux_lm == 0.0)) {
             dark = l.label;
+            dark_through_portal = l.portal != nullptr;
             continue;
         }
         if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
@@ -440,10 +428,34 @@ void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
     }
     if (!(total_flux > 0.0))
         throw InputError(fname + ": no light emits: " + dark +
-                         " is below the horizon and the scene has no other light (give a sky, or another time)");
+                         (dark_through_portal ? " sends nothing through its opening" : " is below the horizon") +
+                         " and the scene has no other light (give a sky, or another time)");
 }
 
 }  // namespace
+
+EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
+                             const std::string& name) {
+    const auto it = load.named_shapes.find(name);
+    if (it == load.named_shapes.end()) r.fail(key, "no [[shape]] is named '" + name + "'");
+    const Scene& scene = load.scene;
+    EmitterSurface s;
+    for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
+        const glm::uvec3 v = scene.triangles[tri];
+        const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
+        s.p0.push_back(a);
+        s.e1.push_back(b - a);
+        s.e2.push_back(c - a);
+        s.normal.push_back(scene.triangle_normal[tri]);
+        s.scene_triangle.push_back(static_cast<int>(tri));
+        s.area_m2 += scene.triangle_area_m2[tri];
+        s.cdf.push_back(s.area_m2);
+    }
+    if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
+        r.fail(key, "shape '" + name + "' has no area to emit from (its triangles are degenerate)");
+    for (double& c : s.cdf) c /= s.area_m2;
+    return s;
+}
 
 void check_group_name(const TableReader& r, const std::string& key, const std::string& name) {
     if (name.empty()) r.fail(key, "must not be empty");

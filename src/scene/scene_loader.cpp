@@ -100,6 +100,7 @@ Scene load_scene(const fs::path& file) {
     detail::read_site(load, root);
     detail::read_geometry(load, root);
     detail::read_lights(load, root);
+    detail::read_portals(load, root);
     detail::read_light_scenes(load, root);
     detail::read_detectors(load, root);
     detail::read_observers(load, root);

@@ -45,6 +45,11 @@ Vec3 unit_vector(TableReader& r, const std::string& key, Vec3 v);
 // A number as the user would write it (up to 15 significant digits).
 std::string fmt_number(double v);
 
+// The triangles of [[shape]] `name` as a surface to emit from (area lights, portals),
+// uniform in area; refuses (at `key`) an unknown shape or one without area (light_loader.cpp).
+EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
+                             const std::string& name);
+
 // Light group and light scene names go into the result's HDF5 group names and into
 // `--scene "a=0.5,b=1"`: not empty, and only letters, digits, '_', '-' and '.'.
 void check_group_name(const TableReader& r, const std::string& key, const std::string& name);
@@ -58,6 +63,8 @@ void read_geometry(SceneLoad& load, TableReader& root);
 // [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
 // Refuses a scene without lights.
 void read_lights(SceneLoad& load, TableReader& root);
+// [[portal]]: every sun and sky light becomes one light per opening (portal_loader.cpp).
+void read_portals(SceneLoad& load, TableReader& root);
 // [[light_scene]]: Scene::light_scenes, weights per light group.
 void read_light_scenes(SceneLoad& load, TableReader& root);
 // [[detector]] with their task areas and cylinders.

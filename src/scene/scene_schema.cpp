@@ -16,7 +16,8 @@ const std::vector<SceneTableSchema>& scene_schema() {
     // clang-format off
     static const std::vector<SceneTableSchema> schema = {
         {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
-             "site"}},
+             "site", "portal"}},
+        {"portal", {"shape", "flip"}},
         {"site",
          {"latitude_deg", "longitude_deg", "utc_offset_h", "elevation_m", "north", "time", "pressure_mbar",
           "temperature_c", "delta_t_s"}},

@@ -43,7 +43,8 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
     PhiloxSampler sampler(0x9e3779b9u);
     for (std::size_t li = 0; li < scene.lights.lights().size(); ++li) {
         const Light& l = scene.lights.lights()[li];
-        int black = 0, escaped = 0;
+        if (!(l.flux_lm > 0.0)) continue;  // a sun below the horizon or behind its portal
+        int black = 0, escaped = 0, blocked = 0;
         for (int k = 0; k < rays; ++k) {
             sampler.start_photon(static_cast<std::uint64_t>(k));
             const double a = sampler.next(), b = sampler.next(), c = sampler.next(), d = sampler.next();
@@ -56,7 +57,12 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
                 o = spawn_origin(point_on_triangle(embree.local_vertex(v.x), embree.local_vertex(v.y),
                                                    embree.local_vertex(v.z), static_cast<float>(r.emitter_u),
                                                    static_cast<float>(r.emitter_v), margin),
-                                 Vec3f(scene.triangle_normal[t]), margin);
+                                 Vec3f(scene.triangle_normal[t]) * static_cast<float>(r.emitter_side), margin);
+                // A portal photon's way back to the sky (tracer.cpp).
+                if (r.through_portal && embree.occluded_local(o, -Vec3f(r.direction))) {
+                    ++blocked;
+                    continue;
+                }
             }
             const Hit h = embree.intersect_local(o, Vec3f(r.direction));
             if (!h.found) {
@@ -65,7 +71,15 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
             }
             if (scene.materials[scene.triangle_material[h.triangle]].type == MaterialType::black) ++black;
         }
-        char buf[256];
+        char buf[512];
+        if (blocked > 0) {
+            std::snprintf(buf, sizeof buf,
+                          "%s: %.1f%% of probe rays back out through the opening hit exterior geometry: the sky "
+                          "it hides is right, but the light it reflects into the opening is not simulated "
+                          "(exact only if it is black; docs/DAYLIGHT.md, Portals)",
+                          l.label.c_str(), 100.0 * blocked / rays);
+            warnings.emplace_back(buf);
+        }
         if (black == rays) {
             std::snprintf(buf, sizeof buf,
                           "%s: every probe ray hits a black surface first: its photons are all absorbed at the first "

@@ -35,7 +35,7 @@ const PhotonSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
     return start_blocks_[k - start_base_];
 }
 
-void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0) {
+bool PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0, TallyBuffer& out) {
     p.k = k;
     p.bounce = 0;
     p.direct = true;
@@ -62,9 +62,27 @@ void PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
         const TriangleRecord& t = surfaces_.triangle(static_cast<std::size_t>(ray.emitter_triangle));
         p.origin = spawn_origin(point_on_triangle(t.p0, t.p1, t.p2, static_cast<float>(ray.emitter_u),
                                                   static_cast<float>(ray.emitter_v), t.margin, t.min_height),
-                                t.normal, t.margin);
+                                ray.emitter_side > 0 ? t.normal : -t.normal, t.margin);
+        if (ray.through_portal) return sees_sky(p, out);
         depart(p, ray.origin);
     }
+    return true;
+}
+
+bool PhotonTracer::sees_sky(Photon& p, TallyBuffer& out) {
+    // Back out through the opening towards the sky element the photon came from: anything
+    // in the way blocks it (portal.hpp). The obstruction's own reflections are not traced.
+    if (!embree_.occluded_local(p.origin, -Vec3f(p.direction))) return true;
+    end(p, TallyLayout::kAbsorbed, out);
+    return false;
+}
+
+bool PhotonTracer::launch(Photon& p, std::uint64_t& next, std::uint64_t last, TallyBuffer& out) {
+    while (next < last) {
+        const std::uint64_t k = next++;
+        if (start(p, k, start_block(k), out)) return true;
+    }
+    return false;
 }
 
 void PhotonTracer::depart(Photon& p, const Vec3& point) {
@@ -115,10 +133,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
 void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out) {
     std::uint64_t next = first;
     int active = 0;
-    while (active < kInFlight && next < last) {
-        start(flight_[active++], next, start_block(next));
-        ++next;
-    }
+    while (active < kInFlight && launch(flight_[active], next, last, out)) ++active;
     std::uint64_t ks[kInFlight];
     std::uint32_t bs[kInFlight];
     int slot[kInFlight];
@@ -148,9 +163,8 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
         for (int i = 0; i < active;) {
             if (step(flight_[i], arrival[i], out)) {
                 ++i;
-            } else if (next < last) {
-                start(flight_[i++], next, start_block(next));
-                ++next;
+            } else if (launch(flight_[i], next, last, out)) {
+                ++i;
             } else {
                 // Keep the photons in flight at the front; the one moved into slot i has
                 // not taken its step yet, so its arrival block moves with it.

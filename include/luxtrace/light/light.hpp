@@ -13,6 +13,9 @@
 
 namespace luxtrace {
 
+struct Portal;
+class PortalSky;
+
 enum class LightType { point, spot, area, directional, sun, sky };
 
 struct EmittedRay {
@@ -20,6 +23,10 @@ struct EmittedRay {
     Vec3 direction;
     int emitter_triangle = -1;                // area lights: the scene triangle the photon leaves from,
     double emitter_u = 0.0, emitter_v = 0.0;  // and the point's barycentrics on it (as Embree's)
+    // Which side of the emitter triangle the photon leaves from: +1 its front, -1 its back.
+    // A portal photon starts outside the opening and checks its way back to the sky.
+    int emitter_side = 1;
+    bool through_portal = false;
 };
 
 // Triangles of an area emitter, with the cumulative area for uniform position sampling.
@@ -78,8 +85,17 @@ struct Light {
     std::shared_ptr<const SkyDirections> sky;
     Frame horizon{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
     std::string sky_description;  // e.g. "CIE type 16", "uniform", "ground glow of light 2 (sun)"
+    // sun and sky through a [[portal]] (portal.hpp): photons start on the opening instead
+    // of the beam disk; flux_lm is what the unobstructed sky or sun sends through it. A
+    // light with several portals is one Light per portal, `portal_index` 0, 1, ...; only
+    // the first keeps unobstructed_horizontal_lx, so the scene's sum stays that of the sky.
+    std::shared_ptr<const Portal> portal;
+    std::shared_ptr<const PortalSky> portal_sky;  // sky: its directions through the opening
+    std::size_t portal_index = 0;
 
     EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
+    // A photon starting just outside the portal at (u_pos1, u_pos2), travelling along `direction`.
+    EmittedRay emit_through_portal(const Vec3& direction, double u_pos1, double u_pos2) const;
     // Whether its photons start on a beam disk (directional, sun, sky): they then draw
     // two uniforms for the position.
     bool beam() const { return type == LightType::directional || type == LightType::sun || type == LightType::sky; }
@@ -116,6 +132,14 @@ Vec3 sample_uniform_sphere(double u1, double u2);
 Vec3 sample_uniform_cone(double cos_max, double u1, double u2);
 // Uniform point on the disk of `radius` around the origin in the z = 0 plane.
 Vec3 disk_point(double radius, double u1, double u2);
+// A uniform point on the surface (two uniforms): the surface's triangle, the point's
+// barycentrics on it, the point.
+struct SurfacePick {
+    std::size_t triangle = 0;
+    double a = 0.0, b = 0.0;
+    Vec3 point{0.0};
+};
+SurfacePick surface_point(const EmitterSurface& surface, double u1, double u2);
 // Index of the first cdf entry > u (cdf normalised, last entry 1).
 std::size_t sample_cdf(const std::vector<double>& cdf, double u);
 

@@ -78,16 +78,19 @@ public:
     }
     // Any hit of the ray o + t d (scene coordinates), t in [0, t_far).
     bool occluded(const Vec3& o, const Vec3& d, float t_far) const {
+        return occluded_local(to_local(o), Vec3f(d), t_far);
+    }
+    // The same in local coordinates.
+    bool occluded_local(const Vec3f& lo, const Vec3f& d, float t_far = std::numeric_limits<float>::infinity()) const {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        const Vec3f lo = to_local(o);
         RTCRay ray;
         ray.org_x = lo.x;
         ray.org_y = lo.y;
         ray.org_z = lo.z;
-        ray.dir_x = static_cast<float>(d.x);
-        ray.dir_y = static_cast<float>(d.y);
-        ray.dir_z = static_cast<float>(d.z);
+        ray.dir_x = d.x;
+        ray.dir_y = d.y;
+        ray.dir_z = d.z;
         ray.tnear = 0.0f;
         ray.tfar = t_far;
         ray.time = 0.0f;

@@ -66,8 +66,14 @@ private:
         Hit hit;
         PhotonTally tally;
     };
-    // Start photon k with its block 0.
-    void start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0);
+    // Start photon k with its block 0; false if it ended at once (a portal photon whose
+    // way back to the sky is blocked).
+    bool start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0, TallyBuffer& out);
+    // Start photons next, next + 1, ... in slot p until one does not end at once; false
+    // when none is left before `last`.
+    bool launch(Photon& p, std::uint64_t& next, std::uint64_t last, TallyBuffer& out);
+    // A portal photon: whether its ray back out to the sky is clear (else it has ended).
+    bool sees_sky(Photon& p, TallyBuffer& out);
     // Block 0 of photon k, drawn with those of the next kBatch - 1 photons.
     const PhotonSampler::Block& start_block(std::uint64_t k);
     // One step after the photon's ray was intersected, with the block of its arrival;

@@ -148,6 +148,27 @@ TEST(DaylightSky, EverySkyLightsUnobstructedPlanesAsQuadratureSays) {
     pool.check("unobstructed planes under every sky");
 }
 
+TEST(DaylightSun, BelowTheHorizonTheRunSaysSoAndTheSunEmitsNothing) {
+    // Munich, 21 December at 20:00: the run warns, the sun carries no flux, the sky runs.
+    test_support::ScratchDir dir("daylight_night");
+    const fs::path scene = dir.path() / "night.toml", out = dir.path() / "night.h5";
+    std::ofstream(scene) << "[site]\nlatitude_deg = 48.14\nlongitude_deg = 11.58\nutc_offset_h = 1\n"
+                            "time = \"2026-12-21T20:00\"\n\n"
+                         << kBlackSpeck
+                         << "\n[[light]]\ntype = \"sun\"\ndirect_normal_lx = 50000\n\n[[light]]\ntype = \"sky\"\n"
+                            "sky = \"uniform\"\ndiffuse_horizontal_lx = 100\n\n"
+                         << unit_detector("up", "[0, 0, 1]", "[0, 1, 0]") << "\n[run]\nphotons = 20000\n";
+    const auto o = test_support::run_luxtrace("run \"" + scene.string() + "\" --output \"" + out.string() + "\"");
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("luxtrace: warning: light 1 (sun): the sun is below the horizon at 2026-12-21T20:00"),
+              std::string::npos)
+        << o.out;
+    const ResultReader r(out);
+    EXPECT_EQ(r.f64("/daylight/direct_normal_lx").at(0), 0.0);
+    const Reading up = grid_mean(r, "up");
+    EXPECT_LT(std::abs(up.value - 100.0), kZMax * up.sigma) << up.value << " +- " << up.sigma;
+}
+
 TEST(DaylightEnergy, ClosedBoxFacesReceiveWhatSkySunAndGroundGive) {
     // A black 1 m cube under the traditional overcast sky (10 klx), a sun of 60 klx
     // normal at altitude 35 degrees, azimuth 200, and a ground of reflectance 0.2:

@@ -128,6 +128,10 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
                   << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on " << comm.size()
                   << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores()) << " thread(s)\n"
                   << std::flush;
+    // What the scene's loading noticed (a sun below the horizon, portals beside exterior
+    // geometry, ...): `check` lists the same, with the probe's findings.
+    if (comm.is_root() && !a.quiet)
+        for (const std::string& w : scene.warnings) std::cerr << "luxtrace: warning: " << w << '\n';
     const RunSummary s = run_simulation(scene, comm, opt, std::cout);
     if (s.failed) {
         // Raised after parsing, inside a tracing thread: the rank that saw it says what.

@@ -14,6 +14,8 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
                            const TallyLayout& layout, PhotonSampler sampler)
     : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(std::move(sampler)),
       detectors_(scene.detectors) {
+    const auto& lights = scene.lights.lights();
+    all_positioned_ = std::all_of(lights.begin(), lights.end(), [](const Light& l) { return l.draws_position(); });
     // The tallies keep per-replicate counts for exactly the sampler's streams.
     const std::size_t streams = sampler_.kind() == SamplerKind::sobol ? sampler_.replicates() : 0;
     if (layout_.replicates() != streams)
@@ -24,15 +26,18 @@ PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const 
                                std::to_string(scene.light_groups.size()));
 }
 
-const PhotonSampler::Block& PhotonTracer::start_block(std::uint64_t k) {
-    if (start_base_ == UINT64_MAX || k < start_base_ || k - start_base_ >= PhiloxSampler::kBatch) {
+const PhotonSampler::Block& PhotonTracer::batched_block(BlockBatch& batch, std::uint64_t k, std::uint32_t b) {
+    if (batch.base == UINT64_MAX || k < batch.base || k - batch.base >= PhiloxSampler::kBatch) {
         std::uint64_t ks[PhiloxSampler::kBatch];
-        const std::uint32_t zero[PhiloxSampler::kBatch] = {};
-        for (std::size_t i = 0; i < PhiloxSampler::kBatch; ++i) ks[i] = k + i;
-        sampler_.blocks(ks, zero, PhiloxSampler::kBatch, start_blocks_.data());
-        start_base_ = k;
+        std::uint32_t bs[PhiloxSampler::kBatch];
+        for (std::size_t i = 0; i < PhiloxSampler::kBatch; ++i) {
+            ks[i] = k + i;
+            bs[i] = b;
+        }
+        sampler_.blocks(ks, bs, PhiloxSampler::kBatch, batch.blocks.data());
+        batch.base = k;
     }
-    return start_blocks_[k - start_base_];
+    return batch.blocks[k - batch.base];
 }
 
 bool PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block& b0, TallyBuffer& out) {
@@ -48,8 +53,8 @@ bool PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     const std::size_t replicate = layout_.replicates() > 0 ? sampler_.stream_of(k) : 0;
     p.tally.begin(layout_.bin(static_cast<std::size_t>(p.band), light.group, replicate, (k & 1u) != 0));
     double u_pos1 = 0.5, u_pos2 = 0.5;
-    if (light.type == LightType::area || light.beam() || light.opening.shape != LuminousOpening::Shape::point) {
-        const auto b1 = sampler_.block(k, 1);
+    if (light.draws_position()) {
+        const auto b1 = all_positioned_ ? batched_block(position_batch_, k, 1) : sampler_.block(k, 1);
         u_pos1 = PhiloxSampler::uniform(b1[0]);
         u_pos2 = PhiloxSampler::uniform(b1[1]);
     }

@@ -99,6 +99,11 @@ struct Light {
     // Whether its photons start on a beam disk (directional, sun, sky): they then draw
     // two uniforms for the position.
     bool beam() const { return type == LightType::directional || type == LightType::sun || type == LightType::sky; }
+    // Whether its photons' start points are drawn (area lights, beams, luminous openings):
+    // two more uniforms, from the photon's block 1.
+    bool draws_position() const {
+        return type == LightType::area || beam() || opening.shape != LuminousOpening::Shape::point;
+    }
 };
 
 // The solar disc seen from the Earth: 0.533 degrees across.

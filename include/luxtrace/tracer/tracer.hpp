@@ -74,8 +74,14 @@ private:
     bool launch(Photon& p, std::uint64_t& next, std::uint64_t last, TallyBuffer& out);
     // A portal photon: whether its ray back out to the sky is clear (else it has ended).
     bool sees_sky(Photon& p, TallyBuffer& out);
-    // Block 0 of photon k, drawn with those of the next kBatch - 1 photons.
-    const PhotonSampler::Block& start_block(std::uint64_t k);
+    // Block b (0: the start; 1: the start position) of photon k, drawn with those of the
+    // next kBatch - 1 photons.
+    struct BlockBatch {
+        std::array<PhotonSampler::Block, PhiloxSampler::kBatch> blocks{};
+        std::uint64_t base = UINT64_MAX;  // photon of blocks[0]
+    };
+    const PhotonSampler::Block& batched_block(BlockBatch& batch, std::uint64_t k, std::uint32_t b);
+    const PhotonSampler::Block& start_block(std::uint64_t k) { return batched_block(start_batch_, k, 0); }
     // One step after the photon's ray was intersected, with the block of its arrival;
     // false once the photon has ended.
     bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
@@ -91,8 +97,10 @@ private:
     DetectorFilters detectors_;
     std::array<Photon, kInFlight> flight_;
     static_assert(kInFlight <= static_cast<int>(PhiloxSampler::kBatch));
-    std::array<PhotonSampler::Block, PhiloxSampler::kBatch> start_blocks_{};
-    std::uint64_t start_base_ = UINT64_MAX;  // photon of start_blocks_[0]
+    BlockBatch start_batch_, position_batch_;
+    // Every light draws a start position (area lights, beams, luminous openings): block 1
+    // is then drawn in batches too; otherwise one at a time, for the photons that need it.
+    bool all_positioned_ = false;
     std::vector<RecordedRay>* record_ = nullptr;
 };
 

@@ -69,9 +69,11 @@ class LightSceneDetector:
         cells = self.count.shape[0] * self.count.shape[1]
         self.mean_value = total_n * per_count / cells
         self.photons_received = sum(int(t["photons_received"]) for w, t in zip(weights, tallies) if w > 0)
+        self._reps, self._rep_photons = None, replicate_photons
         if replicate_photons is not None and all("replicate_count" in t for t in tallies):
             # sobol: the spread of the weighted replicate counts (docs/QMC.md).
             reps = sum(w * t["replicate_count"].astype(float) for w, t in zip(weights, tallies))
+            self._reps = reps
             rel = statistics.replicate_sigma_rel(reps, replicate_photons)
             self.sigma_rel = np.where(self.count > 0, rel, np.nan)
             totals = sum(w * np.asarray(t["replicate_total"], dtype=float) for w, t in zip(weights, tallies))
@@ -84,6 +86,28 @@ class LightSceneDetector:
     def sigma(self):
         """float [ny,nx,B]: absolute standard error per cell."""
         return self.value * self.sigma_rel
+
+    # A daylight_factor detector of the run: E_h,ext of the combination (its daylight
+    # sources at their groups' weights) and, when positive, the DF map [ny,nx] in % with
+    # its standard error (band sums; a photon carries one band, so counts and sums of
+    # squares add over bands). The quantiles and EN 17037 verdicts need the run's own
+    # bootstrap: the declared [[light_scene]]s have them (Result.scene_detector).
+    daylight_reference_lx = None
+    daylight_factor = None
+    daylight_factor_sigma = None
+
+    def _set_daylight(self, reference_lx, photons):
+        self.daylight_reference_lx = reference_lx
+        if not reference_lx > 0:
+            return
+        value = self.value.sum(axis=2)
+        if self._reps is not None:
+            rel = statistics.replicate_sigma_rel(self._reps.sum(axis=3), self._rep_photons)
+            rel = np.where(self.count.sum(axis=2) > 0, rel, np.nan)
+        else:
+            rel = statistics.cell_sigma_rel(self.count.sum(axis=2), self.sumsq.sum(axis=2), photons)
+        self.daylight_factor = 100.0 * value / reference_lx
+        self.daylight_factor_sigma = self.daylight_factor * rel
 
     def __repr__(self):
         return f"<LightSceneDetector {self.name}: mean {self.mean_value:.5g} +- {100 * self.mean_sigma_rel:.3g} %>"
@@ -125,6 +149,20 @@ class LightScene:
             per_count = float(d.value[lit][0] / n[lit][0]) if lit.any() else 0.0
             self.detectors[name] = LightSceneDetector(name, [groups[g]["detectors"][name] for g in names], w,
                                                       per_count, photons, rep_photons)
+            if d.is_daylight:
+                self.detectors[name]._set_daylight(self.daylight_reference_lx(result, w), photons)
+
+    @staticmethod
+    def daylight_reference_lx(result, w):
+        """E_h,ext of the combination with weights ``w`` (per light group, in index order):
+        each daylight source's unobstructed horizontal illuminance at its group's weight
+        (/daylight); 0 without daylight."""
+        day = getattr(result, "daylight", None)
+        if day is None or "light_group" not in day.datasets:
+            return 0.0
+        groups = np.asarray(day.datasets["light_group"], dtype=int)
+        e = np.asarray(day.datasets["unobstructed_horizontal_lx"], dtype=float)
+        return float(sum(w[g] * x for g, x in zip(groups, e) if g < len(w)))
 
     def __repr__(self):
         return f"<LightScene {self.weights}: detectors {sorted(self.detectors)}>"

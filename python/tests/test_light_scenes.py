@@ -77,3 +77,26 @@ def test_bad_combinations_are_refused(two_groups, room_runs):
         r.light_scene({"a": -1})
     with pytest.raises(ValueError, match="no light groups"):
         luxtrace.open(room_runs["random", 1]).light_scene({"all": 1})
+
+
+def test_recombined_daylight_factors_match_the_declared_light_scene(binary, tmp_path):
+    """A combination's DF map (its daylight sources at their groups' weights, /daylight) is
+    the declared [[light_scene]]'s to rounding, with the same errors, in Python and in
+    `luxtrace info --scene` (the daylit example: overcast and clear groups)."""
+    import subprocess
+    scene = os.path.join(REPO, "examples", "daylight", "side_lit_office.toml")
+    path = run_luxtrace(binary, scene, tmp_path / "day.h5", "--photons", "300k")
+    r = luxtrace.open(path)
+    stored = r.scene_detector("overcast", "work_plane")
+    mine = r.light_scene({"overcast": 1.0}).detectors["work_plane"]
+    assert mine.daylight_reference_lx == pytest.approx(stored.daylight_reference_lx, rel=1e-12)
+    np.testing.assert_allclose(mine.daylight_factor, stored.daylight_factor, rtol=1e-10)
+    np.testing.assert_allclose(mine.daylight_factor_sigma, stored.daylight_factor_sigma, rtol=1e-10)
+    none = r.light_scene({"overcast": 0.0, "clear": 0.0}).detectors["work_plane"]
+    assert none.daylight_reference_lx == 0.0 and none.daylight_factor is None
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    out = subprocess.run([binary, "info", path, "--scene", "overcast=1"], env=env, capture_output=True,
+                         text=True, check=True).stdout
+    line = next(x for x in out.splitlines() if "DF mean" in x)
+    df = float(line.split("DF mean")[1].split()[0])
+    assert df == pytest.approx(stored.attrs["DF_mean_pct"], abs=0.006)

@@ -128,6 +128,20 @@ std::vector<double> parse_scene_weights(const std::string& spec, const std::vect
     return w;
 }
 
+namespace {
+// E_h,ext of the combination: each daylight source's at its group's weight (/daylight).
+double daylight_reference_lx(const ResultFile& file, const std::vector<double>& w) {
+    const ResultReader& r = file.raw();
+    if (!r.has("/daylight/light_group")) return 0.0;
+    const std::vector<std::uint64_t> group = r.u64("/daylight/light_group");
+    const std::vector<double> e = r.f64("/daylight/unobstructed_horizontal_lx");
+    double sum = 0.0;
+    for (std::size_t i = 0; i < group.size() && i < e.size(); ++i)
+        if (group[i] < w.size()) sum += w[group[i]] * e[i];
+    return sum;
+}
+}  // namespace
+
 void print_light_scene(const ResultFile& file, const std::string& spec, std::ostream& out) {
     const std::vector<LightGroupData> groups = file.light_groups();
     if (groups.empty())
@@ -162,11 +176,19 @@ void print_light_scene(const ResultFile& file, const std::string& spec, std::ost
         out << "global map     not kept per light group (run.group_maps = false)\n";
     }
     const std::vector<std::uint64_t> rep_photons = file.replicate_photons();
+    const double reference_lx = daylight_reference_lx(file, w);
     for (std::size_t di = 0; di < groups.front().detectors.size(); ++di) {
         const std::string& name = groups.front().detectors[di].first;
         const auto [mean, rel] = recombine_detector(file, groups, di, w, photons, rep_photons);
         out << "detector " << std::left << std::setw(14) << name << std::right << " mean " << mean << " "
             << file.detector(name).units << " +- " << 100.0 * rel << " %\n";
+        // A daylight_factor detector: its mean DF under this combination's daylight (the
+        // cells' quantiles need the cells, which only the declared light scenes keep).
+        if (!file.raw().has("/detectors/" + name + "/daylight_factor")) continue;
+        if (reference_lx > 0.0)
+            out << "  daylight     DF mean " << 100.0 * mean / reference_lx << " +- "
+                << 100.0 * mean * rel / reference_lx << " % (E_h,ext " << reference_lx << " lx)\n";
+        else out << "  daylight     no daylight in this combination: no daylight factor\n";
     }
     out.flags(flags);
 }

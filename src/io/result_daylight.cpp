@@ -11,7 +11,7 @@ using namespace hdf5;
 void write_daylight(hid_t file, const Scene& scene) {
     std::vector<std::string> labels, kinds;
     std::vector<double> altitude, azimuth, horizontal, normal;
-    std::vector<std::uint64_t> light;
+    std::vector<std::uint64_t> light, group;
     const auto& lights = scene.lights.lights();
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
@@ -23,6 +23,7 @@ void write_daylight(hid_t file, const Scene& scene) {
         horizontal.push_back(l.unobstructed_horizontal_lx);
         normal.push_back(l.type == LightType::sun ? l.illuminance_lx : 0.0);
         light.push_back(i);
+        group.push_back(l.group);
     }
     if (labels.empty()) return;
     const Id g = create_group(file, "daylight", "group /daylight");
@@ -30,6 +31,7 @@ void write_daylight(hid_t file, const Scene& scene) {
     string_dataset(g, "labels", labels);
     string_dataset(g, "model", kinds);
     dataset(g, "light_index", {n}, light.data());
+    dataset(g, "light_group", {n}, group.data());
     dataset(g, "sun_altitude_deg", {n}, altitude.data());
     dataset(g, "sun_azimuth_deg", {n}, azimuth.data());
     dataset(g, "unobstructed_horizontal_lx", {n}, horizontal.data());

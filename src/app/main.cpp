@@ -222,7 +222,8 @@ int main(int argc, char** argv) {
     std::optional<std::string> info_scene;
     info->add_option("--scene", info_scene,
                      "light groups at these weights, e.g. \"a=0.5,b=1\" (groups not named are off): the detector "
-                     "means and the global map with their errors, recombined from the result's light groups");
+                     "means (and mean daylight factors) and the global map with their errors, recombined from the "
+                     "result's light groups");
 
     RenderArgs rd;
     auto* render = app.add_subcommand("render",

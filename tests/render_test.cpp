@@ -12,6 +12,8 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
+#include "daylight_reference.hpp"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -108,6 +110,50 @@ TEST(RenderDirect, PointSourceRaysShowRhoEOverPi) {
             ++checked;
         }
     EXPECT_GE(checked, 20);
+}
+
+TEST(RenderDirect, SkyThroughAPortalIsItsExactSkyComponent) {
+    // A 4 x 4 x 3 m room, black but for its grey floor (rho 0.5), lit by the CIE overcast sky
+    // through a 1 m square hole in the roof that is a [[portal]] (an ior 1 "glass" that
+    // blocks nothing). Only direct sky reaches the floor, so a floor point shows
+    // rho / pi x E_dh x SC, SC the exact sky component through the hole (daylight_reference),
+    // whatever the stored map: the renderer samples the opening, not the whole sky.
+    auto rect = [](const std::string& c, const std::string& n, const std::string& size, const std::string& m) {
+        return "[[shape]]\ntype = \"rectangle\"\ncenter = " + c + "\nnormal = " + n +
+               "\nup = " + (n == "[0, 0, 1]" || n == "[0, 0, -1]" ? "[0, 1, 0]" : "[0, 0, 1]") + "\nsize = " + size +
+               "\nmaterial = \"" + m + "\"\n\n";
+    };
+    const fs::path dir = temp_dir();
+    std::ofstream(dir / "hole.toml")
+        << "[[material]]\nname = \"black\"\ntype = \"black\"\n\n[[material]]\nname = \"grey\"\nreflectance = 0.5\n\n"
+           "[[material]]\nname = \"hole\"\ntype = \"glass\"\nior = 1\n\n"
+        << rect("[2, 2, 0]", "[0, 0, 1]", "[4, 4]", "grey") << rect("[2, 0.75, 3]", "[0, 0, -1]", "[4, 1.5]", "black")
+        << rect("[2, 3.25, 3]", "[0, 0, -1]", "[4, 1.5]", "black")
+        << rect("[0.75, 2, 3]", "[0, 0, -1]", "[1.5, 1]", "black")
+        << rect("[3.25, 2, 3]", "[0, 0, -1]", "[1.5, 1]", "black")
+        << rect("[0, 2, 1.5]", "[1, 0, 0]", "[4, 3]", "black") << rect("[4, 2, 1.5]", "[-1, 0, 0]", "[4, 3]", "black")
+        << rect("[2, 0, 1.5]", "[0, 1, 0]", "[4, 3]", "black") << rect("[2, 4, 1.5]", "[0, -1, 0]", "[4, 3]", "black")
+        << "[[shape]]\nname = \"skylight\"\ntype = \"rectangle\"\ncenter = [2, 2, 3]\nnormal = [0, 0, -1]\n"
+           "up = [0, 1, 0]\nsize = [1, 1]\nmaterial = \"hole\"\n\n[[portal]]\nshape = \"skylight\"\n\n"
+           "[[light]]\ntype = \"sky\"\nsky = \"cie\"\ncie_type = 16\ndiffuse_horizontal_lx = 10000\n";
+    const Fixture f(load_scene(dir / "hole.toml"));
+    RenderOptions opt;
+    opt.area_light_samples = 4096;
+    const SkyModel overcast = SkyModel::cie(16, 0.0, 0.0);
+    const daylight_reference::Polygon hole = daylight_reference::rectangle(Vec3(2, 2, 3), Vec3(0.5, 0, 0),
+                                                                           Vec3(0, 0.5, 0));
+    for (const auto& [x, y] : {std::pair{2.0, 2.0}, std::pair{1.0, 2.5}, std::pair{3.3, 0.6}}) {
+        double mean = 0.0;
+        constexpr int kSeeds = 4;
+        for (int seed = 1; seed <= kSeeds; ++seed)
+            mean += f.renderer->trace(Vec3(x, y, 1.0), Vec3(0, 0, -1), static_cast<std::uint64_t>(seed), opt)[0];
+        mean /= kSeeds;
+        const double sc = daylight_reference::sky_component(overcast, {Vec3(x, y, 0), Vec3(0, 0, 1), hole, {}, {}});
+        const double expected = 0.5 / kPi * 10000.0 * sc;
+        // 16384 points on the opening: about 0.1 % of noise.
+        EXPECT_NEAR(mean / expected, 1.0, 0.005) << "floor point " << x << ", " << y << ": SC " << sc;
+    }
+    fs::remove_all(dir);
 }
 
 TEST(RenderDirect, RenderedPixelsLieWithinTheirFootprintAndSecondaryIsZero) {

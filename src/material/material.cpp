@@ -74,6 +74,12 @@ Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double
         return s;
     case MaterialType::glass: {
         // Entering through the front side goes from air (1) into glass (ior).
+        // Index 1 is no interface: an opening's surface that blocks nothing (a portal's
+        // hole, docs/DAYLIGHT.md), crossed straight, so its light stays direct.
+        if (m.ior == 1.0) {
+            if (u < m.transmittance) return {ScatterEvent::specular_transmission, dir, -1};
+            return s;
+        }
         const double eta = from_front ? 1.0 / m.ior : m.ior;
         const double cos_i = -glm::dot(dir, n);
         const double r = fresnel_dielectric(cos_i, eta);

@@ -2,6 +2,7 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_data.hpp"
+#include "luxtrace/light/portal.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
@@ -82,7 +83,8 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
         throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
     for (const Material& m : scene.materials)
         has_glazing_ = has_glazing_ || m.type == MaterialType::glazing ||
-                       (m.type == MaterialType::general && !m.specular_transmittance.empty());
+                       (m.type == MaterialType::general && !m.specular_transmittance.empty()) ||
+                       (m.type == MaterialType::glass && m.ior == 1.0);
     const std::size_t T = scene.triangle_count(), B = static_cast<std::size_t>(bands_);
     constexpr std::size_t kS = TallyLayout::kSides;
     if (!secondary_lx.empty() && secondary_lx.size() != T * kS * B)
@@ -133,6 +135,8 @@ bool Renderer::passes(const Vec3& o, const Vec3& d, double t_far, double* share)
         for (int b = 0; b < bands_; ++b) {
             const auto band = static_cast<std::size_t>(b);
             if (m.type == MaterialType::glazing && m.glazing) share[b] *= (*m.glazing)[band].at(cos_i).transmittance;
+            else if (m.type == MaterialType::glass && m.ior == 1.0)  // an open hole (material.hpp)
+                share[b] *= m.transmittance.empty() ? 1.0 : m.transmittance[band];
             else if (m.type == MaterialType::general && !m.specular_transmittance.empty())
                 share[b] *= m.specular_transmittance[band];
             else return false;
@@ -140,6 +144,33 @@ bool Renderer::passes(const Vec3& o, const Vec3& d, double t_far, double* share)
         near = h.t + std::max(1e-6f * h.t, static_cast<float>(eps_));
     }
     return false;
+}
+
+void Renderer::sky_through_portal(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng,
+                                  const RenderOptions& opt, double* share, double* sum) const {
+    // E = integral over the opening of L(w) cos_s cos_p / r^2 dA, w from p to the opening's
+    // point: stratified points uniform in area, each seen through the opening (its pane's
+    // transmittance on the way) and with its sky not blocked beyond (the tracer's ray back out).
+    const Portal& portal = *l.portal;
+    const int count = std::max(1, opt.area_light_samples);
+    std::fill(sum, sum + bands_, 0.0);
+    double beyond[kMaxBands];
+    for (int k = 0; k < count; ++k) {
+        const SurfacePick s = surface_point(portal.surface, (k + rng.next()) / count, rng.next());
+        const Vec3 v = s.point - p;
+        const double d2 = glm::dot(v, v);
+        if (!(d2 > 4.0 * eps_ * eps_)) continue;
+        const double dist = std::sqrt(d2);
+        const Vec3 w = v / dist;
+        const double cos_s = glm::dot(n, w), cos_p = glm::dot(w, portal.outward);
+        if (cos_s <= 0.0 || cos_p <= 0.0) continue;
+        const double lum = l.sky->luminance_cd_m2(l.horizon.to_local(w));
+        if (!(lum > 0.0) || !passes(o, w, dist + eps_, share) ||
+            !passes(s.point + eps_ * portal.outward, w, std::numeric_limits<double>::infinity(), beyond))
+            continue;
+        for (int b = 0; b < bands_; ++b) sum[b] += lum * cos_s * cos_p / d2 * share[b] * beyond[b];
+    }
+    for (int b = 0; b < bands_; ++b) sum[b] *= portal.surface.area_m2 / count;
 }
 
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
@@ -154,9 +185,9 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
     for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& l = lights[li];
         weight = light_weight_[li];
-        // A sun or sky split over portals is one light per opening: a picture's direct
-        // light takes the whole sky or sun once.
-        if (weight == 0.0 || (l.portal && l.portal_index > 0)) continue;
+        // A sun split over portals is one light per opening: a picture takes it once (its
+        // shadow rays find the openings); a sky through portals is sampled over each opening.
+        if (weight == 0.0 || (l.type == LightType::sun && l.portal && l.portal_index > 0)) continue;
         switch (l.type) {
         case LightType::point:
         case LightType::spot: {
@@ -181,6 +212,11 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
             break;
         }
         case LightType::sky: {
+            if (l.portal) {
+                sky_through_portal(l, p, n, o, rng, opt, share, sum);
+                add(l, 1.0, sum);
+                break;
+            }
             // Directions drawn in proportion to L: E = (integral of L) x mean of
             // cos x visibility (sky_directions.hpp).
             const int count = std::max(1, opt.area_light_samples);

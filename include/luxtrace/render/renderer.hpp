@@ -63,6 +63,10 @@ private:
     // each band that does (share[b]: 1 in the open, the panes' T(theta) through glazing,
     // a general material's specular transmittance through it).
     bool passes(const Vec3& o, const Vec3& d, double t_far, double* share) const;
+    // Sky light `l` through its portal onto point p (normal n, shadow rays from o): the
+    // illuminance per band into sum[] (share[]: scratch).
+    void sky_through_portal(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng,
+                            const RenderOptions& opt, double* share, double* sum) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;

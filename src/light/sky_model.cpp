@@ -67,7 +67,11 @@ Vec3 sky_direction(double zenith_rad, double azimuth_rad) {
 
 SkyModel::SkyModel(int type, CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad)
     : type_(type), p_(p), sun_zenith_rad_(sun_zenith_rad), sun_azimuth_rad_(sun_azimuth_rad) {
-    if (type_ >= 1 && type_ <= 15) norm_ = 1.0 / (indicatrix(sun_zenith_rad_) * gradation(1.0));
+    if (sun_dependent()) {
+        const double zenith = indicatrix(sun_zenith_rad_) * gradation(1.0);
+        if (!(zenith > 0.0)) throw std::invalid_argument("the sky's zenith luminance is not positive");
+        norm_ = 1.0 / zenith;
+    }
 }
 
 SkyModel SkyModel::cie(int cie_type, double sun_zenith_rad, double sun_azimuth_rad) {
@@ -81,6 +85,14 @@ SkyModel SkyModel::cie(int cie_type, double sun_zenith_rad, double sun_azimuth_r
 
 SkyModel SkyModel::uniform() { return SkyModel(kUniform, {}, 0.0, 0.0); }
 
+SkyModel SkyModel::perez(CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad) {
+    if (!(sun_zenith_rad >= 0.0 && sun_zenith_rad <= 0.5 * kPi) || !std::isfinite(sun_azimuth_rad))
+        throw std::invalid_argument("the sun's zenith angle must lie in [0, 90] deg for a Perez sky");
+    if (!(std::isfinite(p.a) && std::isfinite(p.b) && std::isfinite(p.c) && std::isfinite(p.d) && std::isfinite(p.e)))
+        throw std::invalid_argument("a Perez sky parameter is not finite");
+    return SkyModel(kPerezType, p, sun_zenith_rad, sun_azimuth_rad);
+}
+
 // Gradation phi(Z) = 1 + a exp(b / cos Z), phi(pi/2) = 1 (S 011 eq. 3; phi(0), eq. 4).
 double SkyModel::gradation(double cos_zenith) const {
     if (cos_zenith <= 0.0) return 1.0;
@@ -88,10 +100,11 @@ double SkyModel::gradation(double cos_zenith) const {
 }
 
 // Scattering indicatrix f(chi) = 1 + c (exp(d chi) - exp(d pi/2)) + e cos^2 chi (eq. 5;
-// f(Z_s), eq. 6).
+// f(Z_s), eq. 6); Perez 1993 (eq. 1) has no exp(d pi/2) term.
 double SkyModel::indicatrix(double chi_rad) const {
     const double c = std::cos(chi_rad);
-    return 1.0 + p_.c * (std::exp(p_.d * chi_rad) - std::exp(p_.d * 0.5 * kPi)) + p_.e * c * c;
+    const double offset = type_ == kPerezType ? 0.0 : std::exp(p_.d * 0.5 * kPi);
+    return 1.0 + p_.c * (std::exp(p_.d * chi_rad) - offset) + p_.e * c * c;
 }
 
 double SkyModel::relative_luminance(double zenith_rad, double azimuth_rad) const {
@@ -103,8 +116,10 @@ double SkyModel::relative_luminance(double zenith_rad, double azimuth_rad) const
     const double cos_chi = std::cos(sun_zenith_rad_) * cos_z +
                            std::sin(sun_zenith_rad_) * std::sin(zenith_rad) * std::cos(azimuth_rad - sun_azimuth_rad_);
     const double chi = std::acos(std::clamp(cos_chi, -1.0, 1.0));
-    // L / L_z = f(chi) phi(Z) / (f(Z_s) phi(0)) (eq. 1).
-    return indicatrix(chi) * gradation(cos_z) * norm_;
+    // L / L_z = f(chi) phi(Z) / (f(Z_s) phi(0)) (eq. 1). Perez's fitted parameters can
+    // drive lv below 0 near the horizon in a few bins; a luminance is not negative.
+    const double l = indicatrix(chi) * gradation(cos_z) * norm_;
+    return type_ == kPerezType ? std::max(l, 0.0) : l;
 }
 
 double SkyModel::relative_luminance(const Vec3& dir) const {
@@ -123,7 +138,7 @@ double SkyModel::relative_luminance(const Vec3& dir) const {
 template <class Weight>
 double SkyModel::integrate(double alpha0_rad, double alpha1_rad, const Weight& w) const {
     constexpr double kInnerTol = 1e-9, kOuterTol = 1e-8;
-    const bool sunny = type_ >= 1 && type_ <= 15;
+    const bool sunny = sun_dependent();
     const std::vector<double> alpha_cuts = sunny ? breakpoints(alpha0_rad, alpha1_rad, sun_azimuth_rad_)
                                                  : std::vector<double>{alpha0_rad, alpha1_rad};
     const auto ring = [&](double zenith) {

@@ -4,6 +4,8 @@
 // the traditional CIE overcast sky (type 16) and a sky of uniform luminance, each as a
 // luminance relative to the zenith's, L / L_z, plus the illuminances such a sky gives an
 // unobstructed horizontal or vertical plane per unit zenith luminance (by quadrature).
+// The Perez all-weather sky (light/perez_sky.hpp) uses the same machinery with its own
+// five parameters.
 //
 // Directions: z up; azimuths clockwise from north seen from above, north = +y, east = +x
 // (90 deg east, 180 deg south), so a direction of zenith angle Z and azimuth alpha is
@@ -31,6 +33,10 @@ public:
     // std::invalid_argument for another type or a sun outside that range.
     static SkyModel cie(int cie_type, double sun_zenith_rad, double sun_azimuth_rad);
     static SkyModel uniform();
+    // The Perez all-weather sky (Perez, Seals & Michalsky 1993), lv = (1 + a exp(b / cos Z))
+    // (1 + c exp(d chi) + e cos^2 chi), clipped at 0, from its five parameters for this hour
+    // (perez_luminance_parameters in light/perez_sky.hpp). Same sun range as cie().
+    static SkyModel perez(CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad);
 
     // L / L_z towards a sky element; 0 below the horizon. `dir` need not be normalised.
     double relative_luminance(const Vec3& dir) const;
@@ -43,8 +49,12 @@ public:
     // `facing_azimuth_rad` (the sky only; no ground).
     double vertical_illuminance_per_zenith_luminance_sr(double facing_azimuth_rad) const;
 
-    // 1-16, or 0 for the uniform sky.
+    // 1-16, 0 for the uniform sky, kPerezType for the Perez sky.
+    static constexpr int kPerezType = 17;
     int cie_type() const { return type_; }
+    bool is_perez() const { return type_ == kPerezType; }
+    // Whether the luminance depends on the sun's position (the general skies and Perez).
+    bool sun_dependent() const { return (type_ >= 1 && type_ <= 15) || type_ == kPerezType; }
     double sun_zenith_rad() const { return sun_zenith_rad_; }
     double sun_azimuth_rad() const { return sun_azimuth_rad_; }
 
@@ -60,7 +70,7 @@ private:
     int type_ = 0;
     CieSkyParameters p_{};
     double sun_zenith_rad_ = 0.0, sun_azimuth_rad_ = 0.0;
-    double norm_ = 1.0;  // 1 / (f(Z_s) phi(0))
+    double norm_ = 1.0;  // 1 / (f(Z_s) phi(0)), or 1 / lv(zenith) for Perez
 };
 
 }  // namespace luxtrace

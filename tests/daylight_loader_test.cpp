@@ -3,6 +3,7 @@
 // for the site and time and where the scene's north says; beams carry exactly the flux
 // that crosses their disks; ground glow is its own emitter; a sun below the horizon emits
 // nothing; bad daylight input is an InputError naming the file, line and key.
+#include "luxtrace/light/perez_sky.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "luxtrace/light/sun_position.hpp"
 
@@ -24,6 +25,9 @@ const std::string kSite =
 const std::string kSun = "[[light]]\ntype = \"sun\"\ndirect_normal_lx = 80000\n";
 const std::string kOvercast =
     "[[light]]\ntype = \"sky\"\nsky = \"cie\"\ncie_type = 16\ndiffuse_horizontal_lx = 10000\n";
+
+const std::string kPerez = "[[light]]\ntype = \"sky\"\nsky = \"perez\"\nsun_altitude_deg = 50\nsun_azimuth_deg = 180\n"
+                           "diffuse_horizontal_w_m2 = 120\ndirect_normal_w_m2 = 600\ndew_point_c = 12\n";
 
 double deg(double d) { return d * kPi / 180.0; }
 
@@ -104,8 +108,14 @@ TEST_F(Loader, SunBelowTheHorizonEmitsNothingAndSaysSo) {
 TEST_F(Loader, BadDaylightInput) {
     expect_bad(kMat + kFloor + "[[light]]\ntype = \"sky\"\nsky = \"cie\"\ncie_type = 17\ndiffuse_horizontal_lx = 1\n",
                "cie_type", {"key 'cie_type'", "1 to 16"});
-    expect_bad(kMat + kFloor + "[[light]]\ntype = \"sky\"\nsky = \"perez\"\ndiffuse_horizontal_lx = 1\n",
-               "sky =", {"key 'sky'", "\"cie\" or \"uniform\""});
+    expect_bad(kMat + kFloor + "[[light]]\ntype = \"sky\"\nsky = \"hosek\"\ndiffuse_horizontal_lx = 1\n",
+               "sky =", {"key 'sky'", "\"cie\", \"perez\" or \"uniform\""});
+    expect_bad(kMat + kFloor + kPerez + "diffuse_horizontal_lx = 1\n", "diffuse_horizontal_lx",
+               {"key 'diffuse_horizontal_lx'", "drop this key"});
+    expect_bad(kMat + kFloor + kPerez.substr(0, kPerez.find("dew_point_c")), "[[light]]", {"needs 'dew_point_c'"});
+    std::string negative_direct = kPerez;
+    negative_direct.replace(negative_direct.find("= 600"), 5, "= -3");
+    expect_bad(kMat + kFloor + negative_direct, "direct_normal_w_m2", {"key 'direct_normal_w_m2'", "[0, 1367]"});
     expect_bad(kMat + kFloor + kOvercast + "zenith_luminance_cd_m2 = 3\n", "[[light]]",
                {"one of 'diffuse_horizontal_lx' and 'zenith_luminance_cd_m2'"});
     expect_bad(kMat + kFloor + kOvercast + "ground_reflectance = 1.5\n", "ground_reflectance",
@@ -129,6 +139,27 @@ TEST_F(Loader, BadDaylightInput) {
                "sun_altitude_deg", {"below the horizon", "cie_type 16"});
     // A key of another light type.
     expect_bad(kMat + kFloor + kOvercast + "direct_normal_lx = 5\n", "direct_normal_lx", {"key 'direct_normal_lx'"});
+}
+
+TEST_F(Loader, PerezSkyGivesItsDiffuseIlluminance) {
+    // The light's unobstructed horizontal illuminance is the Perez model's diffuse
+    // illuminance for the hour, on the [site]'s day (2003-10-17 = day 290), scaled by dimming.
+    const Scene s = load(kSite + kMat + kFloor + kPerez + "dimming = 0.5\n");
+    const Light& l = s.lights.lights().at(0);
+    PerezSkyInput in;
+    in.sun_zenith_rad = deg(40.0);
+    in.sun_azimuth_rad = deg(180.0);
+    in.diffuse_horizontal_w_m2 = 120.0;
+    in.direct_normal_w_m2 = 600.0;
+    in.dew_point_c = 12.0;
+    in.day_of_year = 290;
+    const PerezSky perez(in);
+    EXPECT_NEAR(l.unobstructed_horizontal_lx, 0.5 * perez.diffuse_horizontal_illuminance_lx(),
+                1e-9 * l.unobstructed_horizontal_lx);
+    EXPECT_NE(l.sky_description.find("Perez (epsilon"), std::string::npos) << l.sky_description;
+    EXPECT_EQ(day_of_year(2003, 10, 17), 290);
+    EXPECT_EQ(day_of_year(2024, 3, 1), 61);
+    EXPECT_EQ(day_of_year(2023, 12, 31), 365);
 }
 
 TEST(LocalTime, ParsesWhatExistsOnly) {

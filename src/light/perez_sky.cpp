@@ -123,6 +123,12 @@ double perez_sky_brightness(double diffuse_horizontal_w_m2, double sun_zenith_ra
            (kSolarConstantWM2 * eccentricity_factor(day_of_year));
 }
 
+int day_of_year(int year, int month, int day) {
+    constexpr int kBefore[12] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334};
+    const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    return kBefore[std::clamp(month, 1, 12) - 1] + day + (leap && month > 2 ? 1 : 0);
+}
+
 double precipitable_water_cm(double dew_point_c) { return std::exp(0.07 * dew_point_c - 0.075); }
 
 double perez_diffuse_efficacy_lm_w(double epsilon, double delta, double sun_zenith_rad, double w_cm) {

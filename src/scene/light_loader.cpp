@@ -4,6 +4,7 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/luminaire_file.hpp"
 #include "luxtrace/light/orientation.hpp"
+#include "luxtrace/light/perez_sky.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "luxtrace/light/sun_position.hpp"
 #include "scene_loader.hpp"
@@ -97,8 +98,9 @@ struct LightReader : StepReader {
     void read_sky(TableReader& r, Light& l) {
         l.type = LightType::sky;
         const auto model = r.string("sky");
-        if (!model) r.fail_entry("type 'sky' needs 'sky' (\"cie\" or \"uniform\")");
+        if (!model) r.fail_entry("type 'sky' needs 'sky' (\"cie\", \"perez\" or \"uniform\")");
         std::optional<SkyModel> sky;
+        std::optional<double> model_zenith_cd_m2;  // a Perez sky's own
         if (*model == "cie") {
             const auto type = r.integer("cie_type");
             if (!type)
@@ -121,26 +123,82 @@ struct LightReader : StepReader {
                 sky = SkyModel::cie(static_cast<int>(*type), (90.0 - s.altitude_deg) * kPi / 180.0,
                                     s.azimuth_deg * kPi / 180.0);
             }
+        } else if (*model == "perez") {
+            const PerezSky perez = read_perez(r, l);
+            sky = perez.model();
+            model_zenith_cd_m2 = perez.zenith_luminance_cd_m2();
         } else if (*model == "uniform") {
             sky = SkyModel::uniform();
             l.sky_description = "uniform";
         } else {
-            r.fail("sky", "must be \"cie\" or \"uniform\", got '" + *model + "'");
+            r.fail("sky", "must be \"cie\", \"perez\" or \"uniform\", got '" + *model + "'");
         }
         const bool by_horizontal = r.has("diffuse_horizontal_lx"), by_zenith = r.has("zenith_luminance_cd_m2");
-        if (by_horizontal == by_zenith)
-            r.fail_entry("type 'sky' needs one of 'diffuse_horizontal_lx' and 'zenith_luminance_cd_m2'");
-        const char* key = by_horizontal ? "diffuse_horizontal_lx" : "zenith_luminance_cd_m2";
-        const double v = *r.number(key);
-        if (!(v > 0.0 && std::isfinite(v))) r.fail(key, "must be positive, got " + fmt_number(v));
         const double per_zenith_sr = sky->horizontal_illuminance_per_zenith_luminance_sr();
-        const double zenith_cd_m2 = (by_horizontal ? v / per_zenith_sr : v) * l.dimming;
+        double zenith_cd_m2 = 0.0;
+        if (model_zenith_cd_m2) {
+            if (by_horizontal || by_zenith)
+                r.fail(by_horizontal ? "diffuse_horizontal_lx" : "zenith_luminance_cd_m2",
+                       "a Perez sky's brightness comes from its irradiances and the Perez efficacy; drop this key");
+            zenith_cd_m2 = *model_zenith_cd_m2 * l.dimming;
+        } else {
+            if (by_horizontal == by_zenith)
+                r.fail_entry("type 'sky' needs one of 'diffuse_horizontal_lx' and 'zenith_luminance_cd_m2'");
+            const char* key = by_horizontal ? "diffuse_horizontal_lx" : "zenith_luminance_cd_m2";
+            const double v = *r.number(key);
+            if (!(v > 0.0 && std::isfinite(v))) r.fail(key, "must be positive, got " + fmt_number(v));
+            zenith_cd_m2 = (by_horizontal ? v / per_zenith_sr : v) * l.dimming;
+        }
         l.unobstructed_horizontal_lx = zenith_cd_m2 * per_zenith_sr;
         const double rho = ground_reflectance(r).value_or(0.0);
         if (!sky_ground_reflectance) sky_ground_reflectance = rho;
         // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h / pi.
         l.sky = std::make_shared<const SkyDirections>(sky, zenith_cd_m2, rho * l.unobstructed_horizontal_lx / kPi);
         l.horizon = scene.site.horizon();
+    }
+
+    // sky = "perez": the hour's sky from its irradiances and dew point (perez_sky.hpp); the
+    // day of the year from the [site]'s time, or day 150 as gendaylit -ang assumes.
+    PerezSky read_perez(TableReader& r, Light& l) {
+        const SunAt s = sun_at(r, "sky");
+        if (!(s.altitude_deg > 0.0))
+            r.fail(r.has("sun_altitude_deg") ? "sun_altitude_deg" : "sky",
+                   "the sun is not above the horizon " + s.when + " (altitude " +
+                       fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
+                       " degrees): the Perez sky is defined for a sun above it");
+        l.sun_altitude_deg = s.altitude_deg;
+        l.sun_azimuth_deg = s.azimuth_deg;
+        PerezSkyInput in;
+        in.sun_zenith_rad = (90.0 - s.altitude_deg) * kPi / 180.0;
+        in.sun_azimuth_rad = s.azimuth_deg * kPi / 180.0;
+        const auto required = [&r](const char* key) {
+            const auto v = r.number(key);
+            if (!v) r.fail_entry(std::string("sky = \"perez\" needs '") + key + "'");
+            if (!std::isfinite(*v)) r.fail(key, "must be finite");
+            return *v;
+        };
+        in.diffuse_horizontal_w_m2 = required("diffuse_horizontal_w_m2");
+        if (!(in.diffuse_horizontal_w_m2 > 0.0 && in.diffuse_horizontal_w_m2 <= 1367.0))
+            r.fail("diffuse_horizontal_w_m2", "must lie in (0, 1367], got " + fmt_number(in.diffuse_horizontal_w_m2));
+        in.direct_normal_w_m2 = required("direct_normal_w_m2");
+        if (!(in.direct_normal_w_m2 >= 0.0 && in.direct_normal_w_m2 <= 1367.0))
+            r.fail("direct_normal_w_m2", "must lie in [0, 1367], got " + fmt_number(in.direct_normal_w_m2));
+        in.dew_point_c = required("dew_point_c");
+        if (!(in.dew_point_c >= -90.0 && in.dew_point_c <= 60.0))
+            r.fail("dew_point_c", "must lie in [-90, 60], got " + fmt_number(in.dew_point_c));
+        if (scene.site.time) {
+            const LocalStandardTime& t = *scene.site.time;
+            in.day_of_year = day_of_year(t.year, t.month, t.day);
+        }
+        const PerezSky perez(in);
+        const std::string condition = "epsilon " + fmt_number(std::round(perez.epsilon() * 1000.0) / 1000.0) +
+                                      ", Delta " + fmt_number(std::round(perez.delta() * 1000.0) / 1000.0);
+        l.sky_description = "Perez (" + condition + ")";
+        if (perez.clamped())
+            scene.warnings.push_back(l.label + ": the Perez sky's " + condition +
+                                     " lie outside the fitted range (epsilon 1-12, Delta 0.01-0.6): modelled at the "
+                                     "nearest edge");
+        return perez;
     }
 
     // The sun's light reflected by the ground, a uniform lower hemisphere of luminance

@@ -34,6 +34,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
           "lamp_set", "emission", "aim", "direction", "c0", "rotation_deg", "tilt_deg", "roll_deg", "spin_deg",
           "half_angle_deg", "shape", "illuminance_lx", "dimming", "maintenance_factor", "colour", "group", "direct_normal_lx",
           "sun_altitude_deg", "sun_azimuth_deg", "sky", "cie_type", "diffuse_horizontal_lx", "zenith_luminance_cd_m2",
+          "diffuse_horizontal_w_m2", "direct_normal_w_m2", "dew_point_c",
           "ground_reflectance"}},
         {"light.grid", {"first", "spacing", "count"}},
         {"light_scene", {"name", "dimming"}},

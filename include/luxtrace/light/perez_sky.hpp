@@ -26,6 +26,8 @@ double perez_sky_brightness(double diffuse_horizontal_w_m2, double sun_zenith_ra
 double relative_air_mass(double sun_zenith_rad);
 // Spencer (1971): (r0 / r)^2 on day 1-366.
 double eccentricity_factor(int day_of_year);
+// 1 January = 1 (Gregorian; 29 February counts in a leap year).
+int day_of_year(int year, int month, int day);
 // Perez 1990: W = exp(0.07 Td - 0.075), in cm.
 double precipitable_water_cm(double dew_point_c);
 
@@ -52,7 +54,7 @@ struct PerezSkyInput {
     double diffuse_horizontal_w_m2 = 0.0;  // > 0
     double direct_normal_w_m2 = 0.0;       // >= 0
     double dew_point_c = 0.0;
-    int day_of_year = 172;  // 1-366, for the eccentricity factor
+    int day_of_year = 150;  // 1-366, for the eccentricity factor (gendaylit -ang's default)
 };
 
 // The fitted ranges of the model (gendaylit's): epsilon in [1, 12), Delta in [0.01, 0.6].

@@ -157,6 +157,13 @@ TEST_F(Loader, PerezSkyGivesItsDiffuseIlluminance) {
     EXPECT_NEAR(l.unobstructed_horizontal_lx, 0.5 * perez.diffuse_horizontal_illuminance_lx(),
                 1e-9 * l.unobstructed_horizontal_lx);
     EXPECT_NE(l.sky_description.find("Perez (epsilon"), std::string::npos) << l.sky_description;
+    EXPECT_TRUE(s.warnings.empty());
+    // A sky too thin for the fitted range (Delta < 0.01) is modelled at its edge, with a warning.
+    std::string thin = kPerez;
+    thin.replace(thin.find("= 120"), 5, "= 5");
+    const Scene t = load(kMat + kFloor + thin);
+    ASSERT_EQ(t.warnings.size(), 1u);
+    EXPECT_NE(t.warnings.front().find("outside the fitted range"), std::string::npos) << t.warnings.front();
     EXPECT_EQ(day_of_year(2003, 10, 17), 290);
     EXPECT_EQ(day_of_year(2024, 3, 1), 61);
     EXPECT_EQ(day_of_year(2023, 12, 31), 365);

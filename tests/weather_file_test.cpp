@@ -143,6 +143,19 @@ TEST(WeatherFile, EpwMissingCodesBecomeNaN) {
     EXPECT_FALSE(std::isnan(w.hours[1].dry_bulb_c));
 }
 
+TEST(WeatherFile, EpwLeapYearHoldsFeb29) {
+    // Feb 28's 24 records copied as Feb 29: 8784 hours, Mar 1 follows.
+    auto lines = lines_of(kEpw);
+    const std::size_t feb29 = 8 + (31 + 28) * 24;
+    std::vector<std::string> extra(lines.begin() + feb29 - 24, lines.begin() + feb29);
+    for (auto& l : extra) l = with_field(l, 2, "29");
+    lines.insert(lines.begin() + feb29, extra.begin(), extra.end());
+    EXPECT_EQ(error_of(lines, "leap.epw"), "");
+    // Feb 29 with one hour short is a missing hour, not a leap year.
+    lines.erase(lines.begin() + feb29 + 23);
+    EXPECT_NE(error_of(lines, "short.epw").find("expected 2/29 hour 24, found 3/1 hour 1"), std::string::npos);
+}
+
 TEST(WeatherFile, EpwBadInputNamesFileAndLine) {
     const auto good = lines_of(kEpw);
     auto has = [](const std::string& msg, const std::string& part) { return msg.find(part) != std::string::npos; };

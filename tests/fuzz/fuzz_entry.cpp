@@ -13,6 +13,7 @@
 #include "luxtrace/render/tone_map.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/weather/weather_file.hpp"
 
 #include <hdf5.h>
 #include <unistd.h>
@@ -464,11 +465,37 @@ int fuzz_result(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+int fuzz_weather(const std::uint8_t* data, std::size_t size) {
+    if (size == 0) return 0;
+    const std::string ext = (data[0] & 1) ? ".wea" : ".epw";
+    const fs::path file = write_input("input" + ext, data + 1, size - 1);
+    weather::WeatherFile w;
+    try {
+        w = weather::read_weather_file(file.string());
+    } catch (const InputError&) {
+        return 0;
+    }
+    // What a read file promises: hours, in the calendar, each value missing (NaN) or
+    // inside its physical range.
+    if (w.hours.empty()) broken("weather file read with no hours");
+    if (!(std::abs(w.site.latitude_deg) <= 90.0 && std::abs(w.site.longitude_deg) <= 180.0))
+        broken("site out of range");
+    for (const auto& h : w.hours) {
+        if (h.month < 1 || h.month > 12 || h.day < 1 || h.day > 31 || !(h.hour >= 0.0 && h.hour <= 24.0))
+            broken("hour outside the calendar");
+        for (double v : {h.global_horizontal_w_m2, h.direct_normal_w_m2, h.diffuse_horizontal_w_m2,
+                         h.global_horizontal_lx, h.direct_normal_lx, h.diffuse_horizontal_lx})
+            if (v < 0.0 || std::isinf(v)) broken("irradiance or illuminance " + std::to_string(v));
+    }
+    return 0;
+}
+
 Entry entry_by_name(const std::string& name) {
     if (name == "scene") return fuzz_scene;
     if (name == "ies") return fuzz_ies;
     if (name == "mesh") return fuzz_mesh;
     if (name == "result") return fuzz_result;
+    if (name == "weather") return fuzz_weather;
     return nullptr;
 }
 

@@ -23,8 +23,12 @@ int fuzz_mesh(const std::uint8_t* data, std::size_t size);
 // `render` (views and detector pictures) would.
 int fuzz_result(const std::uint8_t* data, std::size_t size);
 
+// A weather file: the first byte chooses the extension (even: .epw, odd: .wea), the rest
+// is the file, read by luxtrace::weather::read_weather_file.
+int fuzz_weather(const std::uint8_t* data, std::size_t size);
+
 using Entry = int (*)(const std::uint8_t*, std::size_t);
-// "scene", "ies", "mesh", "result" -> the entry function, or nullptr.
+// "scene", "ies", "mesh", "result", "weather" -> the entry function, or nullptr.
 Entry entry_by_name(const std::string& name);
 
 }  // namespace luxtrace::fuzz

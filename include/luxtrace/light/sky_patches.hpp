@@ -93,9 +93,9 @@ public:
     // - `cusp`: a direction where L has a kink (the sun of the CIE general and Perez skies,
     //   whose luminance goes as exp(d chi) in the angle chi to the sun): the piece of the
     //   patch holding it is cut there into four, so the kink lies on their corners.
-    // Accuracy at 8 nodes with the sun as cusp, CIE skies 7 and 12, sun at 10-86 degrees:
-    // each patch's mean within 1.2e-5, the horizontal illuminance within 1e-7; without the
-    // cusp the sun's patch is only within 3e-4 (docs/DAYLIGHT.md, "Sky patches").
+    // Accuracy at 8 nodes with the sun as cusp, CIE skies 7 and 12, sun at 10-88 degrees:
+    // each patch's mean within 3e-5, the horizontal illuminance within 2e-7; without the
+    // cusp the sun's patch is only within 4e-4 (docs/DAYLIGHT.md, "Sky patches").
     // Radiance's gendaymtx does neither: it takes L at each patch's centre, and rescales
     // the sky so that sum_i L(centre_i) sin(alt_i) omega_i is the diffuse horizontal
     // illuminance.

@@ -59,15 +59,10 @@ double quantile_in_place(std::vector<double>& x, double fraction) {
     return *it;
 }
 
-// Several quantiles of the same cells from one set of bootstrap replicates: replicate r
-// adds noise of variance lambda sigma_c^2 to every cell for lambda = 1 and 2 (the same
-// normal draws for both, so their difference is smooth), g(lambda) the mean quantile over
-// the replicates. The observed cells already carry variance 1 sigma^2, so g(1) and g(2)
-// sit at 2 and 3 sigma^2 of total noise; the straight line through them meets 0 at
-// 3 g(1) - 2 g(2), the corrected quantile (SIMEX, Cook & Stefanski 1994, linear
-// extrapolant). It only uses smoothed quantiles, so it scatters no more than the raw one;
-// 2 q(x) - g(1), the plain bootstrap correction, has the same mean but 1.5 times the scatter.
-// sigma: the replicates' spread at lambda = 1.
+// Several quantiles of the same cells from one set of bootstrap replicates (SimexSums: the
+// noise added once and sqrt(2) times with the same draws, extrapolated to no noise). It only
+// uses smoothed quantiles, so it scatters no more than the raw one; 2 q(x) - g(1), the plain
+// bootstrap correction, has the same mean but 1.5 times the scatter.
 std::vector<QuantileEstimate> noisy_quantiles(std::span<const double> value, std::span<const double> sigma,
                                               std::span<const double> fractions, int replicates) {
     std::vector<QuantileEstimate> out(fractions.size());
@@ -78,7 +73,7 @@ std::vector<QuantileEstimate> noisy_quantiles(std::span<const double> value, std
     if (!noisy || replicates < 2) return out;
     const double k = static_cast<double>(value.size());
     const int r_count = std::max(kMinReplicates, std::min(replicates, static_cast<int>(kMaxBootstrapDraws / k)));
-    std::vector<double> sum1(fractions.size(), 0.0), sum1_sq(fractions.size(), 0.0), sum2(fractions.size(), 0.0);
+    std::vector<SimexSums> sums(fractions.size());
     std::vector<double> z(value.size()), x2(value.size());
     for (int r = 0; r < r_count; ++r) {
         NormalStream normal{0x5eed0000ull + static_cast<std::uint64_t>(r) * 0x100000001b3ull};
@@ -88,18 +83,11 @@ std::vector<QuantileEstimate> noisy_quantiles(std::span<const double> value, std
             x2[c] = value[c] + std::numbers::sqrt2 * z[c];
         }
         for (std::size_t f = 0; f < fractions.size(); ++f) {
-            // Centred on the observed quantile: no cancellation in the sums.
             const double q1 = quantile_in_place(x, fractions[f]) - out[f].value;
-            sum1[f] += q1;
-            sum1_sq[f] += q1 * q1;
-            sum2[f] += quantile_in_place(x2, fractions[f]) - out[f].value;
+            sums[f].add(q1, quantile_in_place(x2, fractions[f]) - out[f].value);
         }
     }
-    for (std::size_t f = 0; f < fractions.size(); ++f) {
-        const double g1 = sum1[f] / r_count, g2 = sum2[f] / r_count;  // relative to the observed value
-        out[f].bias = -(3.0 * g1 - 2.0 * g2);
-        out[f].sigma = std::sqrt(std::max(0.0, (sum1_sq[f] - r_count * g1 * g1) / (r_count - 1)));
-    }
+    for (std::size_t f = 0; f < fractions.size(); ++f) out[f] = sums[f].estimate(out[f].value);
     return out;
 }
 
@@ -113,8 +101,6 @@ const char* verdict_name(Verdict v) {
     }
     return "?";
 }
-
-double QuantileEstimate::uncertainty() const { return std::hypot(sigma, bias); }
 
 CriterionVerdict judge(const QuantileEstimate& q, double target) {
     const double v = q.corrected();

@@ -8,6 +8,7 @@
 // 95 % value of noisy cells sits below the true one). Pure functions; docs/DAYLIGHT.md
 // "Daylight factor and EN 17037" states the method and its calibration.
 #include "luxtrace/detector/detector.hpp"
+#include "luxtrace/stats/simex.hpp"
 
 #include <cstdint>
 #include <span>
@@ -25,16 +26,12 @@ inline constexpr int kQuantileBootstrapReplicates = 400;
 // Past this many times the photons a verdict is not worth waiting for: "cannot decide".
 inline constexpr double kUndecidableFactor = 1e4;
 
-// A quantile of noisy cells: the observed value, its standard error, and its bias
-// (E[observed] - true); value - bias is the bias-corrected estimate. The bootstrap's bias
-// is right to within its own size, not exactly (calibration: 20 to 100 % off where the
-// true values crowd near an edge or leave gaps wider than the noise), so a verdict takes
-// the corrected value with the uncertainty sqrt(sigma^2 + bias^2).
-struct QuantileEstimate {
-    double value = 0.0, sigma = 0.0, bias = 0.0;
-    double corrected() const { return value - bias; }
-    double uncertainty() const;
-};
+// A quantile of noisy cells: the observed value, its standard error and its bias
+// (E[observed] - true); corrected() = value - bias. The bootstrap's bias is right to within
+// its own size, not exactly (calibration: 20 to 100 % off where the true values crowd near
+// an edge or leave gaps wider than the noise), so a verdict takes the corrected value with
+// the uncertainty sqrt(sigma^2 + bias^2).
+using QuantileEstimate = SimexEstimate;
 
 enum class Verdict { pass, fail, undecided };
 const char* verdict_name(Verdict v);

@@ -1,0 +1,119 @@
+#pragma once
+// Annual climate-based daylight metrics of one sensor grid, with their statistical errors.
+// The hourly illuminance of a sensor is a linear combination of daylight coefficients that
+// carry Monte Carlo errors, so a threshold metric (a count of hours crossing a threshold) has
+// an error and a bias (noise smooths the counts towards the threshold's middle). Definitions:
+// IES LM-83-12 (DA, sDA300/50%, ASE1000,250h), Nabil & Mardaljevic 2005 (UDI), Rogers 2006
+// (continuous DA), EN 17037:2018 Annex A (illuminance method). The errors come from
+// replicate series recomputed from perturbed coefficients (AnnualReplicates), by the SIMEX
+// bootstrap of stats/simex.hpp. Pure functions; docs/DAYLIGHT.md "Annual metrics".
+#include "luxtrace/stats/simex.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace luxtrace {
+
+// One grid's hourly illuminance, hour-major: value [h * sensors + s] in lx.
+struct AnnualSeries {
+    std::size_t hours = 0, sensors = 0;
+    std::vector<double> total_lx;   // everything: sky, sun, interreflections
+    std::vector<double> direct_lx;  // direct sun only (LM-83's ASE)
+};
+
+// Which hours count, and how much area each sensor stands for.
+struct AnnualHours {
+    std::vector<std::uint8_t> occupied;       // [hours], 1: occupied (LM-83: 8:00-18:00 local standard time)
+    std::vector<std::uint8_t> en17037_hours;  // [hours], 1: an EN 17037 daylight hour (en17037_daylight_hours)
+    std::vector<double> area_weights;         // [sensors]; empty: all equal
+};
+
+struct AnnualThresholds {
+    double da_lx = 300.0;           // DA and continuous DA
+    double udi_low_lx = 100.0;      // UDI fell short below, useful from
+    double udi_high_lx = 3000.0;    // UDI useful up to, exceeded above
+    double sda_da = 0.5;            // sDA counts sensors with DA >= this (LM-83: 50 % of occupied hours)
+    double ase_direct_lx = 1000.0;  // ASE: direct sun at or above ...
+    double ase_hours = 250.0;       // ... for more than this many occupied hours
+};
+
+// EN 17037's illuminance method, per level: the target illuminance over 50 % of the plane
+// and the minimum target illuminance over 95 % of it, each for at least 50 % of the daylight
+// hours.
+struct En17037Level {
+    const char* name;
+    double target_lx, minimum_lx;
+};
+inline constexpr std::array<En17037Level, 3> kEn17037Levels = {
+    {{"minimum", 300.0, 100.0}, {"medium", 500.0, 300.0}, {"high", 750.0, 500.0}}};
+inline constexpr double kEn17037TargetArea = 0.5, kEn17037MinimumArea = 0.95, kEn17037HoursShare = 0.5;
+
+// The EN 17037 daylight hours: the `count` hours with the most outdoor illuminance (pass the
+// weather file's diffuse horizontal illuminance to follow ClimateStudio's reading, the hours
+// whose median gives the standard's E_v,d,med), ties to the earlier hour; hours without
+// daylight (<= 0 or NaN) never count. count 0: half the hours (4380 of 8760).
+std::vector<std::uint8_t> en17037_daylight_hours(std::span<const double> outdoor_lx, std::size_t count = 0);
+
+// The metrics; fractions in [0, 1]. A sensor's figures are over the occupied hours, the
+// grid's are area-weighted.
+struct AnnualMetrics {
+    struct Sensors {
+        std::vector<double> da;              // share of occupied hours with E >= da_lx
+        std::vector<double> continuous_da;   // mean over occupied hours of min(1, E / da_lx)
+        std::vector<double> udi_fell_short;  // E < udi_low_lx
+        std::vector<double> udi_useful;      // udi_low_lx <= E <= udi_high_lx
+        std::vector<double> udi_exceeded;    // E > udi_high_lx
+        std::vector<double> ase_hours;       // occupied hours with direct >= ase_direct_lx
+    } sensors;
+    double sda = 0.0;  // area share with DA >= sda_da
+    double ase = 0.0;  // area share with ase_hours > ASE's hours
+    double mean_da = 0.0, mean_continuous_da = 0.0;
+    double mean_udi_fell_short = 0.0, mean_udi_useful = 0.0, mean_udi_exceeded = 0.0;
+    // Per EN 17037 level: the share of the daylight hours at which the target (minimum)
+    // illuminance reaches 50 % (95 %) of the area; the level passes when both are >= 50 %.
+    std::array<double, 3> en17037_target_hours{}, en17037_minimum_hours{};
+};
+
+// Bad sizes or no occupied or daylight hour throw std::invalid_argument (the caller's bug).
+AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t = {});
+
+// Fills `out` with the grid's hourly total and direct illuminance recomputed from the
+// coefficients perturbed by noise_scale times their standard errors: noise_scale 0 gives the
+// estimate itself; replicates are independent of each other, and a replicate's draws should
+// depend on the replicate alone (the same draws scaled by noise_scale), which makes the
+// SIMEX difference smooth (it is still unbiased otherwise, only noisier).
+using AnnualReplicates = std::function<void(std::size_t replicate, double noise_scale, AnnualSeries& out)>;
+
+// 32 replicates at each of lambda = 1 and 2: sigma to 1 / sqrt(2 x 31) = 13 % of itself,
+// 64 generator calls per grid (docs/DAYLIGHT.md says why this is enough).
+inline constexpr int kAnnualReplicates = 32;
+
+// A verdict "value >= target" (or "<=") from the corrected value, and the probability that
+// the truth lies on the other side: Phi(-|corrected - target| / uncertainty), normal errors.
+struct VerdictFlip {
+    bool pass = false;
+    double flip_probability = 0.0;
+};
+VerdictFlip judge_threshold(const SimexEstimate& m, double target, bool pass_at_or_above = true);
+
+// The metrics with, for every figure in the same layout, its sigma and its bias (corrected
+// = value - bias), and EN 17037's level verdicts with their flip probabilities (the two
+// criteria taken as independent).
+struct AnnualEstimate {
+    AnnualMetrics value, sigma, bias;
+    std::array<VerdictFlip, 3> en17037;
+    int replicates = 0;
+    // A grid figure's estimate, e.g. figure(&AnnualMetrics::sda).
+    SimexEstimate figure(double AnnualMetrics::*f) const { return {value.*f, sigma.*f, bias.*f}; }
+};
+
+// The metrics of `replicates(r, 0)`, and their errors from K replicates at noise_scale 1 and
+// sqrt(2) (the SIMEX lambdas 1 and 2, replicate r the same draws for both).
+AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,
+                                       const AnnualThresholds& t = {}, int k = kAnnualReplicates);
+
+}  // namespace luxtrace

@@ -75,6 +75,9 @@ void PhotonTally::add_registrations(const TallyLayout& layout, TallyBuffer& out)
         i = j;
     }
     close_detector();
+    if (layout.direct_scores())
+        for (const Registration& r : regs_)
+            if (r.direct) out.add(layout.detector_direct(r.detector, r.cell, bin_.detector_column), 1);
     regs_.clear();
 }
 

@@ -21,6 +21,10 @@ TallyLayout::TallyLayout(std::size_t triangles, const TallyDims& dims, const std
         rep_offset_.push_back(size_);
         size_ += dims_.replicates * (det_cells_[d] * detector_columns() + dims_.groups);
     }
+    for (std::size_t d = 0; d < det_cells_.size() && dims_.direct_scores; ++d) {
+        direct_offset_.push_back(size_);
+        size_ += det_cells_[d] * detector_columns();
+    }
     size_ += dims_.replicates;  // photons per replicate
 }
 
@@ -37,6 +41,7 @@ TallyDims dims_of(const Scene& scene) {
     d.groups = scene.light_groups.size();
     d.map_groups = scene.run.group_maps ? d.groups : 1;
     d.replicates = scene.run.sampler == "sobol" ? scene.run.replicates : 0;
+    d.direct_scores = scene.annual.has_value();
     return d;
 }
 }  // namespace

@@ -11,11 +11,12 @@ DetectorFilters::DetectorFilters(const std::vector<Detector>& detectors) : detec
     }
 }
 
-void DetectorFilters::enter_cylinders(const Vec3& o, const Vec3& d, double t_max, std::vector<Registration>& out) {
+void DetectorFilters::enter_cylinders(const Vec3& o, const Vec3& d, double t_max, bool direct,
+                                      std::vector<Registration>& out) {
     for (std::uint32_t di : cylinders_) {
         cells_.clear();
         detectors_[di].cylinder_entries(o, d, t_max, cells_);
-        for (int cell : cells_) out.push_back({di, static_cast<std::uint32_t>(cell)});
+        for (int cell : cells_) out.push_back({di, static_cast<std::uint32_t>(cell), direct});
     }
 }
 

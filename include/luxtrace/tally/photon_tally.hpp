@@ -17,6 +17,7 @@ namespace luxtrace {
 struct Registration {
     std::uint32_t detector = 0;
     std::uint32_t cell = 0;
+    bool direct = false;  // on the photon's straight line from its light (TallyLayout::detector_direct)
 };
 
 class PhotonTally {

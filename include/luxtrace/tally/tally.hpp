@@ -26,6 +26,9 @@ struct TallyDims {
     std::size_t groups = 1;      // light groups the detectors keep apart
     std::size_t map_groups = 1;  // light groups the surface map keeps apart: groups, or 1
     std::size_t replicates = 0;  // sobol's R; 0 for random
+    // Also count, per detector cell and column, the registrations of photons still on the
+    // straight line from their light (annual daylight's direct sun, issue 24).
+    bool direct_scores = false;
 };
 
 // Where one photon's scores go besides the site, fixed when it starts: a column is a
@@ -148,13 +151,20 @@ public:
     std::size_t detector_replicate_total_n(std::size_t det, std::size_t r, std::size_t group) const {
         return rep_offset_[det] + dims_.replicates * det_cells_[det] * detector_columns() + r * dims_.groups + group;
     }
+    // Direct registrations of `cell` in a detector column (direct_scores only). A photon's
+    // direct flights lie on one straight line, which crosses a cell once at most: the
+    // per-photon count is 0 or 1, so this is also its sum of squares.
+    bool direct_scores() const { return dims_.direct_scores; }
+    std::size_t detector_direct(std::size_t det, std::size_t cell, std::size_t column) const {
+        return direct_offset_[det] + cell * detector_columns() + column;
+    }
     // Photons traced of replicate r (the last R slots).
     std::size_t replicate_photons(std::size_t r) const { return size_ - dims_.replicates + r; }
 
 private:
     std::size_t triangles_ = 0, size_ = kCounters;
     TallyDims dims_;
-    std::vector<std::size_t> det_offset_, rep_offset_;
+    std::vector<std::size_t> det_offset_, rep_offset_, direct_offset_;
     std::vector<std::size_t> det_cells_;
 };
 

@@ -25,10 +25,10 @@ public:
     // Inline: it runs for every flight of every photon.
     void flight(const Vec3& origin, const Vec3& direction, double t_max, const Vec3& hit_normal, bool direct,
                 std::vector<Registration>& out) {
-        cross(planes_, origin, direction, t_max, hit_normal, out);
-        if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, out);
+        cross(planes_, origin, direction, t_max, hit_normal, direct, out);
+        if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, direct, out);
         // Indirect only: planes that skip direct light (an observer's eye detector).
-        if (!direct) cross(indirect_planes_, origin, direction, t_max, hit_normal, out);
+        if (!direct) cross(indirect_planes_, origin, direction, t_max, hit_normal, false, out);
     }
     void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
     bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }
@@ -36,13 +36,13 @@ public:
 
 private:
     void cross(const std::vector<std::uint32_t>& planes, const Vec3& o, const Vec3& d, double t_max,
-               const Vec3& hit_normal, std::vector<Registration>& out) const {
+               const Vec3& hit_normal, bool direct, std::vector<Registration>& out) const {
         for (std::uint32_t di : planes) {
             const int cell = detectors_[di].crossing(o, d, t_max, hit_normal);
-            if (cell >= 0) out.push_back({di, static_cast<std::uint32_t>(cell)});
+            if (cell >= 0) out.push_back({di, static_cast<std::uint32_t>(cell), direct});
         }
     }
-    void enter_cylinders(const Vec3& o, const Vec3& d, double t_max, std::vector<Registration>& out);
+    void enter_cylinders(const Vec3& o, const Vec3& d, double t_max, bool direct, std::vector<Registration>& out);
 
     const std::vector<Detector>& detectors_;
     std::vector<std::uint32_t> planes_, indirect_planes_, cylinders_, luminance_;

@@ -62,6 +62,31 @@ EmittedRay Light::emit_through_portal(const Vec3& direction, double up1, double 
     return {s.point, direction, portal->surface.scene_triangle[s.triangle], s.a, s.b, portal->side, true};
 }
 
+EmittedRay Light::emit_through_portal_disk(const Vec3& d, double up1, double up2) const {
+    EmittedRay missed;
+    missed.direction = d;
+    missed.missed = true;
+    const double facing = glm::dot(d, portal->outward);  // < 0: travelling inward
+    if (!(facing < 0.0)) return missed;
+    // A point on the disk through the centroid perpendicular to d, slid along d onto the
+    // opening's plane.
+    const Vec3 q = beam_center + Frame::around(d).to_world(disk_point(beam_radius, up1, up2));
+    const Vec3 x = q + (glm::dot(beam_center - q, portal->outward) / facing) * d;
+    const EmitterSurface& s = portal->surface;
+    for (std::size_t i = 0; i < s.p0.size(); ++i) {
+        // x = p0 + a e1 + b e2 in the triangle's plane.
+        const Vec3 w = x - s.p0[i];
+        const double d11 = glm::dot(s.e1[i], s.e1[i]), d12 = glm::dot(s.e1[i], s.e2[i]);
+        const double d22 = glm::dot(s.e2[i], s.e2[i]);
+        const double w1 = glm::dot(w, s.e1[i]), w2 = glm::dot(w, s.e2[i]);
+        const double det = d11 * d22 - d12 * d12;
+        if (!(det > 0.0)) continue;
+        const double a = (w1 * d22 - w2 * d12) / det, b = (w2 * d11 - w1 * d12) / det;
+        if (a >= 0.0 && b >= 0.0 && a + b <= 1.0) return {x, d, s.scene_triangle[i], a, b, portal->side, true};
+    }
+    return missed;
+}
+
 EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
     switch (type) {
     case LightType::point:
@@ -90,6 +115,16 @@ EmittedRay Light::emit(double up1, double up2, double ud1, double ud2) const {
         // Travel away from the sky element, starting on the disk that covers the scene's
         // sphere as seen from that direction.
         const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));
+        return {beam_center - 1.01 * beam_radius * d + Frame::around(d).to_world(disk_point_f(beam_radius, up1, up2)),
+                d};
+    }
+    case LightType::sky_patch: {
+        // Uniform in solid angle: sin(altitude) and azimuth uniform over the patch.
+        const double mu = patch.mu_lo + ud1 * (patch.mu_hi - patch.mu_lo);
+        const double az = patch.az_lo_rad + ud2 * patch.az_width_rad;
+        const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+        const Vec3 d = -horizon.to_world(Vec3(s * std::sin(az), s * std::cos(az), mu));
+        if (portal) return emit_through_portal_disk(d, up1, up2);
         return {beam_center - 1.01 * beam_radius * d + Frame::around(d).to_world(disk_point_f(beam_radius, up1, up2)),
                 d};
     }

@@ -65,7 +65,37 @@ Light light_through_portal(const Light& light, const std::shared_ptr<const Porta
     l.portal = portal;
     l.label = light.label + " through portal '" + portal->name + "'";
     const double area = portal->surface.area_m2;
-    if (light.type == LightType::sun) {
+    if (light.type == LightType::sky_patch) {
+        // The disk around the opening (Light::emit_through_portal_disk).
+        const EmitterSurface& s = portal->surface;
+        Vec3 centroid(0.0);
+        for (std::size_t i = 0; i < s.p0.size(); ++i) {
+            const double share = s.cdf[i] - (i == 0 ? 0.0 : s.cdf[i - 1]);
+            centroid += share * (s.p0[i] + (s.e1[i] + s.e2[i]) / 3.0);
+        }
+        double radius = 0.0;
+        for (std::size_t i = 0; i < s.p0.size(); ++i)
+            for (const Vec3& v : {s.p0[i], s.p0[i] + s.e1[i], s.p0[i] + s.e2[i]})
+                radius = std::max(radius, glm::length(v - centroid));
+        l.beam_center = centroid;
+        l.beam_radius = radius * (1.0 + 1e-9) + 1e-12;
+        // Does any of the patch face the opening's outside? cos(theta) is linear in the
+        // direction, so between the points of a 5 x 5 grid it changes by less than the
+        // grid's angular step (< 0.1 rad for any patch): a patch is dropped only when it lies
+        // behind the opening by more than that everywhere.
+        bool faces = false;
+        for (int im = 0; im <= 4; ++im)
+            for (int ia = 0; ia <= 4; ++ia) {
+                const double mu = light.patch.mu_lo + 0.25 * im * (light.patch.mu_hi - light.patch.mu_lo);
+                const double az = light.patch.az_lo_rad + 0.25 * ia * light.patch.az_width_rad;
+                const double c = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+                faces = faces || glm::dot(light.horizon.to_world(Vec3(c * std::sin(az), c * std::cos(az), mu)),
+                                          portal->outward) > -0.1;
+            }
+        l.flux_lm = faces ? light.patch_luminance_cd_m2 * light.patch.solid_angle_sr() * kPi * l.beam_radius *
+                                l.beam_radius
+                          : 0.0;
+    } else if (light.type == LightType::sun) {
         // Directions from the disc as without the portal; E_n A cos(theta_sun).
         l.flux_lm = light.illuminance_lx * area * std::max(0.0, -glm::dot(light.aim, portal->outward));
     } else {

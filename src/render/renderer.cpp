@@ -211,6 +211,7 @@ void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOption
             add(l, l.illuminance_lx * cos_s, share);
             break;
         }
+        case LightType::sky_patch: break;  // annual scenes: `render` draws no patch sky
         case LightType::sky: {
             if (l.portal) {
                 sky_through_portal(l, p, n, o, rng, opt, share, sum);

@@ -59,6 +59,10 @@ bool PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
         u_pos2 = PhiloxSampler::uniform(b1[1]);
     }
     const EmittedRay ray = light.emit(u_pos1, u_pos2, PhiloxSampler::uniform(b0[2]), PhiloxSampler::uniform(b0[3]));
+    if (ray.missed) {  // a sky patch's photon past its portal (light.hpp)
+        end(p, TallyLayout::kEscaped, out);
+        return false;
+    }
     // The ray's origin in Embree's local float frame; detectors and scattering work in
     // scene coordinates.
     p.origin = embree_.to_local(ray.origin);

@@ -16,7 +16,7 @@ namespace luxtrace {
 struct Portal;
 class PortalSky;
 
-enum class LightType { point, spot, area, directional, sun, sky };
+enum class LightType { point, spot, area, directional, sun, sky, sky_patch };
 
 struct EmittedRay {
     Vec3 origin;
@@ -27,6 +27,16 @@ struct EmittedRay {
     // A portal photon starts outside the opening and checks its way back to the sky.
     int emitter_side = 1;
     bool through_portal = false;
+    // A sky patch's photon aimed past its portal (Light::emit_through_portal_disk): it
+    // carries its share of the flux but never enters the scene.
+    bool missed = false;
+};
+
+// A sky patch (annual daylight, light/sky_patches.hpp) in the sky frame: sin(altitude) in
+// [mu_lo, mu_hi], azimuth (clockwise from north) from az_lo_rad over az_width_rad.
+struct SkyPatchBounds {
+    double mu_lo = 0.0, mu_hi = 1.0, az_lo_rad = 0.0, az_width_rad = 2.0 * kPi;
+    double solid_angle_sr() const { return (mu_hi - mu_lo) * az_width_rad; }
 };
 
 // Triangles of an area emitter, with the cumulative area for uniform position sampling.
@@ -92,13 +102,26 @@ struct Light {
     std::shared_ptr<const Portal> portal;
     std::shared_ptr<const PortalSky> portal_sky;  // sky: its directions through the opening
     std::size_t portal_index = 0;
+    // sky_patch (annual daylight, docs/ANNUAL.md): uniform luminance `patch_luminance_cd_m2`
+    // over `patch`, directions uniform in solid angle. Without a portal its photons start on
+    // the scene's beam disk like a sky's; through one, on a disk perpendicular to their
+    // direction around the opening (beam_center, beam_radius: its centroid and the largest
+    // distance to a corner), kept if they cross the opening: the flux through it is then
+    // exactly L A cos(theta) per direction, with every photon's share equal.
+    SkyPatchBounds patch;
+    double patch_luminance_cd_m2 = 0.0;
 
     EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
     // A photon starting just outside the portal at (u_pos1, u_pos2), travelling along `direction`.
     EmittedRay emit_through_portal(const Vec3& direction, double u_pos1, double u_pos2) const;
+    // sky_patch through a portal: from the disk around the opening along `direction`.
+    EmittedRay emit_through_portal_disk(const Vec3& direction, double u_pos1, double u_pos2) const;
     // Whether its photons start on a beam disk (directional, sun, sky): they then draw
     // two uniforms for the position.
-    bool beam() const { return type == LightType::directional || type == LightType::sun || type == LightType::sky; }
+    bool beam() const {
+        return type == LightType::directional || type == LightType::sun || type == LightType::sky ||
+               type == LightType::sky_patch;
+    }
     // Whether its photons' start points are drawn (area lights, beams, luminous openings):
     // two more uniforms, from the photon's block 1.
     bool draws_position() const {

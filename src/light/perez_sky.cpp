@@ -161,7 +161,7 @@ CieSkyParameters perez_luminance_parameters(double epsilon, double delta, double
     return p;
 }
 
-PerezSky::PerezSky(const PerezSkyInput& in) : model_(SkyModel::uniform()) {
+PerezSky::PerezSky(const PerezSkyInput& in, bool normalise) : model_(SkyModel::uniform()) {
     const double z = in.sun_zenith_rad;
     if (!(z >= 0.0 && z < 0.5 * kPi) || !std::isfinite(in.sun_azimuth_rad))
         throw std::invalid_argument("the sun's zenith angle must lie in [0, 90) deg for a Perez sky");
@@ -185,8 +185,9 @@ PerezSky::PerezSky(const PerezSkyInput& in) : model_(SkyModel::uniform()) {
     direct_normal_illuminance_lx_ = in.direct_normal_w_m2 * direct_efficacy_lm_w_;
 
     model_ = SkyModel::perez(perez_luminance_parameters(eps, delta, z), z, in.sun_azimuth_rad);
-    zenith_luminance_cd_m2_ = diffuse_horizontal_illuminance_lx_ /
-                              model_.horizontal_illuminance_per_zenith_luminance_sr();
+    if (normalise)
+        zenith_luminance_cd_m2_ = diffuse_horizontal_illuminance_lx_ /
+                                  model_.horizontal_illuminance_per_zenith_luminance_sr();
 }
 
 }  // namespace luxtrace

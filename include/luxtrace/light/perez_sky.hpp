@@ -65,7 +65,9 @@ public:
     // Throws std::invalid_argument for a sun at or below the horizon, a zenith angle
     // outside [0, 90) deg, a diffuse irradiance not > 0, a direct one < 0, a non-finite
     // dew point or a day outside 1-366.
-    explicit PerezSky(const PerezSkyInput& in);
+    // normalise = false skips the integration that sets the zenith luminance (then 0): for
+    // callers that scale the distribution themselves (annual skies, 4,000 hours at a time).
+    explicit PerezSky(const PerezSkyInput& in, bool normalise = true);
 
     double epsilon() const { return epsilon_; }  // as computed from the input, unclamped
     double delta() const { return delta_; }

@@ -2,6 +2,7 @@
 
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/file_seal.hpp"
+#include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
 
 namespace luxtrace {
@@ -17,9 +18,11 @@ void write_result(const std::filesystem::path& path, const Scene& scene, const T
         write_surface_map(file, scene, layout, tallies, estimates);
         write_detectors(file, scene, layout, tallies, estimates);
         write_observers(file, scene, layout, tallies, estimates);
-        write_light_groups(file, scene, layout, tallies);
+        // An annual run's groups are its sky patches and suns: /annual holds them.
+        if (!scene.annual) write_light_groups(file, scene, layout, tallies);
         write_light_scenes(file, scene, estimates);
-        write_daylight(file, scene);
+        if (!scene.annual) write_daylight(file, scene);
+        write_annual(file, scene, layout, tallies, estimates);
         write_history(file, history, info);
         if (checkpoint != nullptr) write_checkpoint(file, layout, *checkpoint);
     });

@@ -70,6 +70,10 @@ void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& layou
 void write_light_scenes(hid_t file, const Scene& scene, const ResultEstimates& est);
 // /daylight (scenes with sun or sky lights): the site, time and each daylight source.
 void write_daylight(hid_t file, const Scene& scene);
+// /annual (scenes with [annual]): hours, skies, and per sensor grid the hourly values,
+// the coefficients' counts and the annual metrics with their errors.
+void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, const std::vector<std::uint64_t>& tallies,
+                  const ResultEstimates& est);
 // /history: one row per reduction.
 void write_history(hid_t file, const std::vector<HistoryRow>& history, const RunInfo& info);
 // /checkpoint: the state a restart continues from.

@@ -231,6 +231,9 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     const std::vector<std::uint64_t> tallies(m.tallies.begin(), m.tallies.end());
     const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
     ResultEstimates est = estimate_result(scene_, layout_, tallies, e0, n);
+    // The annual metrics' errors take a few dozen replicate years: the final result only.
+    if (scene_.annual)
+        est.annual = estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates);
     RunInfo i = info_;
     i.photons = n;
     i.flux_per_photon_lm = e0;

@@ -464,6 +464,10 @@ void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
             l.beam_radius = radius;
             l.beam_center = mid;
             l.flux_lm = l.sky->luminance_integral_cd_m2_sr() * kPi * radius * radius;
+        } else if (l.type == LightType::sky_patch) {
+            l.beam_radius = radius;
+            l.beam_center = mid;
+            l.flux_lm = l.patch_luminance_cd_m2 * l.patch.solid_angle_sr() * kPi * radius * radius;
         }
 }
 
@@ -527,11 +531,20 @@ void read_lights(SceneLoad& load, TableReader& root) {
     LightReader reader(load);
     std::vector<Light> lights;
     const auto tables = tables_of(root, "light");
+    Scene& scene = load.scene;
+    if (root.has("annual")) {
+        if (!tables.empty())
+            throw InputError(load.fname + ": [annual] makes the scene's lights (sky patches and suns from the weather "
+                                          "file): remove its [[light]] tables");
+        read_annual(load, root, lights, scene.light_groups);
+        place_beams(scene.bounds_min, scene.bounds_max, lights);
+        scene.lights = LightSet(std::move(lights));
+        return;
+    }
     for (std::size_t i = 0; i < tables.size(); ++i)
         for (Light& l : reader.parse_light(*tables[i], i)) lights.push_back(std::move(l));
     if (lights.empty()) throw InputError(load.fname + ": the scene has no [[light]]");
     reader.add_sun_ground_glow(lights);
-    Scene& scene = load.scene;
     place_beams(scene.bounds_min, scene.bounds_max, lights);
     check_fluxes(load.fname, lights);
     scene.lights = LightSet(std::move(lights));

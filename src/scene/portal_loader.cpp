@@ -87,14 +87,15 @@ void read_portals(SceneLoad& load, TableReader& root) {
     }
     Scene& scene = load.scene;
     const auto& old = scene.lights.lights();
-    if (std::none_of(old.begin(), old.end(),
-                     [](const Light& l) { return l.type == LightType::sun || l.type == LightType::sky; })) {
+    if (std::none_of(old.begin(), old.end(), [](const Light& l) {
+            return l.type == LightType::sun || l.type == LightType::sky || l.type == LightType::sky_patch;
+        })) {
         TableReader r(*tables[0], load.fname, entry_name("portal", 0, *tables[0]), "portal");
         r.fail_entry("a portal lets sun and sky light in, and the scene has no [[light]] of type 'sun' or 'sky'");
     }
     std::vector<Light> lights;
     for (const Light& l : old) {
-        if (l.type != LightType::sun && l.type != LightType::sky) {
+        if (l.type != LightType::sun && l.type != LightType::sky && l.type != LightType::sky_patch) {
             lights.push_back(l);
             continue;
         }
@@ -102,6 +103,9 @@ void read_portals(SceneLoad& load, TableReader& root) {
             Light through = light_through_portal(l, portals[p]);
             through.portal_index = p;
             if (p > 0) through.unobstructed_horizontal_lx = 0.0;  // the sky's E_h,ext, counted once
+            // An annual scene's patches and hourly suns behind an opening are many and
+            // expected: they are left out without a word.
+            if (scene.annual && !(through.flux_lm > 0.0)) continue;
             const bool lit = l.type == LightType::sky || l.illuminance_lx > 0.0;
             if (lit && !(through.flux_lm > 0.0))
                 scene.warnings.push_back(through.label + ": " +

@@ -18,6 +18,8 @@ struct RunReader : StepReader {
     void parse_run(TableReader& root) {
         RunConfig& run = scene.run;
         run.output = (fs::path(load.file.stem().string() + ".h5")).string();
+        // An annual run's thousands of groups share one surface map: its detectors keep them apart.
+        if (load.scene.annual) run.group_maps = false;
         const toml::table* t = root.table("run");
         if (t == nullptr) return;
         TableReader r(*t, fname, "[run]", "run");
@@ -46,6 +48,8 @@ struct RunReader : StepReader {
             run.max_bounces = static_cast<int>(*mb);
         }
         run.group_maps = r.boolean("group_maps").value_or(run.group_maps);
+        if (load.scene.annual && run.group_maps)
+            r.fail("group_maps", "an annual run keeps one surface map for its sky patches and suns");
         if (const toml::array* targets = r.array("target"))
             for (std::size_t i = 0; i < targets->size(); ++i) {
                 const toml::table* tt = (*targets)[i].as_table();

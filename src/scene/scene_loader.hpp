@@ -63,6 +63,9 @@ void read_geometry(SceneLoad& load, TableReader& root);
 // [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
 // Refuses a scene without lights.
 void read_lights(SceneLoad& load, TableReader& root);
+// [annual]: the weather file's year of skies as lights, one light group per sky patch, the
+// ground and every hour's sun (annual_loader.cpp); called by read_lights.
+void read_annual(SceneLoad& load, TableReader& root, std::vector<Light>& lights, std::vector<std::string>& groups);
 // [[portal]]: every sun and sky light becomes one light per opening (portal_loader.cpp).
 void read_portals(SceneLoad& load, TableReader& root);
 // [[light_scene]]: Scene::light_scenes, weights per light group.

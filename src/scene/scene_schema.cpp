@@ -16,7 +16,9 @@ const std::vector<SceneTableSchema>& scene_schema() {
     // clang-format off
     static const std::vector<SceneTableSchema> schema = {
         {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
-             "site", "portal"}},
+             "site", "portal", "annual"}},
+        {"annual",
+         {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year"}},
         {"portal", {"shape", "flip"}},
         {"site",
          {"latitude_deg", "longitude_deg", "utc_offset_h", "elevation_m", "north", "time", "pressure_mbar",

@@ -2,6 +2,7 @@
 // The whole simulated world after loading: one triangle soup with a material per
 // triangle, the lights, the detectors and the run settings. Built once per rank and
 // then shared read-only by its threads.
+#include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/glare/observer.hpp"
@@ -12,6 +13,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +54,8 @@ struct Scene {
     static constexpr const char* kDefaultLightGroup = "default";
     std::vector<std::string> light_groups{kDefaultLightGroup};
     std::vector<LightScene> light_scenes;
+    // [annual]: the year of skies whose patches and suns are the light groups (docs/ANNUAL.md).
+    std::optional<AnnualSetup> annual;
     std::vector<Detector> detectors;  // the user's, then one eye detector per observer
     std::vector<Observer> observers;
     std::vector<Camera> cameras;

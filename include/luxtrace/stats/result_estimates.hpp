@@ -3,6 +3,7 @@
 // before each write, and the writer (io/result_file.hpp) only writes these numbers. To add
 // a group of estimates (e.g. per light group or light scene): a member here, filled in
 // estimate_result, written by one part of the writer (src/io/result_parts.hpp).
+#include "luxtrace/annual/annual_estimate.hpp"
 #include "luxtrace/glare/observer_estimate.hpp"
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "luxtrace/stats/estimates.hpp"
@@ -34,6 +35,9 @@ struct ResultEstimates {
     std::vector<std::optional<DaylightEstimate>> daylight;
     std::vector<ObserverEstimate> observers;        // per Scene::observers
     std::vector<LightSceneEstimates> light_scenes;  // per Scene::light_scenes (the plain run's only)
+    // Per Scene::detectors, annual runs only (estimate_annual; filled for the final result,
+    // not for checkpoints).
+    std::vector<std::optional<AnnualDetectorEstimate>> annual;
 };
 
 // A [[light_scene]]'s estimates (issue 22): the same as the plain run's, on the groups'

@@ -1,0 +1,54 @@
+#pragma once
+// Each hour's illuminance on a detector from its daylight coefficients (issue 24,
+// docs/ANNUAL.md). A run keeps every detector cell's tallies per light group: the sky
+// patches, the ground and every hour's sun (annual_sky.hpp). Group g's coefficient of cell
+// c is C_gc = k n_gc (k the cell's value per count, eq. 8's n_c), with variance
+// k^2 (q_gc - n_gc^2 / N); hour h's illuminance is E_hc = sum_g w_hg C_gc, w_hg the hour's
+// luminance of the group over what the group emitted, and its variance
+// k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
+// this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of a
+// group reached gets that group's variance of one count, k^2, not 0. The direct sun (LM-83's ASE)
+// is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
+#include "luxtrace/annual/annual_sky.hpp"
+#include "luxtrace/stats/annual_metrics.hpp"
+#include "luxtrace/tally/tally.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace luxtrace {
+
+class AnnualCoefficients {
+public:
+    // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of one
+    // registration (e0 x Detector::value_per_lm()), `photons` N.
+    AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
+                       std::size_t det, std::size_t cells, double per_count, std::uint64_t photons);
+
+    std::size_t cells() const { return cells_; }
+    // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
+    // weather file (0 in the dark ones).
+    // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
+    void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
+    // The hourly values from coefficients perturbed by `noise_scale` times their standard
+    // errors (independent normal draws from (seed, replicate)): what a run with other random
+    // numbers might have given, for the errors of nonlinear metrics (annual_metrics.hpp).
+    // noise_scale 0: the estimate.
+    void replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
+
+private:
+    void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
+                 AnnualSeries& out) const;
+
+    const AnnualSetup& annual_;
+    std::size_t cells_ = 0;
+    double inv_photons_ = 0.0;
+    // [entry][cell]: sky patches then the ground (AnnualSky's sky vector order), and
+    // [sun][cell] for the suns; coefficients (lx per unit weight) and their variances.
+    std::vector<double> sky_, sky_var_, sun_, sun_var_, direct_, direct_var_;
+    // k^2 q and k n per entry, for the exact variance of a weighted sum.
+    std::vector<double> sky_q_, sun_q_;
+};
+
+}  // namespace luxtrace

@@ -1,0 +1,105 @@
+#pragma once
+// A year of skies for annual daylight (issue 24, docs/ANNUAL.md): from a weather file, each
+// hour's sun position (at the middle of the hour), its sky as luminances of the sky
+// patches and the ground, and its sun's direct normal illuminance. A run traces every patch
+// and every hour's sun as a light group once; an hour's illuminance is then the groups'
+// tallies weighted by that hour's values (weights()).
+//
+// Normalisation: group g emits the luminance Y_g = the year's sum over hours of its hourly
+// luminance (a patch, the ground) or direct normal illuminance (the hour's own sun), so a
+// plain run is the year's cumulative sky (lx h) and the photons go where the year's light
+// comes from. Hour h's weight of group g is L_hg / Y_g.
+#include "luxtrace/light/sky_patches.hpp"
+#include "luxtrace/light/sun_position.hpp"
+#include "luxtrace/weather/weather_file.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+
+// [annual] in the scene file (docs/REFERENCE.md §2).
+struct AnnualOptions {
+    std::filesystem::path weather;  // .epw or .wea
+    int sky_mf = 1;                 // sky patches: 1 Tregenza (145), 2 and 4 Reinhart (577, 2305)
+    // "perez": each hour's Perez all-weather sky; "cie": CIE type `cie_type` scaled to the
+    // hour's diffuse horizontal illuminance (from the Perez efficacy).
+    std::string sky = "perez";
+    int cie_type = 16;
+    double ground_reflectance = 0.2;
+    // LM-83's occupied hours: the hours whose middle lies in [from, to) local standard time.
+    double occupied_from_h = 8.0, occupied_to_h = 18.0;
+    int year = 0;  // the calendar year of the sun positions; 0: 2017 (2016 for a leap-year file)
+};
+
+// One hour of the weather file.
+struct AnnualHour {
+    int month = 0, day = 0;
+    double hour_mid = 0.0;  // local standard time of the hour's middle (h), e.g. 12.5
+    bool occupied = false;
+    // The sun above the horizon at the middle of the hour and a diffuse irradiance > 0: the
+    // hour has a sky (a row of sky vectors), otherwise it is dark.
+    bool daylit = false;
+    std::size_t row = 0;  // daylit: its row of sky vectors
+    double sun_altitude_deg = 0.0, sun_azimuth_deg = 0.0;
+    // As the sky model rebuilds them (Perez 1990 efficacies), lx.
+    double diffuse_horizontal_lx = 0.0, direct_normal_lx = 0.0;
+    // As the weather file gives them (NaN where it marks them missing).
+    double diffuse_horizontal_w_m2 = 0.0, direct_normal_w_m2 = 0.0, dew_point_c = 0.0;
+    int sun = -1;  // its sun (index in AnnualSky::suns), -1 when no direct sun
+    double global_horizontal_lx() const;
+};
+
+class AnnualSky {
+public:
+    // Throws InputError naming the weather file and the hour for a value a daylit hour needs
+    // that is missing or out of range.
+    AnnualSky(const weather::WeatherFile& weather, const SunSite& site, double utc_offset_h,
+              const AnnualOptions& options);
+
+    const SkyPatches& patches() const { return patches_; }
+    const std::vector<AnnualHour>& hours() const { return hours_; }
+    std::size_t daylit_hours() const { return rows_; }
+    // Sky vector entries per row: every patch, then the ground.
+    std::size_t sky_entries() const { return patches_.count() + 1; }
+    std::size_t ground_entry() const { return patches_.count(); }
+    // Row r's luminance of sky patch i (its mean over the patch's solid angle, scaled so
+    // that the patches give the hour's diffuse horizontal illuminance) and of the
+    // ground (entry ground_entry()), cd/m2.
+    const double* sky_vector(std::size_t row) const { return &luminance_[row * sky_entries()]; }
+    // The year's sum of each entry (cd/m2 h): what the patches' and the ground's groups emit.
+    const std::vector<double>& yearly_luminance() const { return yearly_; }
+    // The hours with a direct sun, in order: their hour index (in hours()).
+    const std::vector<std::size_t>& suns() const { return suns_; }
+    double sum_direct_normal_lx_h() const;
+    // Hours whose Perez clearness or brightness lay outside the model's fitted range.
+    std::size_t clamped_hours() const { return clamped_; }
+    // Hours with the sun up and a direct but no diffuse irradiance (no sky to model): left dark.
+    std::size_t no_diffuse_hours() const { return no_diffuse_; }
+
+private:
+    SkyPatches patches_;
+    std::vector<AnnualHour> hours_;
+    std::size_t rows_ = 0, clamped_ = 0, no_diffuse_ = 0;
+    std::vector<double> luminance_, yearly_;
+    std::vector<std::size_t> suns_;
+};
+
+// An annual scene's sky ([annual], docs/ANNUAL.md) and where its light groups are: the
+// sky patches are groups first_patch_group + i, the ground ground_group, the sun of
+// sky->suns()[s] first_sun_group + s.
+struct AnnualSetup {
+    AnnualOptions options;
+    std::shared_ptr<const AnnualSky> sky;
+    std::size_t first_patch_group = 0, ground_group = 0, first_sun_group = 0;
+    std::size_t sun_group(int sun) const { return first_sun_group + static_cast<std::size_t>(sun); }
+};
+
+// The hour's middle in local standard time: an EPW hour is the hour ENDING then (hour 1 is
+// 00:00-01:00, its middle 0.5); a .wea's decimal hour is already the middle as written.
+double hour_middle(const weather::WeatherHour& h, bool epw);
+
+}  // namespace luxtrace

@@ -1,0 +1,149 @@
+#include "luxtrace/annual/annual_illuminance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace luxtrace {
+
+AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
+                                       std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
+                                       double per_count, std::uint64_t photons)
+    : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0) {
+    const AnnualSky& sky = *annual.sky;
+    const std::size_t entries = sky.sky_entries(), suns = sky.suns().size();
+    const double k2 = per_count * per_count;
+    auto fill = [&](std::size_t group, std::size_t row, std::vector<double>& c, std::vector<double>& q,
+                    std::vector<double>& var) {
+        for (std::size_t cell = 0; cell < cells; ++cell) {
+            const double n = static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
+            const double qq = static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
+            const std::size_t i = row * cells + cell;
+            c[i] = per_count * n;
+            // A cell no photon of the group reached has an error of at least one photon's
+            // worth (its expected count may be ~1): a weak hour's sun is not exact in it.
+            q[i] = n > 0.0 ? k2 * qq : k2;
+            var[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : k2;
+        }
+    };
+    sky_.assign(entries * cells, 0.0);
+    sky_q_ = sky_var_ = sky_;
+    for (std::size_t e = 0; e < entries; ++e)
+        fill(e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e, e, sky_, sky_q_, sky_var_);
+    sun_.assign(suns * cells, 0.0);
+    sun_q_ = sun_var_ = direct_ = direct_var_ = sun_;
+    for (std::size_t s = 0; s < suns; ++s) {
+        fill(annual.first_sun_group + s, s, sun_, sun_q_, sun_var_);
+        if (!layout.direct_scores()) continue;
+        for (std::size_t cell = 0; cell < cells; ++cell) {
+            // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
+            const double n = static_cast<double>(data[layout.detector_direct(det, cell, annual.first_sun_group + s)]);
+            direct_[s * cells + cell] = per_count * n;
+            direct_var_[s * cells + cell] = n > 0.0 ? std::max(0.0, k2 * (n - n * n * inv_photons_)) : k2;
+        }
+    }
+}
+
+void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vector<double>& sun,
+                                 const std::vector<double>& direct, AnnualSeries& out) const {
+    const AnnualSky& s = *annual_.sky;
+    const std::size_t entries = s.sky_entries(), hours = s.hours().size();
+    const std::vector<double>& yearly = s.yearly_luminance();
+    out.hours = hours;
+    out.sensors = cells_;
+    out.total_lx.assign(hours * cells_, 0.0);
+    out.direct_lx.assign(hours * cells_, 0.0);
+    std::vector<double> row(cells_);
+    for (std::size_t h = 0; h < hours; ++h) {
+        const AnnualHour& hour = s.hours()[h];
+        if (!hour.daylit) continue;
+        std::fill(row.begin(), row.end(), 0.0);
+        const double* lum = s.sky_vector(hour.row);
+        for (std::size_t e = 0; e < entries; ++e) {
+            if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
+            const double w = lum[e] / yearly[e];
+            const double* c = &sky[e * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * c[cell];
+        }
+        double* total = &out.total_lx[h * cells_];
+        if (hour.sun >= 0) {
+            const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
+            const double* d = &direct[static_cast<std::size_t>(hour.sun) * cells_];
+            double* dir = &out.direct_lx[h * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                row[cell] += c[cell];
+                dir[cell] = (d[cell]);
+            }
+        }
+        for (std::size_t cell = 0; cell < cells_; ++cell) total[cell] = (row[cell]);
+    }
+}
+
+void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) const {
+    combine(sky_, sun_, direct_, estimate);
+    // Sum of w^2 k^2 q over the groups (the weights squared: lum^2 / yearly^2), minus E^2 / N.
+    const AnnualSky& s = *annual_.sky;
+    const std::size_t entries = s.sky_entries();
+    const std::vector<double>& yearly = s.yearly_luminance();
+    sigma.hours = estimate.hours;
+    sigma.sensors = cells_;
+    sigma.total_lx.assign(estimate.total_lx.size(), 0.0);
+    sigma.direct_lx.assign(estimate.direct_lx.size(), 0.0);
+    std::vector<double> row(cells_);
+    for (std::size_t h = 0; h < s.hours().size(); ++h) {
+        const AnnualHour& hour = s.hours()[h];
+        if (!hour.daylit) continue;
+        std::fill(row.begin(), row.end(), 0.0);
+        const double* lum = s.sky_vector(hour.row);
+        for (std::size_t e = 0; e < entries; ++e) {
+            if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
+            const double w = lum[e] / yearly[e];
+            const double* q = &sky_q_[e * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * w * q[cell];
+        }
+        const double* e_h = &estimate.total_lx[h * cells_];
+        double* sig = &sigma.total_lx[h * cells_];
+        if (hour.sun >= 0) {
+            const std::size_t sun = static_cast<std::size_t>(hour.sun);
+            double* dsig = &sigma.direct_lx[h * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                row[cell] += sun_q_[sun * cells_ + cell];
+                dsig[cell] = (std::sqrt(direct_var_[sun * cells_ + cell]));
+            }
+        }
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const double e = e_h[cell];
+            sig[cell] = (std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_)));
+        }
+    }
+}
+
+void AnnualCoefficients::replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate,
+                                   AnnualSeries& out) const {
+    if (noise_scale == 0.0) {
+        combine(sky_, sun_, direct_, out);
+        return;
+    }
+    std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
+    std::normal_distribution<double> normal;
+    auto perturb = [&](const std::vector<double>& c, const std::vector<double>& var) {
+        std::vector<double> p(c.size());
+        for (std::size_t i = 0; i < c.size(); ++i)
+            p[i] = var[i] > 0.0 ? c[i] + noise_scale * std::sqrt(var[i]) * normal(rng) : c[i];
+        return p;
+    };
+    const std::vector<double> sky = perturb(sky_, sky_var_);
+    // The direct registrations are part of the sun's: perturb them together, the direct
+    // part by its own error and the rest by what remains of the sun's.
+    std::vector<double> sun(sun_.size()), direct(direct_.size());
+    for (std::size_t i = 0; i < sun_.size(); ++i) {
+        const double zd = direct_var_[i] > 0.0 ? normal(rng) : 0.0;
+        const double rest_var = std::max(0.0, sun_var_[i] - direct_var_[i]);
+        const double zr = rest_var > 0.0 ? normal(rng) : 0.0;
+        direct[i] = direct_[i] + noise_scale * std::sqrt(direct_var_[i]) * zd;
+        sun[i] = sun_[i] + noise_scale * (std::sqrt(direct_var_[i]) * zd + std::sqrt(rest_var) * zr);
+    }
+    combine(sky, sun, direct, out);
+}
+
+}  // namespace luxtrace

@@ -1,0 +1,168 @@
+// [annual] -> Scene::annual and the lights of an annual daylight run (docs/ANNUAL.md,
+// docs/REFERENCE.md §2): the weather file's sky patches, ground and hourly suns, each its
+// own light group, emitting the year's sum of its hourly luminance (annual_sky.hpp).
+#include "luxtrace/annual/annual_sky.hpp"
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/light/sky_directions.hpp"
+#include "scene_loader.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace luxtrace::detail {
+
+namespace {
+
+AnnualOptions read_options(SceneLoad& load, TableReader& r) {
+    AnnualOptions o;
+    const auto weather = r.string("weather");
+    if (!weather) r.fail_entry("needs 'weather' (an EnergyPlus .epw or a Radiance .wea file)");
+    o.weather = load.resolve(*weather);
+    if (const auto mf = r.integer("sky_mf")) {
+        if (*mf < 1 || *mf > 6)
+            r.fail("sky_mf",
+                   "must be 1 (Tregenza's 145 patches) to 6 (Reinhart's subdivisions), got " + std::to_string(*mf));
+        o.sky_mf = static_cast<int>(*mf);
+    }
+    if (const auto sky = r.string("sky")) {
+        if (*sky != "perez" && *sky != "cie") r.fail("sky", "must be \"perez\" or \"cie\", got '" + *sky + "'");
+        o.sky = *sky;
+    }
+    if (const auto type = r.integer("cie_type")) {
+        if (o.sky != "cie") r.fail("cie_type", "is for sky = \"cie\"");
+        if (*type < 1 || *type > 16) r.fail("cie_type", "must be 1 to 16, got " + std::to_string(*type));
+        o.cie_type = static_cast<int>(*type);
+    }
+    if (const auto rho = r.number("ground_reflectance")) {
+        if (!(*rho >= 0.0 && *rho <= 1.0)) r.fail("ground_reflectance", "must lie in [0, 1]");
+        o.ground_reflectance = *rho;
+    }
+    if (const auto hours = r.numbers("occupied_hours", 2)) {
+        if (!((*hours)[0] >= 0.0 && (*hours)[0] < (*hours)[1] && (*hours)[1] <= 24.0))
+            r.fail("occupied_hours", "must be [from, to] with 0 <= from < to <= 24 (local standard time)");
+        o.occupied_from_h = (*hours)[0];
+        o.occupied_to_h = (*hours)[1];
+    }
+    if (const auto year = r.integer("year")) {
+        if (*year < 1900 || *year > 2200) r.fail("year", "must lie in 1900 to 2200");
+        o.year = static_cast<int>(*year);
+    }
+    return o;
+}
+
+// The weather file's site, or the scene's [site] if it agrees with it.
+void reconcile_site(SceneLoad& load, TableReader& r, const weather::WeatherFile& w) {
+    Site& site = load.scene.site;
+    const weather::WeatherSite& ws = w.site;
+    if (!site.located) {
+        site.located = true;
+        site.sun_site.latitude_deg = ws.latitude_deg;
+        site.sun_site.longitude_deg = ws.longitude_deg;
+        site.sun_site.elevation_m = ws.elevation_m;
+        site.utc_offset_h = ws.time_zone_h;
+        return;
+    }
+    // A tenth of a degree is 11 km: the same place, whatever rounding the files use.
+    auto differs = [&](const char* what, double scene, double file, double tolerance) {
+        if (std::abs(scene - file) > tolerance) {
+            char text[160];
+            std::snprintf(text, sizeof text, "[site] %s is %g but the weather file %s says %g", what, scene,
+                          w.path.c_str(), file);
+            r.fail("weather", text);
+        }
+    };
+    differs("latitude_deg", site.sun_site.latitude_deg, ws.latitude_deg, 0.1);
+    differs("longitude_deg", site.sun_site.longitude_deg, ws.longitude_deg, 0.1);
+    differs("utc_offset_h", site.utc_offset_h, ws.time_zone_h, 1e-6);
+}
+
+std::string padded(const char* prefix, std::size_t i, int width) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%s%0*zu", prefix, width, i);
+    return text;
+}
+
+}  // namespace
+
+void read_annual(SceneLoad& load, TableReader& root, std::vector<Light>& lights, std::vector<std::string>& groups) {
+    TableReader r(*root.table("annual"), load.fname, "[annual]", "annual");
+    Scene& scene = load.scene;
+    if (scene.band_count() != 1)
+        r.fail_entry("annual daylight is photometric: the scene must have one band (bands = [\"Y\"])");
+    AnnualSetup setup;
+    setup.options = read_options(load, r);
+    weather::WeatherFile w;
+    // The weather file's own errors name its file and line; the scene's key says which file.
+    try {
+        w = weather::read_weather_file(setup.options.weather.string());
+    } catch (const std::exception& e) {
+        r.fail("weather", e.what());
+    }
+    reconcile_site(load, r, w);
+    std::shared_ptr<const AnnualSky> sky;
+    try {
+        sky = std::make_shared<const AnnualSky>(w, scene.site.sun_site, scene.site.utc_offset_h, setup.options);
+    } catch (const InputError& e) {
+        r.fail("weather", e.what());
+    }
+    r.finish();
+    if (sky->daylit_hours() == 0) r.fail("weather", w.path + " has no hour with the sun up and daylight");
+    const Frame horizon = scene.site.horizon();
+    const SkyPatches& patches = sky->patches();
+    const std::vector<double>& yearly = sky->yearly_luminance();
+    groups.clear();
+    // Sky patches: Radiance's bin numbers (sky_patches.hpp), 1-based.
+    setup.first_patch_group = 0;
+    for (std::size_t i = 0; i < patches.count(); ++i) {
+        groups.push_back(padded("sky_", i + 1, patches.count() >= 1000 ? 4 : 3));
+        const SkyPatches::Patch& p = patches.patch(i);
+        Light l;
+        l.type = LightType::sky_patch;
+        l.label = "sky patch " + std::to_string(i + 1);
+        l.group = groups.size() - 1;
+        l.band_share = {1.0};
+        l.horizon = horizon;
+        l.patch.mu_lo = std::sin(p.alt_lo_deg * kPi / 180.0);
+        l.patch.mu_hi = std::sin(p.alt_hi_deg * kPi / 180.0);
+        l.patch.az_lo_rad = p.az_lo_deg * kPi / 180.0;
+        l.patch.az_width_rad = (p.az_hi_deg - p.az_lo_deg) * kPi / 180.0;
+        l.patch_luminance_cd_m2 = yearly[i];
+        l.sky_description = "annual sky patch";
+        if (yearly[i] > 0.0) lights.push_back(std::move(l));
+    }
+    setup.ground_group = groups.size();
+    groups.push_back("ground");
+    if (const double ground = yearly[sky->ground_entry()]; ground > 0.0) {
+        Light l;
+        l.type = LightType::sky;
+        l.label = "annual ground";
+        l.group = setup.ground_group;
+        l.band_share = {1.0};
+        l.horizon = horizon;
+        l.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0, ground);
+        l.sky_description = "annual ground glow (reflectance " + fmt_number(setup.options.ground_reflectance) + ")";
+        lights.push_back(std::move(l));
+    }
+    setup.first_sun_group = groups.size();
+    const double cos_half = std::cos(kSunHalfAngleDeg * kPi / 180.0);
+    for (std::size_t s = 0; s < sky->suns().size(); ++s) {
+        const AnnualHour& h = sky->hours()[sky->suns()[s]];
+        groups.push_back(padded("sun_", sky->suns()[s] + 1, 4));
+        Light l;
+        l.type = LightType::sun;
+        l.label = "sun of hour " + std::to_string(sky->suns()[s] + 1);
+        l.group = groups.size() - 1;
+        l.band_share = {1.0};
+        l.illuminance_lx = h.direct_normal_lx;
+        l.sun_altitude_deg = h.sun_altitude_deg;
+        l.sun_azimuth_deg = h.sun_azimuth_deg;
+        l.cos_half_angle = cos_half;
+        l.aim = -horizon.to_world(sky_direction_deg(h.sun_altitude_deg, h.sun_azimuth_deg));
+        l.frame = Frame::around(l.aim);
+        lights.push_back(std::move(l));
+    }
+    setup.sky = std::move(sky);
+    scene.annual = std::move(setup);
+}
+
+}  // namespace luxtrace::detail

@@ -127,7 +127,7 @@ TEST(Reference, EveryAcceptedSceneKeyIsDocumentedAndEveryDocumentedKeyIsAccepted
 TEST(Reference, ScenesThatUseEverySchemaKeyLoad) {
     Keys used;
     for (const fs::path& f : {kData / "scenes" / "every_key.toml", kData / "reference" / "more_keys.toml",
-                              kData / "reference" / "daylight_keys.toml"}) {
+                              kData / "reference" / "daylight_keys.toml", kData / "reference" / "annual_keys.toml"}) {
         EXPECT_NO_THROW(luxtrace::load_scene(f)) << f;
         collect(toml::parse_file(f.string()), "", used);
     }

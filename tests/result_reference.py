@@ -44,6 +44,8 @@ def written(path):
         parts = name.split("/")
         if len(parts) >= 3 and parts[1] in ("detectors", "observers", "light_groups", "light_scenes"):
             parts[2] = "NAME"
+        if len(parts) >= 4 and parts[1] == "annual" and parts[2] == "detectors":
+            parts[3] = "NAME"
         if len(parts) >= 5 and parts[1] == "detectors" and parts[3] == "task_areas":
             parts[4] = "AREA"
         # A light group's or light scene's detectors and observers: DET, OBS, AREA.
@@ -57,7 +59,7 @@ def written(path):
         return "/".join(parts) or "/"
 
     # Groups named by the scene are documented as NAME / AREA tables, not as rows.
-    named_by_scene = ("/detectors", "/observers", "/detectors/NAME/task_areas", "/light_groups", "/light_scenes",
+    named_by_scene = ("/detectors", "/observers", "/annual/detectors", "/detectors/NAME/task_areas", "/light_groups", "/light_scenes",
                       "/light_groups/NAME/detectors", "/light_scenes/NAME/detectors",
                       "/light_scenes/NAME/observers", "/light_scenes/NAME/detectors/DET/task_areas")
 

@@ -6,7 +6,8 @@
 # notes, a maintenance factor all lights share) and one of
 # tests/data/reference/daylight_keys.toml (sun and skies with ground glow: /daylight, a
 # daylight_factor detector with en17037, a task area and a light scene);
-# tests/result_reference.py compares the four files with the tables.
+# and one of tests/data/reference/annual_keys.toml ([annual]); tests/result_reference.py
+# compares the five files with the tables.
 #   result_reference_test.sh LUXTRACE WORKDIR
 set -euo pipefail
 lux=$1
@@ -21,6 +22,8 @@ test -f "$work/ck.h5" || { echo "no checkpoint was written" >&2; exit 1; }
 "$lux" run "$src/tests/data/reference/more_keys.toml" --photons 20k --output "$work/more.h5" --threads 2 --quiet
 "$lux" run "$src/tests/data/reference/daylight_keys.toml" --photons 20k --output "$work/daylight.h5" --threads 2 \
     --quiet
+# tests/data/reference/annual_keys.toml: [annual] (/annual and its detectors).
+"$lux" run "$src/tests/data/reference/annual_keys.toml" --photons 20k --output "$work/annual.h5" --threads 2 --quiet
 /usr/bin/python3 "$src/tests/result_reference.py" "$src/docs/REFERENCE.md" "$work/r.h5" "$work/ck.h5" \
-    "$work/more.h5" "$work/daylight.h5"
+    "$work/more.h5" "$work/daylight.h5" "$work/annual.h5"
 rm -rf "$work"

@@ -1,0 +1,139 @@
+// [annual] in the scene loader (src/scene/annual_loader.cpp, src/annual/annual_sky.cpp;
+// docs/ANNUAL.md): the weather file's year becomes one light group per sky patch, the
+// ground and every hour's sun, each emitting the year's sum of its hourly values; the
+// hourly skies carry exactly the hour's diffuse illuminance; bad input is an InputError
+// naming the file, line and key.
+#include "luxtrace/annual/annual_sky.hpp"
+#include "luxtrace/tally/tally.hpp"
+#include "luxtrace/weather/weather_file.hpp"
+#include "scene_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+namespace luxtrace {
+namespace {
+
+using namespace test_support;
+
+const std::string kEpw = data("weather/chicago.epw").string();
+const std::string kAnnual = "[annual]\nweather = \"" + kEpw + "\"\n";
+const std::string kGrid = "[[detector]]\nname = \"desk\"\ncenter = [0, 0, 0.8]\nsize = [2, 2]\ncells = [2, 2]\n";
+
+TEST_F(Loader, AnnualScenesLightsAreThePatchesTheGroundAndEverySunHour) {
+    const Scene s = load(kAnnual + kMat + kFloor + kGrid);
+    ASSERT_TRUE(s.annual);
+    const AnnualSetup& a = *s.annual;
+    const AnnualSky& sky = *a.sky;
+    EXPECT_EQ(sky.hours().size(), 8760u);
+    EXPECT_EQ(sky.patches().count(), 145u);
+    // Groups: the patches in Radiance's order, the ground, then one per sun hour.
+    ASSERT_EQ(s.light_groups.size(), 145u + 1u + sky.suns().size());
+    EXPECT_EQ(s.light_groups.front(), "sky_001");
+    EXPECT_EQ(s.light_groups[a.ground_group], "ground");
+    EXPECT_EQ(s.light_groups[a.sun_group(0)], "sun_" + std::string(4 - std::to_string(sky.suns()[0] + 1).size(), '0') +
+                                                  std::to_string(sky.suns()[0] + 1));
+    EXPECT_GT(sky.suns().size(), 3000u);
+    EXPECT_LE(sky.suns().size(), sky.daylit_hours());
+    // The site is the weather file's (no [site]).
+    EXPECT_NEAR(s.site.sun_site.latitude_deg, 41.98, 1e-9);
+    EXPECT_NEAR(s.site.sun_site.longitude_deg, -87.92, 1e-9);
+    EXPECT_EQ(s.site.utc_offset_h, -6.0);
+    // The tallies keep direct counts and one surface map.
+    const TallyLayout layout(s);
+    EXPECT_TRUE(layout.direct_scores());
+    EXPECT_EQ(layout.map_groups(), 1u);
+    EXPECT_FALSE(s.run.group_maps);
+    // Each light emits the year's sum: a patch's flux is Y_p Omega_p pi R^2 on the beam disk.
+    double sun_lx_h = 0.0;
+    for (const Light& l : s.lights.lights()) {
+        if (l.type == LightType::sky_patch) {
+            const std::size_t p = l.group - a.first_patch_group;
+            EXPECT_DOUBLE_EQ(l.patch_luminance_cd_m2, sky.yearly_luminance()[p]);
+            EXPECT_NEAR(l.patch.solid_angle_sr(), sky.patches().solid_angle_sr(p), 1e-12);
+            EXPECT_NEAR(l.flux_lm,
+                        l.patch_luminance_cd_m2 * l.patch.solid_angle_sr() * kPi * l.beam_radius * l.beam_radius,
+                        1e-9 * l.flux_lm);
+        } else if (l.type == LightType::sun) {
+            const std::size_t sun = l.group - a.first_sun_group;
+            EXPECT_EQ(l.illuminance_lx, sky.hours()[sky.suns()[sun]].direct_normal_lx);
+            sun_lx_h += l.illuminance_lx;
+        }
+    }
+    EXPECT_NEAR(sun_lx_h, sky.sum_direct_normal_lx_h(), 1e-9 * sun_lx_h);
+}
+
+TEST_F(Loader, AnnualHoursSkyCarriesTheDiffuseIlluminanceAndTheSunSitsMidHour) {
+    const Scene s = load(kAnnual + kMat + kFloor + kGrid);
+    const AnnualSky& sky = *s.annual->sky;
+    const SkyPatches& p = sky.patches();
+    const weather::WeatherFile w = weather::read_epw(kEpw);
+    std::size_t checked = 0;
+    for (std::size_t h = 0; h < sky.hours().size(); ++h) {
+        const AnnualHour& a = sky.hours()[h];
+        // EPW hour k is (k - 1):00 to k:00; its sun is computed at the middle.
+        EXPECT_DOUBLE_EQ(a.hour_mid, w.hours[h].hour - 0.5);
+        EXPECT_EQ(a.occupied, a.hour_mid >= 8.0 && a.hour_mid < 18.0);
+        if (!a.daylit) continue;
+        EXPECT_GT(a.sun_altitude_deg, 0.0);
+        const double* v = sky.sky_vector(a.row);
+        double e = 0.0;
+        for (std::size_t i = 0; i < p.count(); ++i) e += v[i] * p.projected_solid_angle_sr(i);
+        EXPECT_NEAR(e, a.diffuse_horizontal_lx, 1e-9 * a.diffuse_horizontal_lx);
+        EXPECT_NEAR(v[sky.ground_entry()], 0.2 * a.global_horizontal_lx() / kPi, 1e-9 * a.global_horizontal_lx());
+        ++checked;
+    }
+    EXPECT_EQ(checked, sky.daylit_hours());
+    EXPECT_GT(checked, 4000u);
+}
+
+TEST_F(Loader, AnnualPortalDropsPatchesBehindTheOpening) {
+    // A window facing south (y = 0 plane, outward -y): no patch of the northern sky enters.
+    const std::string window =
+        "[[shape]]\nname = \"window\"\ntype = \"rectangle\"\ncenter = [0, 0, 1]\nnormal = [0, 1, 0]\nsize = [1, 1]\n"
+        "material = \"m\"\n[[portal]]\nshape = \"window\"\n";
+    const Scene s = load(kAnnual + kMat + kFloor + window + kGrid);
+    std::size_t patches = 0;
+    for (const Light& l : s.lights.lights()) {
+        if (l.type != LightType::sky_patch) continue;
+        ++patches;
+        ASSERT_TRUE(l.portal);
+        // Some of the patch faces the opening's outside (within the check's 0.1 margin).
+        const double mid_az = l.patch.az_lo_rad + 0.5 * l.patch.az_width_rad;
+        EXPECT_FALSE(std::cos(mid_az) > 0.5 && l.patch.mu_hi < 0.5) << l.label << " looks north";
+    }
+    EXPECT_GT(patches, 50u);
+    EXPECT_LT(patches, 120u);
+}
+
+TEST_F(Loader, AnnualBadInputNamesItsKey) {
+    expect_bad("[annual]\nweather = \"nowhere.epw\"\n" + kMat + kFloor, "", {"nowhere.epw"});
+    expect_bad("[annual]\n" + kMat + kFloor, "", {"[annual]", "weather"});
+    expect_bad(kAnnual + "sky_mf = 9\n" + kMat + kFloor, "sky_mf", {"sky_mf", "1"});
+    expect_bad(kAnnual + "sky = \"blue\"\n" + kMat + kFloor, "sky =", {"perez", "cie"});
+    expect_bad(kAnnual + "cie_type = 3\n" + kMat + kFloor, "cie_type", {"cie_type"});
+    expect_bad(kAnnual + "occupied_hours = [18, 8]\n" + kMat + kFloor, "occupied_hours", {"occupied_hours"});
+    expect_bad(kAnnual + "ground_reflectance = 2\n" + kMat + kFloor, "ground_reflectance", {"[0, 1]"});
+    // A [site] that contradicts the weather file.
+    expect_bad("[site]\nlatitude_deg = 52.5\nlongitude_deg = 13.4\nutc_offset_h = 1\n" + kAnnual + kMat + kFloor,
+               "weather", {"latitude_deg", "41.98"});
+    // Lights come from [annual].
+    expect_bad(kAnnual + kMat + kFloor + kLamp, "", {"[annual]", "[[light]]"});
+    expect_bad(kAnnual + kMat + kFloor + "[run]\ngroup_maps = true\n", "group_maps", {"annual"});
+    expect_bad(kAnnual + "[scene]\nbands = [\"R\", \"G\", \"B\"]\n" + kMat + kFloor, "", {"one band"});
+}
+
+TEST_F(Loader, AnnualTruncatedWeatherFileNamesItsLine) {
+    std::ifstream in(kEpw);
+    std::ofstream out(dir_ / "short.epw");
+    std::string line;
+    for (int i = 0; i < 8 + 100 && std::getline(in, line); ++i) out << line << '\n';
+    out.close();
+    expect_bad("[annual]\nweather = \"short.epw\"\n" + kMat + kFloor, "", {"short.epw"});
+}
+
+}  // namespace
+}  // namespace luxtrace

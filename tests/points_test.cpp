@@ -68,6 +68,7 @@ TEST(PtsReader, BadInputNamesFileAndLine) {
         {"1 inf 3 0 0 1\n", "g.pts:1:", "field 2 (y) 'inf' is not finite"},
         {"1e999 2 3 0 0 1\n", "g.pts:1:", "field 1 (x) '1e999' is not a number"},
         {"1 2 3 1e300 1e300 1e300\n", "g.pts:1:", "too large"},
+        {"0 0 2e9 0 0 1\n", "g.pts:1:", "outside the +-1e9 m"},
         {"1,2,3,0,0,1\n", "g.pts:1:", "found 1"},
         {"", "g.pts:1:", "no sensor"},
         {"# only a comment\n\n", "g.pts:2:", "no sensor"},

@@ -11,6 +11,9 @@ namespace luxtrace {
 
 namespace {
 
+// As for mesh vertices (geometry_loader.cpp): beyond this no scene can place a point.
+constexpr double kMaxCoordinateM = 1e9;
+
 [[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
     throw InputError(file + ":" + std::to_string(line) + ": " + what);
 }
@@ -68,6 +71,9 @@ SensorPointList parse_pts(std::string_view text, const std::string& file_name) {
                      std::to_string(w.size()) + " field(s)");
         double v[6];
         for (int k = 0; k < 6; ++k) v[k] = number(file_name, line_no, w[static_cast<std::size_t>(k)], k);
+        for (int k = 0; k < 3; ++k)
+            if (!(std::abs(v[k]) <= kMaxCoordinateM))
+                fail(file_name, line_no, "the position lies outside the +-1e9 m that luxtrace can place");
         const Vec3 dir(v[3], v[4], v[5]);
         const double len = glm::length(dir);
         if (!(len > 0.0) || !std::isfinite(len))

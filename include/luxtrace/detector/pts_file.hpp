@@ -5,8 +5,9 @@
 // stops at the first word that is not a number; Honeybee reads line by line and skips
 // lines starting with '#'. This reader takes the stricter, line-based form plus Honeybee's
 // comments: blank lines and lines whose first non-blank character is '#' are skipped;
-// every other line holds exactly six finite numbers, the direction not zero (rtrace
-// would take a zero direction as "flush output", not as a sensor). docs/REFERENCE.md §2.
+// every other line holds exactly six finite numbers, the position within +-1e9 m, the
+// direction not zero (rtrace would take a zero direction as "flush output", not as a
+// sensor). docs/REFERENCE.md §2.
 #include "luxtrace/core/math.hpp"
 
 #include <string>

@@ -368,5 +368,45 @@ TEST(PointsRun, SensorsUnderAPointLightMatchTheAnalyticValueAndTheCoincidentGrid
     EXPECT_NEAR(r.attr_f64("/detectors/sensors", "disc_area_m2"), kPi * 0.0625, 1e-15);
 }
 
+// The statistics built on cells work on sensors unchanged: two lamps in two light groups,
+// a light scene of one of them, and a run target on two sensors. The whole run reads the
+// sum of both lamps' disc means, the light scene the one lamp's, each within its errors;
+// the run stops at the target, whose sensors' combined error is then within it.
+TEST(PointsRun, LightGroupsScenesAndTargetsWorkOnSensors) {
+    ScratchDir dir("points_groups");
+    std::ofstream pts(dir.path() / "grid.pts");
+    for (int i = 0; i < 6; ++i) pts << 0.5 * i - 1.25 << " 0 0 0 0 1\n";
+    pts.close();
+    const std::string text = std::string(kBlackSpeck) +
+                             "\n[[light]]\ntype = \"point\"\nposition = [-1, 0, 1.5]\nflux_lm = 1000\ngroup = \"a\"\n"
+                             "\n[[light]]\ntype = \"point\"\nposition = [1, 0, 1.5]\nflux_lm = 500\ngroup = \"b\"\n"
+                             "\n[[light_scene]]\nname = \"only_a\"\ndimming = { a = 1 }\n"
+                             "\n[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\n"
+                             "\n[run]\nseed = 12\nreport_every_photons = 100000\n"
+                             "\n[[run.target]]\non = \"detector:sensors[2:4,0:1]\"\nrelative_error = 0.01\n";
+    const ResultReader r(run_scene(dir, text, 50'000'000));
+    EXPECT_NE(r.attr_str("/", "stop_reason").find("target"), std::string::npos) << r.attr_str("/", "stop_reason");
+    const std::vector<Reading> all = cells_of(r, "sensors");
+    const std::vector<double> v = r.f64("/light_scenes/only_a/detectors/sensors/value"),
+                              rel = r.f64("/light_scenes/only_a/detectors/sensors/sigma_rel");
+    ASSERT_EQ(all.size(), 6u);
+    ASSERT_EQ(v.size(), 6u);
+    const double ia = 1000.0 / (4.0 * kPi), ib = 500.0 / (4.0 * kPi);
+    ZPool pool;
+    double target_n = 0.0, target_var = 0.0;
+    for (std::size_t k = 0; k < 6; ++k) {
+        const double x = 0.5 * static_cast<double>(k) - 1.25;
+        const double a = disc_average(ia, 1.5, x + 1.0, 0.0, 0.25), b = disc_average(ib, 1.5, x - 1.0, 0.0, 0.25);
+        pool.add("both lamps, sensor " + std::to_string(k), all[k].value, all[k].sigma, a + b);
+        pool.add("light scene only_a, sensor " + std::to_string(k), v[k], v[k] * rel[k], a);
+        if (k == 2 || k == 3) {
+            target_n += all[k].value;
+            target_var += all[k].sigma * all[k].sigma;  // a bound: the run's own error is exact
+        }
+    }
+    pool.check("two light groups and a light scene");
+    EXPECT_LT(std::sqrt(target_var) / target_n, 0.01 * std::sqrt(2.0));
+}
+
 }  // namespace
 }  // namespace luxtrace

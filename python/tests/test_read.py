@@ -269,3 +269,13 @@ def test_points_detector(binary, tmp_path):
     with open(tmp_path / "s.csv") as f:
         rows = f.read().splitlines()
     assert len(rows) == 4 and rows[3].split(",")[4:7] == ["3.0", "0.0", "1.0"]
+    # Two seeds combine: counts add, the sensors stay; another grid is refused.
+    r2 = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r2.h5", "--photons", "20k", "--seed", "2"))
+    c = luxtrace.combine([r, r2]).detector("sensors")
+    np.testing.assert_array_equal(c.count, d.count + r2.detector("sensors").count)
+    np.testing.assert_array_equal(c.positions, d.positions)
+    np.testing.assert_array_equal(c.cell_centres()[0], d.positions)
+    (tmp_path / "grid.pts").write_text("0 0 0.8 0 0 1\n1 0 0.8 0 0 1\n3 0 1.5 1 0 0\n")
+    r3 = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r3.h5", "--photons", "20k", "--seed", "3"))
+    with pytest.raises(luxtrace.MismatchError, match="other sensor positions"):
+        luxtrace.combine([r, r3])

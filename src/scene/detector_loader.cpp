@@ -30,8 +30,9 @@ struct DetectorReader : StepReader {
     // half-open and 0-based like a run target's [i0:i1,j0:j1].
     void parse_task_areas(TableReader& r, const toml::array& areas, Detector& d) {
         if (d.type != DetectorType::illuminance && d.type != DetectorType::points)
-            r.fail("task_area", std::string("task areas belong to illuminance and points detectors (this one is ") +
-                                    detector_type_name(d.type) + ": no uniformity U0 is computed for it)");
+            r.fail("task_area",
+                   std::string("task areas belong to illuminance detectors and points detectors (this one is ") +
+                       detector_type_name(d.type) + ": no uniformity U0 is computed for it)");
         for (std::size_t k = 0; k < areas.size(); ++k) {
             const toml::table* t = areas[k].as_table();
             if (t == nullptr)
@@ -84,8 +85,9 @@ struct DetectorReader : StepReader {
         if (!d.daylight_factor) return;
         const std::string key = df ? "daylight_factor" : "en17037";
         if (d.type != DetectorType::illuminance && d.type != DetectorType::points)
-            r.fail(key, std::string("daylight factors belong to illuminance and points detectors (this one is ") +
-                            detector_type_name(d.type) + ")");
+            r.fail(key,
+                   std::string("daylight factors belong to illuminance detectors and points detectors (this one is ") +
+                       detector_type_name(d.type) + ")");
         const auto& lights = scene.lights.lights();
         if (std::none_of(lights.begin(), lights.end(),
                          [](const Light& l) { return l.unobstructed_horizontal_lx > 0.0; }))

@@ -9,6 +9,7 @@
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "scene_test_support.hpp"
+#include "z_pool.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,8 +25,6 @@ namespace luxtrace {
 namespace {
 
 using namespace test_support;
-
-constexpr double kZMax = 5.0;
 
 // ---------------------------------------------------------------------------------
 // The reader.
@@ -230,39 +229,6 @@ fs::path run_scene(const ScratchDir& dir, const std::string& text, std::uint64_t
     return out;
 }
 
-// z values pooled: each within kZMax and their mean square near 1.
-class ZPool {
-public:
-    void add(const std::string& what, double value, double sigma, double reference) {
-        const double z = (value - reference) / sigma;
-        EXPECT_LT(std::abs(z), kZMax) << what << ": " << value << " +- " << sigma << ", reference " << reference;
-        sum_z2_ += z * z;
-        ++count_;
-    }
-    void check(const std::string& what) const {
-        const double mean = sum_z2_ / count_, band = kZMax * std::sqrt(2.0 / count_);
-        EXPECT_NEAR(mean, 1.0, band) << what << ": mean z^2 over " << count_;
-        std::cout << "[points] " << what << ": " << count_ << " readings, mean z^2 " << mean << " (allowed 1 +- "
-                  << band << ")\n";
-    }
-
-private:
-    double sum_z2_ = 0.0;
-    int count_ = 0;
-};
-
-constexpr const char* kBlackSpeck = R"([[material]]
-name = "black"
-type = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, 0, -5]
-normal = [0, 0, 1]
-size = [0.05, 0.05]
-material = "black"
-)";
-
 // Under a uniform sky every upward sensor reads the unobstructed horizontal illuminance
 // and a vertical one what the sky's quadrature gives (half of it for a uniform sky); the
 // vertical sensors share no plane, so this also runs the one-plane-per-sensor path.
@@ -282,7 +248,7 @@ TEST(PointsRun, SensorsUnderAUniformSkyReadItsIlluminance) {
     ASSERT_EQ(c.size(), 29u);
     const SkyModel sky = SkyModel::uniform();
     const double lz = 12000.0 / sky.horizontal_illuminance_per_zenith_luminance_sr();
-    ZPool pool;
+    ZPool pool("points");
     for (std::size_t k = 0; k < 25; ++k)
         pool.add("upward sensor " + std::to_string(k), c[k].value, c[k].sigma, 12000.0);
     for (std::size_t k = 25; k < 29; ++k)
@@ -341,7 +307,7 @@ TEST(PointsRun, SensorsUnderAPointLightMatchTheAnalyticValueAndTheCoincidentGrid
     ASSERT_EQ(s.size(), 25u);
     ASSERT_EQ(g.size(), 25u);
     const double intensity = kFlux / (4.0 * kPi);
-    ZPool alone, paired;
+    ZPool alone("points"), paired("points");
     for (int j = 0; j < 5; ++j)
         for (int i = 0; i < 5; ++i) {
             const std::size_t k = static_cast<std::size_t>(i + 5 * j);
@@ -354,7 +320,7 @@ TEST(PointsRun, SensorsUnderAPointLightMatchTheAnalyticValueAndTheCoincidentGrid
         }
     alone.check("point light, sensors against the disc means");
     // Independent errors overstate the difference's: its mean z^2 lies below 1; each
-    // |z| within kZMax still holds.
+    // |z| within 5 still holds.
     std::vector<std::size_t> shape;
     const std::vector<double> positions = r.f64("/detectors/sensors/positions", &shape);
     ASSERT_EQ(shape, (std::vector<std::size_t>{25, 3}));
@@ -392,7 +358,7 @@ TEST(PointsRun, LightGroupsScenesAndTargetsWorkOnSensors) {
     ASSERT_EQ(all.size(), 6u);
     ASSERT_EQ(v.size(), 6u);
     const double ia = 1000.0 / (4.0 * kPi), ib = 500.0 / (4.0 * kPi);
-    ZPool pool;
+    ZPool pool("points");
     double target_n = 0.0, target_var = 0.0;
     for (std::size_t k = 0; k < 6; ++k) {
         const double x = 0.5 * static_cast<double>(k) - 1.25;

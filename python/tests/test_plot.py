@@ -12,7 +12,7 @@ import pytest
 
 import luxtrace
 from luxtrace import plot
-from conftest import HERE, REPO, copy, run_luxtrace, simulate, write_v2
+from conftest import HERE, REPO, copy, points_scene, run_luxtrace, simulate, write_v2
 
 import matplotlib.pyplot as plt
 
@@ -196,11 +196,8 @@ def test_pictures_of_a_stored_light_scene(binary, tmp_path):
 def test_points_detector_pictures(binary, tmp_path, out_dir):
     """A points detector (.pts sensors) is drawn as dots at the sensors coloured by their
     values, and its sections as every sensor in file order; all pictures are written."""
-    (tmp_path / "grid.pts").write_text("".join(f"{x} {y} 0.8 0 0 1\n" for y in range(3) for x in range(4)))
-    scene = tmp_path / "s.toml"
-    scene.write_text('[[material]]\nname = "m"\nreflectance = 0.5\n\n[[shape]]\ntype = "rectangle"\n'
-                     'size = [8, 8]\nmaterial = "m"\n\n[[light]]\ntype = "point"\nposition = [1.5, 1, 2]\n'
-                     'flux_lm = 1000\n\n[[detector]]\nname = "sensors"\ntype = "points"\npoints = "grid.pts"\n')
+    scene = points_scene(tmp_path, "".join(f"{x} {y} 0.8 0 0 1\n" for y in range(3) for x in range(4)),
+                         (1.5, 1, 2), floor_m=8)
     r = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r.h5", "--photons", "40k"))
     d = r.detector("sensors")
     fig = plot.value_figure(d)

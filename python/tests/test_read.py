@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import luxtrace
-from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, REPO, copy, run_luxtrace, simulate, write_v2
+from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, REPO, copy, points_scene, run_luxtrace, simulate, write_v2
 
 
 V1_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "room_v1.h5")
@@ -251,12 +251,8 @@ def test_task_areas(binary, tmp_path):
 def test_points_detector(binary, tmp_path):
     """A points detector (.pts sensors) reads with its sensors as cells: positions and
     directions as written, cell centres at the sensors, a CSV row per sensor."""
-    (tmp_path / "grid.pts").write_text("# two sensors up, one facing +x\n0 0 0.8 0 0 1\n1 0 0.8 0 0 2\n\n"
-                                       "3 0 1 1 0 0\n")
-    scene = tmp_path / "s.toml"
-    scene.write_text('[[material]]\nname = "m"\nreflectance = 0.5\n\n[[shape]]\ntype = "rectangle"\n'
-                     'size = [4, 4]\nmaterial = "m"\n\n[[light]]\ntype = "point"\nposition = [0, 0, 2]\n'
-                     'flux_lm = 1000\n\n[[detector]]\nname = "sensors"\ntype = "points"\npoints = "grid.pts"\n')
+    scene = points_scene(tmp_path, "# two sensors up, one facing +x\n0 0 0.8 0 0 1\n1 0 0.8 0 0 2\n\n3 0 1 1 0 0\n",
+                         (0, 0, 2))
     r = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r.h5", "--photons", "20k"))
     d = r.detector("sensors")
     assert d.is_points and (d.nx, d.ny, d.type, d.units) == (3, 1, "points", "lx")

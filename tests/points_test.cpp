@@ -107,7 +107,7 @@ TEST(SensorPoints, PlaneLookupFindsExactlyTheDiscsTestingEverySensorFinds) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::vector<Vec3> pos, dir;
-    // A 40 x 40 grid 0.25 m apart on a work plane, a tilted 10 x 10 grid, and 30 sensors
+    // A 40 x 40 grid 0.25 m apart on a work plane, a tilted 10 x 10 grid, and 200 sensors
     // each in a plane of its own; discs of 0.3 m overlap their neighbours.
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 40; ++j) {
@@ -120,12 +120,12 @@ TEST(SensorPoints, PlaneLookupFindsExactlyTheDiscsTestingEverySensorFinds) {
             pos.push_back(Vec3(0, 0, 2) + 0.4 * i * a + 0.4 * j * b);
             dir.push_back(tilt);
         }
-    for (int k = 0; k < 30; ++k) {
+    for (int k = 0; k < 200; ++k) {
         pos.emplace_back(3 * u(rng), 3 * u(rng), 1 + u(rng));
         dir.push_back(glm::normalize(Vec3(u(rng), u(rng), u(rng))));
     }
     const SensorPoints s(pos, dir, 0.3);
-    EXPECT_EQ(s.planes(), 32u);
+    EXPECT_EQ(s.planes(), 202u);  // through the hierarchy over the planes
     std::size_t found = 0;
     std::vector<int> got;
     for (int ray = 0; ray < 20000; ++ray) {

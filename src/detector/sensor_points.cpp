@@ -1,7 +1,9 @@
 #include "luxtrace/detector/sensor_points.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace luxtrace {
@@ -52,9 +54,64 @@ std::vector<std::vector<int>> SensorPoints::group_by_plane(const std::vector<Vec
     return groups;
 }
 
+// Up to this many planes are tested in turn; more go through the hierarchy.
+constexpr std::size_t kFewPlanes = 4;
+
 SensorPoints::SensorPoints(std::vector<Vec3> positions, std::vector<Vec3> directions, double radius_m)
     : positions_(std::move(positions)), directions_(std::move(directions)), radius_m_(radius_m) {
-    for (const std::vector<int>& members : group_by_plane(positions_, directions_)) build_plane(members);
+    for (const std::vector<int>& members : group_by_plane(positions_, directions_)) {
+        build_plane(members);
+        Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+        for (int k : members) {
+            lo = glm::min(lo, positions_[static_cast<std::size_t>(k)] - Vec3(radius_m_));
+            hi = glm::max(hi, positions_[static_cast<std::size_t>(k)] + Vec3(radius_m_));
+        }
+        plane_lo_.push_back(lo);
+        plane_hi_.push_back(hi);
+    }
+    if (planes_.size() > kFewPlanes) build_hierarchy();
+}
+
+void SensorPoints::build_hierarchy() {
+    plane_order_.resize(planes_.size());
+    std::iota(plane_order_.begin(), plane_order_.end(), 0u);
+    nodes_.assign(1, Node{});
+    // (node, first, last) still to build; a node's two children are appended side by side.
+    std::vector<std::array<std::uint32_t, 3>> todo{{0u, 0u, static_cast<std::uint32_t>(planes_.size())}};
+    while (!todo.empty()) {
+        const auto [node, first, last] = todo.back();
+        todo.pop_back();
+        Vec3 lo(std::numeric_limits<double>::infinity()), hi(-lo), clo(lo), chi(-lo);
+        for (std::uint32_t k = first; k < last; ++k) {
+            const std::uint32_t q = plane_order_[k];
+            lo = glm::min(lo, plane_lo_[q]);
+            hi = glm::max(hi, plane_hi_[q]);
+            const Vec3 c = 0.5 * (plane_lo_[q] + plane_hi_[q]);
+            clo = glm::min(clo, c);
+            chi = glm::max(chi, c);
+        }
+        nodes_[node].lo = lo;
+        nodes_[node].hi = hi;
+        if (last - first <= 2) {
+            nodes_[node].first = first;
+            nodes_[node].count = last - first;
+            continue;
+        }
+        // Split at the median of the box centres along their widest spread.
+        const Vec3 spread = chi - clo;
+        const int axis = spread.x >= spread.y && spread.x >= spread.z ? 0 : (spread.y >= spread.z ? 1 : 2);
+        const std::uint32_t mid = first + (last - first) / 2;
+        std::nth_element(plane_order_.begin() + first, plane_order_.begin() + mid, plane_order_.begin() + last,
+                         [&](std::uint32_t a, std::uint32_t b) {
+                             return plane_lo_[a][axis] + plane_hi_[a][axis] < plane_lo_[b][axis] + plane_hi_[b][axis];
+                         });
+        const auto child = static_cast<std::uint32_t>(nodes_.size());
+        nodes_[node].first = child;
+        nodes_[node].count = 0;
+        nodes_.resize(nodes_.size() + 2);
+        todo.push_back({child, first, mid});
+        todo.push_back({child + 1, mid, last});
+    }
 }
 
 void SensorPoints::build_plane(const std::vector<int>& members) {
@@ -105,31 +162,74 @@ void SensorPoints::build_plane(const std::vector<int>& members) {
     planes_.push_back(std::move(p));
 }
 
+void SensorPoints::cross_plane(const Plane& p, const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal,
+                               double tolerance_m, std::vector<int>& cells) const {
+    const double denom = glm::dot(d, p.normal);
+    if (denom >= 0.0) return;  // leaving the front side, or parallel
+    const double t = (p.offset - glm::dot(p.normal, o)) / denom;
+    // A sensor lying on the surface the ray ends on is crossed just past the hit; a
+    // surface across the plane stops the ray before it (as Detector::crossing).
+    if (!(t > 0.0 && t <= t_max + tolerance_m)) return;
+    if (t > t_max && std::abs(glm::dot(hit_normal, p.normal)) < kParallelCos) return;
+    const Vec3 x = o + t * d;
+    const double qu = glm::dot(p.u, x), qv = glm::dot(p.v, x);
+    const double fa = std::floor((qu - p.u0) / p.bin_m), fb = std::floor((qv - p.v0) / p.bin_m);
+    if (!(fa >= -1.0 && fa <= p.nu && fb >= -1.0 && fb <= p.nv)) return;  // beyond every disc (or NaN)
+    const int a0 = std::max(0, static_cast<int>(fa) - 1), a1 = std::min(p.nu - 1, static_cast<int>(fa) + 1);
+    const int b0 = std::max(0, static_cast<int>(fb) - 1), b1 = std::min(p.nv - 1, static_cast<int>(fb) + 1);
+    const double r2 = radius_m_ * radius_m_;
+    for (int b = b0; b <= b1; ++b) {
+        const std::size_t row = static_cast<std::size_t>(b) * static_cast<std::size_t>(p.nu);
+        for (std::size_t s = p.bin_start[row + static_cast<std::size_t>(a0)];
+             s < p.bin_start[row + static_cast<std::size_t>(a1) + 1]; ++s) {
+            const double du = p.su[s] - qu, dv = p.sv[s] - qv;
+            if (du * du + dv * dv <= r2) cells.push_back(static_cast<int>(p.sensors[s]));
+        }
+    }
+}
+
+namespace {
+
+// Whether the segment o + t d, 0 <= t <= t_end, meets the box [lo, hi].
+bool segment_meets_box(const Vec3& o, const Vec3& d, double t_end, const Vec3& lo, const Vec3& hi) {
+    double t0 = 0.0, t1 = t_end;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return false;
+            continue;
+        }
+        double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (!(t0 <= t1)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 void SensorPoints::crossings(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal, double tolerance_m,
                              std::vector<int>& cells) const {
-    const double r2 = radius_m_ * radius_m_;
-    for (const Plane& p : planes_) {
-        const double denom = glm::dot(d, p.normal);
-        if (denom >= 0.0) continue;  // leaving the front side, or parallel
-        const double t = (p.offset - glm::dot(p.normal, o)) / denom;
-        // A sensor lying on the surface the ray ends on is crossed just past the hit; a
-        // surface across the plane stops the ray before it (as Detector::crossing).
-        if (!(t > 0.0 && t <= t_max + tolerance_m)) continue;
-        if (t > t_max && std::abs(glm::dot(hit_normal, p.normal)) < kParallelCos) continue;
-        const Vec3 x = o + t * d;
-        const double qu = glm::dot(p.u, x), qv = glm::dot(p.v, x);
-        const double fa = std::floor((qu - p.u0) / p.bin_m), fb = std::floor((qv - p.v0) / p.bin_m);
-        if (!(fa >= -1.0 && fa <= p.nu && fb >= -1.0 && fb <= p.nv)) continue;  // beyond every disc (or NaN)
-        const int a0 = std::max(0, static_cast<int>(fa) - 1), a1 = std::min(p.nu - 1, static_cast<int>(fa) + 1);
-        const int b0 = std::max(0, static_cast<int>(fb) - 1), b1 = std::min(p.nv - 1, static_cast<int>(fb) + 1);
-        for (int b = b0; b <= b1; ++b) {
-            const std::size_t row = static_cast<std::size_t>(b) * static_cast<std::size_t>(p.nu);
-            for (std::size_t s = p.bin_start[row + static_cast<std::size_t>(a0)];
-                 s < p.bin_start[row + static_cast<std::size_t>(a1) + 1]; ++s) {
-                const double du = p.su[s] - qu, dv = p.sv[s] - qv;
-                if (du * du + dv * dv <= r2) cells.push_back(static_cast<int>(p.sensors[s]));
-            }
+    if (nodes_.empty()) {
+        for (const Plane& p : planes_) cross_plane(p, o, d, t_max, hit_normal, tolerance_m, cells);
+        return;
+    }
+    // The tree splits at medians, so it is about log2(planes) deep: 64 levels hold any.
+    const double t_end = t_max + tolerance_m;
+    std::array<std::uint32_t, 64> stack;
+    std::size_t top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& n = nodes_[stack[--top]];
+        if (!segment_meets_box(o, d, t_end, n.lo, n.hi)) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first;
+            stack[top++] = n.first + 1;
+            continue;
         }
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+            cross_plane(planes_[plane_order_[k]], o, d, t_max, hit_normal, tolerance_m, cells);
     }
 }
 

@@ -8,8 +8,10 @@
 // (same direction within kSamePlaneCos, offset along it within kSamePlaneM); a flight
 // meets each plane once, and within the plane a uniform 2D bin grid (bins at least r wide,
 // so a disc reaches only the 3 x 3 bins around the crossing point) gives the few
-// candidates. A grid of one plane costs one plane test and about nine bin reads per flight;
-// sensors that share no plane still work, at one plane test each.
+// candidates. A grid of one plane costs one plane test and about nine bin reads per flight.
+// Sensors that share no plane make many planes: a bounding-volume hierarchy over the
+// planes' boxes (every disc of the plane inside) then leaves only the planes whose box the
+// flight passes through to test.
 #include "luxtrace/core/math.hpp"
 
 #include <cstdint>
@@ -60,6 +62,15 @@ private:
         std::vector<std::uint32_t> sensors;    // sensor indices, bin by bin
         std::vector<double> su, sv;            // each listed sensor's plane coordinates
     };
+    // A node of the hierarchy over the planes: its box, and either (count 0) its children
+    // nodes_[first] and nodes_[first + 1], or (a leaf) the planes plane_order_[first, first + count).
+    struct Node {
+        Vec3 lo{0.0}, hi{0.0};
+        std::uint32_t first = 0, count = 0;
+    };
+    void cross_plane(const Plane& p, const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal,
+                     double tolerance_m, std::vector<int>& cells) const;
+    void build_hierarchy();
     static std::vector<std::vector<int>> group_by_plane(const std::vector<Vec3>& positions,
                                                         const std::vector<Vec3>& directions);
     void build_plane(const std::vector<int>& members);
@@ -67,6 +78,9 @@ private:
     std::vector<Vec3> positions_, directions_;
     double radius_m_ = 0.0;
     std::vector<Plane> planes_;
+    std::vector<Vec3> plane_lo_, plane_hi_;  // each plane's box
+    std::vector<Node> nodes_;                // empty: few planes, tested in turn
+    std::vector<std::uint32_t> plane_order_;
 };
 
 }  // namespace luxtrace

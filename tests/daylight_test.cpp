@@ -17,6 +17,7 @@
 #include "luxtrace/material/glazing.hpp"
 
 #include "test_support.hpp"
+#include "z_pool.hpp"
 
 #include <gtest/gtest.h>
 
@@ -58,39 +59,8 @@ fs::path run_scene(const test_support::ScratchDir& dir, const std::string& name,
     return out;
 }
 
-// z values of several readings against references, pooled: each within kZMax and their
-// mean square near 1 (chi-square with K degrees of freedom over K).
-class ZPool {
-public:
-    void add(const std::string& what, const Reading& r, double reference) {
-        const double z = (r.value - reference) / r.sigma;
-        EXPECT_LT(std::abs(z), kZMax) << what << ": " << r.value << " +- " << r.sigma << " lx, reference " << reference;
-        sum_z2_ += z * z;
-        ++count_;
-    }
-    void check(const std::string& what) const {
-        const double mean = sum_z2_ / count_, band = kZMax * std::sqrt(2.0 / count_);
-        EXPECT_NEAR(mean, 1.0, band) << what << ": mean z^2 over " << count_ << " readings";
-        std::cout << "[daylight] " << what << ": " << count_ << " readings, mean z^2 " << mean << " (allowed 1 +- "
-                  << band << ")\n";
-    }
-
-private:
-    double sum_z2_ = 0.0;
-    int count_ = 0;
-};
-
-constexpr const char* kBlackSpeck = R"([[material]]
-name = "black"
-type = "black"
-
-[[shape]]
-type = "rectangle"
-center = [0, 0, -0.6]
-normal = [0, 0, 1]
-size = [0.05, 0.05]
-material = "black"
-)";
+using test_support::kBlackSpeck;
+using test_support::ZPool;
 
 // An illuminance detector's text: by default a one-cell 1 m square at the origin.
 std::string unit_detector(const std::string& name, const std::string& normal, const std::string& up,
@@ -118,7 +88,7 @@ TEST(DaylightSky, EverySkyLightsUnobstructedPlanesAsQuadratureSays) {
         }
     const std::array<std::pair<const char*, double>, 4> facades{
         {{"north", 0.0}, {"east", 90.0}, {"south", 180.0}, {"west", 270.0}}};
-    ZPool pool;
+    ZPool pool("daylight");
     int run = 0;
     for (const Case& c : cases) {
         // Normalised by the horizontal illuminance or by the zenith luminance, alternately.
@@ -208,7 +178,7 @@ TEST(DaylightEnergy, ClosedBoxFacesReceiveWhatSkySunAndGroundGive) {
     }
     s << "[run]\nphotons = 3000000\nseed = 7\n";
     const ResultReader r(run_scene(dir, "box", s.str()));
-    ZPool pool;
+    ZPool pool("daylight");
     for (const Face& f : faces) pool.add(f.name, grid_mean(r, f.name), f.expected);
     pool.check("closed box faces");
 }
@@ -272,7 +242,7 @@ fs::path check_sun_patch(const test_support::ScratchDir& dir, const std::string&
         const double wx = x - s * d.x, wz = 0.001 - s * d.z;
         return wx > -0.3 + margin && wx < 0.3 - margin && wz > 0.9 + margin && wz < 1.5 - margin;
     };
-    ZPool inside;
+    ZPool inside("daylight");
     double flux = 0.0, flux_var = 0.0;
     int lit = 0, dark = 0;
     for (int j = 0; j < 40; ++j)
@@ -289,7 +259,7 @@ fs::path check_sun_patch(const test_support::ScratchDir& dir, const std::string&
             if (value[c] > 0.0) flux_var += std::pow(sigma_rel[c] * value[c] * kCell * kCell, 2);
             if (all_in) {
                 ++lit;
-                inside.add(name + " cell " + std::to_string(c), {value[c], sigma_rel[c] * value[c]},
+                inside.add(name + " cell " + std::to_string(c), value[c], sigma_rel[c] * value[c],
                            transmittance * kEn * std::sin(deg(sun.altitude_deg)));
             } else if (all_out) {
                 ++dark;

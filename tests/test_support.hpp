@@ -12,6 +12,20 @@
 
 namespace luxtrace::test_support {
 
+// The least geometry a scene needs: a black 5 cm square facing up at z = -0.6, for runs
+// of lights over unobstructed detectors.
+inline constexpr const char* kBlackSpeck = R"([[material]]
+name = "black"
+type = "black"
+
+[[shape]]
+type = "rectangle"
+center = [0, 0, -0.6]
+normal = [0, 0, 1]
+size = [0.05, 0.05]
+material = "black"
+)";
+
 // A scratch directory luxtrace_<tag>_<pid> in the system's temporary folder, empty when
 // made and removed with everything in it at the end of its scope.
 class ScratchDir {

@@ -13,7 +13,9 @@ from .result import FRONT, Detector, Result, SurfaceMap
 # Attributes that describe what was simulated: they must agree for runs to be combined.
 _ROOT_SAME = ("format_version", "total_flux_lm", "maintenance_factor", "sampler")
 _DETECTOR_SAME = ("type", "units", "center", "normal", "up", "size", "cells", "view_direction", "half_angle_deg",
-                  "error_estimator")
+                  "error_estimator", "radius_m")
+# A points detector's sensors: the same in every run, kept as they are.
+_DETECTOR_SAME_DATASETS = ("positions", "directions")
 # Root attributes of one run only (a combination has no single value of them).
 _ROOT_PER_RUN = ("seed", "ranks", "threads_per_rank", "reductions", "reduction_stall_s", "reduction_wait_s",
                  "stop_reason", "elapsed_s", "photons", "flux_per_photon_lm", "replicates", "replicate_photons")
@@ -133,6 +135,12 @@ def _combine_detector(name, rs, photons, rep_photons, notes):
         data["sigma_rel"] = np.where(data["count"] > 0, rel, np.nan)
     else:
         data["sigma_rel"] = statistics.cell_sigma_rel(data["count"], data["sumsq"], photons)
+    for k in _DETECTOR_SAME_DATASETS:
+        if k in d0.datasets:
+            for r, d in zip(rs[1:], ds0[1:]):
+                if k not in d.datasets or not np.array_equal(d.datasets[k], d0.datasets[k]):
+                    raise MismatchError(f"{_name(r)}: detector '{name}' has other sensor {k} than {_name(rs[0])}")
+            data[k] = d0.datasets[k]
     attrs = {k: v for k, v in d0.attrs.items() if k not in _DETECTOR_RECOMPUTED}
     dropped = [k for k in list(attrs) if k not in _DETECTOR_SAME
                and not all(_same(attrs[k], d.attrs.get(k)) for d in ds0[1:])]

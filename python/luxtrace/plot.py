@@ -8,6 +8,9 @@ can look at what is drawn) and saved by :func:`detector_pictures`:
     error_histogram_figure(det)  histogram of those errors, the eq. (9) values marked
     sections_figure(det, i, j)   row j and column i through cell (i, j), with +-1 sigma bands
 
+A points detector (.pts sensors) is drawn as dots at the sensors' positions, seen along
+their mean direction, and its sections as every sensor's value in file order.
+
 and the convergence history of a run: :func:`convergence_figure`. The maps put row 0 at
 the bottom, so the detector's ``up`` points up and u = up x normal to the right (the
 detector seen from its front side). With several bands the pictures show the band sum.
@@ -74,10 +77,57 @@ def _grid_line(d, photons):
             f"{d.photons_received} photons received of {photons:.3g} emitted")
 
 
+def _sensor_plane(d):
+    """Two axes for drawing a points detector's sensors: across their mean direction (with
+    a detector's default up: +z, or +y when that direction is within 26 degrees of +-z),
+    or x and y when the directions cancel out. Returns (u, v) unit vectors."""
+    n = np.asarray(d.directions, dtype=float).mean(axis=0)
+    if np.linalg.norm(n) < 1e-6:
+        return np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
+    n /= np.linalg.norm(n)
+    up = np.array([0, 1.0, 0]) if abs(n[2]) > 0.9 else np.array([0, 0, 1.0])
+    u = np.cross(up, n)
+    u /= np.linalg.norm(u)
+    return u, np.cross(n, u)
+
+
+def _points_figure(d, values, cmap, label, vmax, title):
+    """A points detector's sensors as dots at their positions (seen along their mean
+    direction) coloured by ``values`` [nx] (masked: grey crosses)."""
+    u, v = _sensor_plane(d)
+    p = np.asarray(d.positions, dtype=float)
+    x, y = p @ u, p @ v
+    fig, ax = plt.subplots(figsize=(9.0, 7.0), layout="constrained")
+    ok = ~np.ma.getmaskarray(values)
+    sc = ax.scatter(x[ok], y[ok], c=np.ma.getdata(values)[ok], cmap=cmap, vmin=0.0, vmax=vmax, s=60,
+                    edgecolors="0.3", linewidths=0.4)
+    fig.colorbar(sc, ax=ax, label=label)
+    if (~ok).any():
+        ax.plot(x[~ok], y[~ok], "x", color="0.3", ms=6, label="no hits")
+        ax.legend(loc="upper right", fontsize=8)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"(m) along {_vec(u)}")
+    ax.set_ylabel(f"(m) along {_vec(v)}")
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
+def _points_line(d, photons):
+    """'72 sensors, discs of r 0.5 m, 77759 photons received of 4e+05 emitted'."""
+    return (f"{d.nx} sensors, discs of r {d.attrs.get('radius_m', float('nan')):.3g} m, {d.photons_received} "
+            f"photons received of {photons:.3g} emitted")
+
+
 def value_figure(d, bands=None):
     """The value map of detector ``d`` (band sum) in its units; the colour scale runs from
-    0 to the largest cell value."""
+    0 to the largest cell value. A points detector's sensors are drawn as coloured dots."""
     value, _ = d.band_sum()
+    if d.is_points:
+        top = float(np.nanmax(value)) if np.any(value > 0) else 1.0
+        note = _band_note(d, bands)
+        return _points_figure(d, np.ma.masked_invalid(value[0]), "viridis", f"{_quantity(d)} ({_units(d)})", top,
+                              f"{d.name} \u2014 {d.type}{f' ({note})' if note else ''}, mean {d.mean_value:.4g} "
+                              f"{_units(d)} \u00b1 {100 * d.mean_sigma_rel:.3g} %\n{_points_line(d, float(d.photons))}")
     fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
     top = float(np.nanmax(value)) if np.any(value > 0) else 1.0
     im = ax.imshow(value, origin="lower", extent=_extent(d), cmap="viridis", interpolation="nearest",
@@ -94,10 +144,15 @@ def daylight_factor_figure(d):
     """The daylight factor map of a ``daylight_factor`` detector in %, with the grid's median
     and 95 % values (bias-corrected, with their errors) and the EN 17037 verdict when judged."""
     df = d.daylight_factor
-    fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
     top = float(np.nanmax(df)) if np.any(df > 0) else 1.0
-    im = ax.imshow(df, origin="lower", extent=_extent(d), cmap="viridis", interpolation="nearest", vmin=0.0, vmax=top)
-    fig.colorbar(im, ax=ax, label="DF (%)")
+    if d.is_points:
+        fig = _points_figure(d, np.ma.masked_invalid(df[0]), "viridis", "DF (%)", top, "")
+        ax = fig.axes[0]
+    else:
+        fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
+        im = ax.imshow(df, origin="lower", extent=_extent(d), cmap="viridis", interpolation="nearest", vmin=0.0,
+                       vmax=top)
+        fig.colorbar(im, ax=ax, label="DF (%)")
     f = d.daylight_figures()
     line = f"E_h,ext {d.daylight_reference_lx:.4g} lx"
     if f is not None:
@@ -109,7 +164,8 @@ def daylight_factor_figure(d):
             line += f"\nEN 17037 (D_T {e['target_df']:.3g} %, D_TM {e['minimum_df']:.3g} %): {e['verdict']}"
     ax.set_title(f"{d.name} \u2014 daylight factor, mean {f['mean'] if f else float(np.mean(df)):.3g} %\n{line}",
                  fontsize=10)
-    _map_axes(ax, d)
+    if not d.is_points:
+        _map_axes(ax, d)
     return fig
 
 
@@ -117,12 +173,17 @@ def error_figure(d, bands=None):
     """Relative error per cell in % (eq. 8, or the replicate spread of sobol), from 0 to the
     largest; cells without hits are grey with a cross."""
     _, rel = d.band_sum()
-    fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
     cmap = plt.get_cmap("inferno").copy()
     cmap.set_bad("0.62")
     with np.errstate(over="ignore"):  # a damaged file's error can overflow in %: shown as no estimate
         pct = np.ma.masked_invalid(100 * rel)
     top = float(pct.max()) if pct.count() else 1.0
+    note = _band_note(d, bands)
+    title = (f"{d.name} \u2014 relative error per cell{f' ({note})' if note else ''}; eq. (9): "
+             f"{100 * d.sigma_rel_arithmetic:.3g} % arithmetic, {100 * d.sigma_rel_quadratic:.3g} % quadratic")
+    if d.is_points:
+        return _points_figure(d, pct[0], cmap, "\u03c3 rel (%)", top, title)
+    fig, ax = plt.subplots(figsize=_figsize(d), layout="constrained")
     im = ax.imshow(pct, origin="lower", extent=_extent(d), cmap=cmap, interpolation="nearest", vmin=0.0, vmax=top)
     fig.colorbar(im, ax=ax, label="\u03c3 rel (%)")
     jj, ii = np.nonzero(~np.isfinite(rel))
@@ -131,10 +192,7 @@ def error_figure(d, bands=None):
         ax.plot(-su / 2 + (ii + 0.5) * su / d.nx, -sv / 2 + (jj + 0.5) * sv / d.ny, "x", color="0.3", ms=6,
                 label="no hits")
         ax.legend(loc="upper right", fontsize=8)
-    note = _band_note(d, bands)
-    ax.set_title(f"{d.name} \u2014 relative error per cell{f' ({note})' if note else ''}; eq. (9): "
-                 f"{100 * d.sigma_rel_arithmetic:.3g} % arithmetic, {100 * d.sigma_rel_quadratic:.3g} % quadratic",
-                 fontsize=10)
+    ax.set_title(title, fontsize=10)
     _map_axes(ax, d)
     return fig
 
@@ -178,6 +236,8 @@ def sections_figure(d, i=None, j=None, bands=None):
     if not (0 <= i < d.nx and 0 <= j < d.ny):
         raise ValueError(f"cell {i},{j} is outside detector '{d.name}' (i in 0..{d.nx - 1}, j in 0..{d.ny - 1})")
     value, rel = d.band_sum()
+    if d.is_points:
+        return _sensor_sequence_figure(d, i, value[0], rel[0], bands)
     su, sv = d.size_m
     fig, axes = plt.subplots(2, 1, figsize=(8, 7.6), layout="constrained")
     note = _band_note(d, bands)
@@ -201,6 +261,27 @@ def sections_figure(d, i=None, j=None, bands=None):
         ax.grid(alpha=0.3)
     axes[0].set_title(f"horizontal: row j = {j}", fontsize=10, loc="left")
     axes[1].set_title(f"vertical: column i = {i}", fontsize=10, loc="left")
+    return fig
+
+
+def _sensor_sequence_figure(d, i, value, rel, bands=None):
+    """A points detector's sections: every sensor's value in file order, with a +-1 sigma
+    band, sensor i marked."""
+    fig, ax = plt.subplots(figsize=(8, 4.6), layout="constrained")
+    edges = np.arange(d.nx + 1) - 0.5
+    s = np.where(np.isfinite(rel), rel * value, 0.0)
+    ax.stairs(value + s, edges, baseline=value - s, fill=True, color="C0", alpha=0.3, label="\u00b1 1 \u03c3")
+    ax.stairs(value, edges, baseline=None, color="C0", lw=1.8, label="value")
+    ax.axvline(i, color="C3", ls="--", lw=1.2)
+    note = _band_note(d, bands)
+    err = f"\u00b1 {100 * rel[i]:.3g} %" if np.isfinite(rel[i]) else "(no hits)"
+    ax.set_title(f"{d.name} \u2014 every sensor in file order{f' ({note})' if note else ''}; band: \u00b1 1 \u03c3\n"
+                 f"sensor {i} at {_vec(d.positions[i])}: {value[i]:.4g} {_units(d)} {err}", fontsize=10)
+    ax.set_xlabel("sensor (line order of the .pts file)")
+    ax.set_ylabel(f"{_quantity(d)} ({_units(d)})")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
     return fig
 
 

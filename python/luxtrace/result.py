@@ -229,8 +229,11 @@ class Detector(_AttrAccess):
     """One measuring grid (``/detectors/NAME``).
 
     Arrays are [ny, nx, B]: row j along the detector's ``up`` axis, column i along
-    u = up x normal, band b. ``attrs`` holds every attribute of the group (also those
-    added after this package was written); the properties below name the known ones.
+    u = up x normal, band b. A ``points`` detector (Radiance .pts sensors) has ny = 1 and
+    column i = sensor i, at ``positions[i]`` facing ``directions[i]``, and no grid plane
+    (``center``, ``normal``, ``up``, ``size_m`` are NaN). ``attrs`` holds every attribute of
+    the group (also those added after this package was written); the properties below name
+    the known ones.
     """
 
     #: The integer tallies of a grid (``replicate_count`` for sobol only); values and errors
@@ -259,6 +262,16 @@ class Detector(_AttrAccess):
     replicate_count = property(lambda self: self.datasets.get("replicate_count"),
                                doc="uint64 [R,ny,nx,B]: sobol only, n_c per replicate; None otherwise")
 
+    positions = property(lambda self: self.datasets.get("positions"),
+                         doc="float64 [nx,3]: points detectors, sensor i's position (m); None otherwise")
+    directions = property(lambda self: self.datasets.get("directions"),
+                          doc="float64 [nx,3]: points detectors, sensor i's unit direction; None otherwise")
+
+    @property
+    def is_points(self):
+        """Whether this is a points detector (sensors of a .pts file, one cell each)."""
+        return self.type == "points"
+
     @property
     def sigma(self):
         """float64 [ny,nx,B]: absolute standard error per cell, in `units`."""
@@ -277,7 +290,8 @@ class Detector(_AttrAccess):
     center = property(lambda self: np.asarray(self._attr("center"), dtype=float))
     normal = property(lambda self: np.asarray(self._attr("normal"), dtype=float))
     up = property(lambda self: np.asarray(self._attr("up"), dtype=float))
-    size_m = property(lambda self: tuple(float(x) for x in self._attr("size")), doc="(along u, along up) in m")
+    size_m = property(lambda self: tuple(float(x) for x in self._attr("size", (float("nan"),) * 2)),
+                      doc="(along u, along up) in m")
     nx = property(lambda self: int(self._attr("cells")[0]))
     ny = property(lambda self: int(self._attr("cells")[1]))
     mean_value = property(lambda self: self._attr("mean_value"), doc="the grid's mean, band-summed")
@@ -316,13 +330,19 @@ class Detector(_AttrAccess):
         return u / np.linalg.norm(u)
 
     def cell_coordinates(self):
-        """(u [nx], v [ny]) of the cell centres in m from the detector's centre."""
+        """(u [nx], v [ny]) of the cell centres in m from the detector's centre (NaN for a
+        points detector, which has no grid plane: see ``positions``)."""
+        if self.is_points:
+            return np.full(self.nx, np.nan), np.full(self.ny, np.nan)
         su, sv = self.size_m
         return (-su / 2 + (np.arange(self.nx) + 0.5) * su / self.nx,
                 -sv / 2 + (np.arange(self.ny) + 0.5) * sv / self.ny)
 
     def cell_centres(self):
-        """float64 [ny,nx,3]: world position of every cell's centre (m)."""
+        """float64 [ny,nx,3]: world position of every cell's centre (m); a points
+        detector's sensor positions."""
+        if self.is_points:
+            return np.asarray(self.positions, dtype=float).reshape(1, self.nx, 3)
         u, v = self.cell_coordinates()
         return (self.center + u[None, :, None] * self.u + v[:, None, None] * self.up)
 
@@ -722,7 +742,9 @@ def _validate(r, path):
         if np.shape(v) != want:
             bad(f"/global/{k} has shape {np.shape(v)}, expected {want} ({T} triangles, {B} bands)")
     for name, d in r.detectors.items():
-        cells, size = np.atleast_1d(d.attrs.get("cells", [])), np.atleast_1d(d.attrs.get("size", []))
+        cells, size = np.atleast_1d(d.attrs.get("cells", [])), np.atleast_1d(d.attrs.get("size", [1, 1]))
+        if d.is_points:  # sensors instead of a grid plane: positions and directions [nx, 3]
+            size = np.ones(2)
         if (cells.shape != (2,) or size.shape != (2,) or not np.all(np.isfinite(size)) or not np.all(size > 0)
                 or not np.all(cells >= 1) or not np.all(cells == np.floor(cells))):
             bad(f"/detectors/{name}: attributes cells or size are not two positive numbers")
@@ -730,6 +752,13 @@ def _validate(r, path):
         for k in ("count", "sumsq", "value", "sigma_rel"):
             if np.shape(d.datasets.get(k)) != want:
                 bad(f"/detectors/{name}/{k} has shape {np.shape(d.datasets.get(k))}, expected {want}")
+        if d.is_points:
+            for k in ("positions", "directions"):
+                if np.shape(d.datasets.get(k)) != (d.nx, 3) or d.ny != 1:
+                    bad(f"/detectors/{name}/{k} has shape {np.shape(d.datasets.get(k))}, expected ({d.nx}, 3)")
+            continue
+        if np.shape(d.attrs.get("size")) != (2,):
+            bad(f"/detectors/{name}: attributes cells or size are not two positive numbers")
         for k in ("normal", "up", "center"):
             if np.shape(d.attrs.get(k)) != (3,):
                 bad(f"/detectors/{name}: attribute {k} is not a 3-vector")

@@ -39,6 +39,18 @@ def run_luxtrace(binary, scene, out, *args):
 ROOM = os.path.join(REPO, "tests", "data", "run", "room.toml")
 
 
+def points_scene(folder, pts_text, light_position, floor_m=4):
+    """A scene in ``folder`` with a points detector "sensors" reading ``pts_text`` as
+    grid.pts, a 1000 lm point light and a grey floor; returns the scene's path."""
+    (folder / "grid.pts").write_text(pts_text)
+    scene = folder / "s.toml"
+    scene.write_text(f'[[material]]\nname = "m"\nreflectance = 0.5\n\n[[shape]]\ntype = "rectangle"\n'
+                     f'size = [{floor_m}, {floor_m}]\nmaterial = "m"\n\n[[light]]\ntype = "point"\n'
+                     f'position = {list(light_position)}\nflux_lm = 1000\n\n[[detector]]\nname = "sensors"\n'
+                     f'type = "points"\npoints = "grid.pts"\n')
+    return scene
+
+
 @pytest.fixture(scope="session")
 def room_runs(binary, tmp_path_factory):
     """room.toml (an illuminance and a luminance detector) with seeds 1 and 2 (200k photons

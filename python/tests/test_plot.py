@@ -12,7 +12,7 @@ import pytest
 
 import luxtrace
 from luxtrace import plot
-from conftest import HERE, REPO, copy, simulate, write_v2
+from conftest import HERE, REPO, copy, points_scene, run_luxtrace, simulate, write_v2
 
 import matplotlib.pyplot as plt
 
@@ -191,3 +191,23 @@ def test_pictures_of_a_stored_light_scene(binary, tmp_path):
     p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "plot_detector.py"), path, "--detector",
                         "roof_df", "--scene", "nope", "-o", str(tmp_path / "none")], capture_output=True, text=True)
     assert p.returncode == 2 and "no light scene 'nope'" in p.stderr and not (tmp_path / "none").exists()
+
+
+def test_points_detector_pictures(binary, tmp_path, out_dir):
+    """A points detector (.pts sensors) is drawn as dots at the sensors coloured by their
+    values, and its sections as every sensor in file order; all pictures are written."""
+    scene = points_scene(tmp_path, "".join(f"{x} {y} 0.8 0 0 1\n" for y in range(3) for x in range(4)),
+                         (1.5, 1, 2), floor_m=8)
+    r = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r.h5", "--photons", "40k"))
+    d = r.detector("sensors")
+    fig = plot.value_figure(d)
+    dots = fig.axes[0].collections[0]
+    np.testing.assert_allclose(dots.get_offsets(), d.positions[:, :2])  # seen from above: x, y
+    np.testing.assert_allclose(dots.get_array(), d.value[0, :, 0])
+    plt.close(fig)
+    fig = plot.sections_figure(d, 5, 0)
+    assert "sensor 5 at (1, 1, 0.8)" in fig.axes[0].get_title()
+    plt.close(fig)
+    paths = plot.detector_pictures(r, "sensors", str(out_dir))
+    assert [os.path.basename(p) for p in paths] == ["sensors_value.png", "sensors_error.png",
+                                                    "sensors_error_hist.png", "sensors_sections.png"]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import luxtrace
-from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, REPO, copy, simulate, write_v2
+from conftest import AREA, BANDS, CELL_AREA, FLUX_LM, REPO, copy, points_scene, run_luxtrace, simulate, write_v2
 
 
 V1_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "room_v1.h5")
@@ -246,3 +246,32 @@ def test_task_areas(binary, tmp_path):
     assert again.detector("floor_E").task_areas["side"].E_min_lx == side.E_min_lx
     both = luxtrace.combine(runs)
     assert not both.detector("floor_E").task_areas and any("task areas" in n for n in both.notes)
+
+
+def test_points_detector(binary, tmp_path):
+    """A points detector (.pts sensors) reads with its sensors as cells: positions and
+    directions as written, cell centres at the sensors, a CSV row per sensor."""
+    scene = points_scene(tmp_path, "# two sensors up, one facing +x\n0 0 0.8 0 0 1\n1 0 0.8 0 0 2\n\n3 0 1 1 0 0\n",
+                         (0, 0, 2))
+    r = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r.h5", "--photons", "20k"))
+    d = r.detector("sensors")
+    assert d.is_points and (d.nx, d.ny, d.type, d.units) == (3, 1, "points", "lx")
+    np.testing.assert_array_equal(d.positions, [[0, 0, 0.8], [1, 0, 0.8], [3, 0, 1]])
+    np.testing.assert_array_equal(d.directions, [[0, 0, 1], [0, 0, 1], [1, 0, 0]])
+    np.testing.assert_array_equal(d.cell_centres()[0], d.positions)
+    assert d.attrs["radius_m"] == 0.5 and d.attrs["points_file"] == "grid.pts"
+    assert np.isnan(d.center).all() and np.isnan(d.size_m).all()
+    d.to_csv(tmp_path / "s.csv")
+    with open(tmp_path / "s.csv") as f:
+        rows = f.read().splitlines()
+    assert len(rows) == 4 and rows[3].split(",")[4:7] == ["3.0", "0.0", "1.0"]
+    # Two seeds combine: counts add, the sensors stay; another grid is refused.
+    r2 = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r2.h5", "--photons", "20k", "--seed", "2"))
+    c = luxtrace.combine([r, r2]).detector("sensors")
+    np.testing.assert_array_equal(c.count, d.count + r2.detector("sensors").count)
+    np.testing.assert_array_equal(c.positions, d.positions)
+    np.testing.assert_array_equal(c.cell_centres()[0], d.positions)
+    (tmp_path / "grid.pts").write_text("0 0 0.8 0 0 1\n1 0 0.8 0 0 1\n3 0 1.5 1 0 0\n")
+    r3 = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r3.h5", "--photons", "20k", "--seed", "3"))
+    with pytest.raises(luxtrace.MismatchError, match="other sensor positions"):
+        luxtrace.combine([r, r3])

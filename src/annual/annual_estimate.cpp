@@ -16,7 +16,9 @@ AnnualHours annual_hours(const AnnualSetup& annual) {
     return out;
 }
 
-bool annual_grid(const Detector& d) { return d.type == DetectorType::illuminance && !d.indirect_only; }
+bool annual_grid(const Detector& d) {
+    return (d.type == DetectorType::illuminance || d.type == DetectorType::points) && !d.indirect_only;
+}
 
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,

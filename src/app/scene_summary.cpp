@@ -106,6 +106,9 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
             if (d.type == DetectorType::semicylindrical)
                 out << " facing [" << d.facing.x << ", " << d.facing.y << ", " << d.facing.z << "]";
             if (d.horizontal_index >= 0) out << ", modelling ratio over '" << d.horizontal << "'";
+        } else if (d.type == DetectorType::points) {
+            out << " sensors from " << d.points_file << " (" << d.sensors.planes() << " plane(s)), discs r "
+                << d.radius_m << " m";
         } else {
             out << " cells of " << d.cell_area_m2() << " m^2";
         }

@@ -11,6 +11,7 @@ const char* detector_type_name(DetectorType type) {
     case DetectorType::luminance: return "luminance";
     case DetectorType::cylindrical: return "cylindrical";
     case DetectorType::semicylindrical: return "semicylindrical";
+    case DetectorType::points: return "points";
     }
     return "unknown";
 }
@@ -22,7 +23,8 @@ void Detector::finalize() {
     cos_half_angle = std::cos(half_angle_deg * kPi / 180.0);
     const Vec3 vd = glm::normalize(view_direction);
     cone_axis = glm::dot(vd, normal) >= 0.0 ? vd : -vd;
-    plane_tolerance_m = std::max(1e-4, 1e-3 * std::min(size_u, size_v));
+    plane_tolerance_m = std::max(1e-4,
+                                 1e-3 * (type == DetectorType::points ? 2.0 * radius_m : std::min(size_u, size_v)));
     // The facing direction across the axis (the loader refuses one along it).
     const Vec3 f = facing - glm::dot(facing, normal) * normal;
     if (glm::length(f) > 0.0) facing = glm::normalize(f);
@@ -34,7 +36,7 @@ void Detector::finalize() {
 }
 
 double Detector::value_per_lm() const {
-    if (type == DetectorType::illuminance) return 1.0 / cell_area_m2();
+    if (type == DetectorType::illuminance || type == DetectorType::points) return 1.0 / cell_area_m2();
     if (cylinders()) return 1.0 / lateral_area_m2();
     return 1.0 / (cell_area_m2() * projected_solid_angle_sr());
 }

@@ -28,6 +28,23 @@ void write_cylinders(hid_t g, const Detector& d, std::size_t bands, const std::o
     attr(g, "modelling_ratio_max", m.max);
 }
 
+// Points detectors: each sensor's position and direction, [n, 3], row k = cell k, and the
+// disc every sensor counts on.
+void write_sensors(hid_t g, const Detector& d) {
+    const std::size_t n = d.sensors.size();
+    std::vector<double> pos(3 * n), dir(3 * n);
+    for (std::size_t k = 0; k < n; ++k)
+        for (int c = 0; c < 3; ++c) {
+            pos[3 * k + c] = d.sensors.positions()[k][c];
+            dir[3 * k + c] = d.sensors.directions()[k][c];
+        }
+    dataset(g, "positions", {n, 3}, pos.data());
+    dataset(g, "directions", {n, 3}, dir.data());
+    attr(g, "points_file", d.points_file);
+    attr(g, "radius_m", d.radius_m);
+    attr(g, "disc_area_m2", d.cell_area_m2());
+}
+
 }  // namespace
 
 // Eavg, Emin, Emax, U0 of a grid or task area (illuminance_metrics.hpp), initial and
@@ -171,10 +188,14 @@ void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const
         dataset(g, "sigma_rel", dims, e.sigma_rel.data());
         attr(g, "type", detector_type_name(d.type));
         attr(g, "units", d.units());
-        attr(g, "center", std::vector<double>{d.center.x, d.center.y, d.center.z});
-        attr(g, "normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
-        attr(g, "up", std::vector<double>{d.v_axis.x, d.v_axis.y, d.v_axis.z});
-        attr(g, "size", std::vector<double>{d.size_u, d.size_v});
+        if (d.type == DetectorType::points) {
+            write_sensors(g, d);
+        } else {
+            attr(g, "center", std::vector<double>{d.center.x, d.center.y, d.center.z});
+            attr(g, "normal", std::vector<double>{d.normal.x, d.normal.y, d.normal.z});
+            attr(g, "up", std::vector<double>{d.v_axis.x, d.v_axis.y, d.v_axis.z});
+            attr(g, "size", std::vector<double>{d.size_u, d.size_v});
+        }
         attr(g, "cells",
              std::vector<std::uint64_t>{static_cast<std::uint64_t>(d.nx), static_cast<std::uint64_t>(d.ny)});
         write_detector_summary(g, e);

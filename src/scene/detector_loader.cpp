@@ -1,5 +1,6 @@
 // [[detector]] (with [[detector.task_area]]) and [[observer]] -> the scene's detectors and
 // observers (docs/REFERENCE.md §2).
+#include "luxtrace/detector/pts_file.hpp"
 #include "luxtrace/scene/shapes.hpp"
 #include "scene_loader.hpp"
 
@@ -11,6 +12,9 @@ namespace luxtrace::detail {
 namespace {
 
 constexpr double kMaxDetectorCells = 1e8;
+// A points detector's disc radius when no two of its sensors share a plane (so no spacing
+// to take half of): a disc of 0.031 m^2, the area of an 18 cm square cell.
+constexpr double kLoneSensorRadiusM = 0.1;
 
 // Detector, task area and observer names become HDF5 group names and parts of a target's
 // `on` ("detector:NAME[i0:i1,j0:j1]").
@@ -25,9 +29,10 @@ struct DetectorReader : StepReader {
     // [[detector.task_area]] (or task_area = [{...}]): name, cells = [i0, i1, j0, j1],
     // half-open and 0-based like a run target's [i0:i1,j0:j1].
     void parse_task_areas(TableReader& r, const toml::array& areas, Detector& d) {
-        if (d.type != DetectorType::illuminance)
-            r.fail("task_area", std::string("task areas belong to illuminance detectors (this one is ") +
-                                    detector_type_name(d.type) + ": no uniformity U0 is computed for it)");
+        if (d.type != DetectorType::illuminance && d.type != DetectorType::points)
+            r.fail("task_area",
+                   std::string("task areas belong to illuminance detectors and points detectors (this one is ") +
+                       detector_type_name(d.type) + ": no uniformity U0 is computed for it)");
         for (std::size_t k = 0; k < areas.size(); ++k) {
             const toml::table* t = areas[k].as_table();
             if (t == nullptr)
@@ -79,9 +84,10 @@ struct DetectorReader : StepReader {
         d.daylight_factor = df.value_or(false) || d.en17037.has_value();
         if (!d.daylight_factor) return;
         const std::string key = df ? "daylight_factor" : "en17037";
-        if (d.type != DetectorType::illuminance)
-            r.fail(key, std::string("daylight factors belong to illuminance detectors (this one is ") +
-                            detector_type_name(d.type) + ")");
+        if (d.type != DetectorType::illuminance && d.type != DetectorType::points)
+            r.fail(key,
+                   std::string("daylight factors belong to illuminance detectors and points detectors (this one is ") +
+                       detector_type_name(d.type) + ")");
         const auto& lights = scene.lights.lights();
         if (std::none_of(lights.begin(), lights.end(),
                          [](const Light& l) { return l.unobstructed_horizontal_lx > 0.0; }))
@@ -103,9 +109,76 @@ struct DetectorReader : StepReader {
         else if (type == "luminance") d.type = DetectorType::luminance;
         else if (type == "cylindrical") d.type = DetectorType::cylindrical;
         else if (type == "semicylindrical") d.type = DetectorType::semicylindrical;
+        else if (type == "points") d.type = DetectorType::points;
         else
             r.fail("type", "unknown detector type '" + type +
-                               "' (expected illuminance, luminance, cylindrical or semicylindrical)");
+                               "' (expected illuminance, luminance, cylindrical, semicylindrical or points)");
+        if (d.type == DetectorType::points) parse_points(r, d);
+        else parse_grid(r, d);
+        if (const toml::array* areas = r.array("task_area")) parse_task_areas(r, *areas, d);
+        parse_daylight(r, d);
+        if (d.type == DetectorType::luminance) {
+            d.view_direction = unit_vector(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
+            d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);
+            if (!(d.half_angle_deg > 0.0 && d.half_angle_deg <= 90.0)) r.fail("half_angle_deg", "must lie in (0, 90]");
+            if (std::abs(glm::dot(d.view_direction, d.normal)) < 1e-3)
+                r.fail("view_direction", "must not lie in the detector plane");
+        }
+        if (d.cylinders()) parse_cylinder(r, d);
+        r.finish();
+        d.finalize();
+        if (!(d.value_per_lm() > 0.0 && std::isfinite(d.value_per_lm())))
+            r.fail_entry("its cells are too small (or its cone too narrow) to measure anything");
+        if (d.type == DetectorType::luminance && d.cone_below_plane())
+            scene.warnings.push_back(fname + ": " + entry_name("detector", i, t) +
+                                     ": the view cone dips below the detector plane (view angle + half_angle_deg > "
+                                     "90): its luminance is then underestimated");
+        scene.detectors.push_back(d);
+    }
+
+    // Points: the sensors of a Radiance .pts file (path relative to the scene file), each a
+    // disc of radius_m. The default radius is half the smallest distance between two
+    // sensors of one plane: the discs of a regular grid then touch without overlapping and
+    // each averages the illuminance over nearly the square a grid cell of the same spacing
+    // would (pi/4 of it), so a Honeybee grid of 0.5-1 m spacing catches about as many
+    // photons per sensor as an illuminance grid of that spacing. A fixed small radius
+    // would instead make every sensor's error grow with 1/r for no gain in locality beyond
+    // what the spacing already resolves.
+    void parse_points(TableReader& r, Detector& d) {
+        const auto file = r.string("points");
+        if (!file || file->empty())
+            r.fail_entry("type 'points' needs 'points' = \"FILE.pts\" (one sensor a line: x y z dx dy dz)");
+        const std::string path = load.resolve(*file).string();
+        SensorPointList list;
+        try {
+            list = read_pts(path);
+        } catch (const InputError& e) {
+            r.fail("points", e.what());
+        }
+        if (static_cast<double>(list.positions.size()) > kMaxDetectorCells)
+            r.fail("points", path + " holds " + std::to_string(list.positions.size()) +
+                                 " sensors; a detector may have at most " + fmt_number(kMaxDetectorCells));
+        if (r.has("radius_m")) {
+            d.radius_m = *r.number("radius_m");
+            if (!(d.radius_m > 0.0 && std::isfinite(d.radius_m))) r.fail("radius_m", "must be positive (metres)");
+        } else {
+            int a = -1, b = -1;
+            d.radius_m = SensorPoints::half_smallest_spacing_m(list.positions, list.directions, &a, &b);
+            if (a >= 0 && !(d.radius_m > 0.0))
+                r.fail("points", path + ": lines " + std::to_string(list.lines[static_cast<std::size_t>(a)]) + " and " +
+                                     std::to_string(list.lines[static_cast<std::size_t>(b)]) +
+                                     ": two sensors at the same point of one plane leave no default disc radius "
+                                     "(give 'radius_m')");
+            if (a < 0) d.radius_m = kLoneSensorRadiusM;
+        }
+        d.points_file = *file;
+        d.nx = static_cast<int>(list.positions.size());
+        d.ny = 1;
+        d.sensors = SensorPoints(std::move(list.positions), std::move(list.directions), d.radius_m);
+    }
+
+    // Illuminance, luminance and cylinder grids: a rectangle of nx x ny cells.
+    void parse_grid(TableReader& r, Detector& d) {
         const auto c = r.vec3("center");
         if (!c) r.fail_entry("needs 'center'");
         d.center = *c;
@@ -130,25 +203,6 @@ struct DetectorReader : StepReader {
             d.nx = static_cast<int>(nx);
             d.ny = static_cast<int>(ny);
         }
-        if (const toml::array* areas = r.array("task_area")) parse_task_areas(r, *areas, d);
-        parse_daylight(r, d);
-        if (d.type == DetectorType::luminance) {
-            d.view_direction = unit_vector(r, "view_direction", r.vec3("view_direction").value_or(d.normal));
-            d.half_angle_deg = r.number("half_angle_deg").value_or(5.0);
-            if (!(d.half_angle_deg > 0.0 && d.half_angle_deg <= 90.0)) r.fail("half_angle_deg", "must lie in (0, 90]");
-            if (std::abs(glm::dot(d.view_direction, d.normal)) < 1e-3)
-                r.fail("view_direction", "must not lie in the detector plane");
-        }
-        if (d.cylinders()) parse_cylinder(r, d);
-        r.finish();
-        d.finalize();
-        if (!(d.value_per_lm() > 0.0 && std::isfinite(d.value_per_lm())))
-            r.fail_entry("its cells are too small (or its cone too narrow) to measure anything");
-        if (d.type == DetectorType::luminance && d.cone_below_plane())
-            scene.warnings.push_back(fname + ": " + entry_name("detector", i, t) +
-                                     ": the view cone dips below the detector plane (view angle + half_angle_deg > "
-                                     "90): its luminance is then underestimated");
-        scene.detectors.push_back(d);
     }
 
     // Cylindrical and semicylindrical detectors: the small cylinder at each point, its

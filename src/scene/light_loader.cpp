@@ -561,6 +561,13 @@ void cover_detectors_with_beams(SceneLoad& load) {
     if (std::none_of(lights.begin(), lights.end(), [](const Light& l) { return l.beam(); })) return;
     Vec3 lo = scene.bounds_min, hi = scene.bounds_max;
     for (const Detector& d : scene.detectors) {
+        if (d.type == DetectorType::points) {  // every sensor's disc
+            for (const Vec3& p : d.sensors.positions()) {
+                lo = glm::min(lo, p - Vec3(d.radius_m));
+                hi = glm::max(hi, p + Vec3(d.radius_m));
+            }
+            continue;
+        }
         // The rectangle's corners; cylinders reach half their height off the plane.
         const double depth = d.cylinders() ? 0.5 * d.height_m : 0.0;
         for (const double a : {-0.5, 0.5})

@@ -42,7 +42,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"light_scene", {"name", "dimming"}},
         {"detector",
          {"name", "type", "center", "normal", "up", "size", "cells", "view_direction", "half_angle_deg", "radius",
-          "height", "facing", "horizontal", "task_area", "daylight_factor", "en17037"}},
+          "height", "facing", "horizontal", "task_area", "daylight_factor", "en17037", "points", "radius_m"}},
         {"detector.task_area", {"name", "cells"}},
         {"detector.en17037", {"target_df", "minimum_df"}},
         {"observer", {"name", "position", "view_direction", "eye_detector_size"}},

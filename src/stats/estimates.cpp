@@ -273,7 +273,7 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const We
     out.mean_value = tn * per_count / det.cells();
     out.mean_sigma_rel = R == 0 ? rel(tn, tq)
                                 : replicate_rel([&](std::size_t rep) { return w.replicate_total_n(di, rep); });
-    if (whole_grid && det.type == DetectorType::illuminance) {
+    if (whole_grid && (det.type == DetectorType::illuminance || det.type == DetectorType::points)) {
         // Band-summed cells and their absolute errors; the whole grid's Eavg error is the
         // exact one above, a task area's the replicate spread of its sum (sobol) or the
         // cells' errors combined as independent (random).

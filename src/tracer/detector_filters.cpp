@@ -7,6 +7,7 @@ DetectorFilters::DetectorFilters(const std::vector<Detector>& detectors) : detec
         const Detector& d = detectors[i];
         if (d.type == DetectorType::luminance) luminance_.push_back(i);
         else if (d.cylinders()) cylinders_.push_back(i);
+        else if (d.type == DetectorType::points) points_.push_back(i);
         else (d.indirect_only ? indirect_planes_ : planes_).push_back(i);
     }
 }
@@ -16,6 +17,15 @@ void DetectorFilters::enter_cylinders(const Vec3& o, const Vec3& d, double t_max
     for (std::uint32_t di : cylinders_) {
         cells_.clear();
         detectors_[di].cylinder_entries(o, d, t_max, cells_);
+        for (int cell : cells_) out.push_back({di, static_cast<std::uint32_t>(cell), direct});
+    }
+}
+
+void DetectorFilters::cross_sensors(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal, bool direct,
+                                    std::vector<Registration>& out) {
+    for (std::uint32_t di : points_) {
+        cells_.clear();
+        detectors_[di].sensor_crossings(o, d, t_max, hit_normal, cells_);
         for (int cell : cells_) out.push_back({di, static_cast<std::uint32_t>(cell), direct});
     }
 }

@@ -3,6 +3,8 @@
 
 #include "app/result_summary.hpp"
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/detector/pts_file.hpp"
+#include "luxtrace/detector/sensor_points.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/ies.hpp"
@@ -490,12 +492,49 @@ int fuzz_weather(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+int fuzz_pts(const std::uint8_t* data, std::size_t size) {
+    const fs::path file = write_input("input.pts", data, size);
+    SensorPointList p;
+    try {
+        p = read_pts(file.string());
+    } catch (const InputError&) {
+        return 0;
+    }
+    // What a read file promises: sensors with finite positions and unit directions; the
+    // lookup built on them (the default radius, or the loader's fallback) returns valid
+    // sensors, and a ray straight at a sensor crosses its disc.
+    if (p.positions.empty() || p.positions.size() != p.directions.size() || p.lines.size() != p.positions.size())
+        broken("pts read with no sensor or mismatched lists");
+    for (std::size_t k = 0; k < p.positions.size(); ++k) {
+        const Vec3 &x = p.positions[k], &d = p.directions[k];
+        if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))) broken("non-finite sensor position");
+        if (!(std::abs(glm::length(d) - 1.0) < 1e-9)) broken("sensor direction not a unit vector");
+    }
+    double radius = SensorPoints::half_smallest_spacing_m(p.positions, p.directions);
+    if (!(radius > 0.0)) radius = 0.1;
+    const SensorPoints sensors(p.positions, p.directions, radius);
+    std::vector<int> cells;
+    for (std::size_t k = 0; k < std::min<std::size_t>(p.positions.size(), 64); ++k) {
+        // Straight at sensor k from in front of it: it must be among the crossed discs.
+        const Vec3 o = p.positions[k] + p.directions[k];
+        cells.clear();
+        sensors.crossings(o, -p.directions[k], 2.0, Vec3(0.0), 1e-4, cells);
+        for (int c : cells)
+            if (c < 0 || static_cast<std::size_t>(c) >= p.positions.size()) broken("sensor index out of range");
+        // (Rounding of coordinates up to 1e9 m may move the crossing by ~1e-7 m.)
+        if (radius > 1e-6 && std::find(cells.begin(), cells.end(), static_cast<int>(k)) == cells.end())
+            broken("a ray straight at a sensor misses its disc");
+    }
+    return 0;
+}
+
 Entry entry_by_name(const std::string& name) {
     if (name == "scene") return fuzz_scene;
     if (name == "ies") return fuzz_ies;
     if (name == "mesh") return fuzz_mesh;
     if (name == "result") return fuzz_result;
     if (name == "weather") return fuzz_weather;
+    if (name == "pts") return fuzz_pts;
     return nullptr;
 }
 

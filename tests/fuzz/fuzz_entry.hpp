@@ -27,8 +27,12 @@ int fuzz_result(const std::uint8_t* data, std::size_t size);
 // is the file, read by luxtrace::weather::read_weather_file.
 int fuzz_weather(const std::uint8_t* data, std::size_t size);
 
+// A Radiance sensor-point file (.pts), read by luxtrace::read_pts, and the points
+// detector's plane lookup built on what it read.
+int fuzz_pts(const std::uint8_t* data, std::size_t size);
+
 using Entry = int (*)(const std::uint8_t*, std::size_t);
-// "scene", "ies", "mesh", "result", "weather" -> the entry function, or nullptr.
+// "scene", "ies", "mesh", "result", "weather", "pts" -> the entry function, or nullptr.
 Entry entry_by_name(const std::string& name);
 
 }  // namespace luxtrace::fuzz

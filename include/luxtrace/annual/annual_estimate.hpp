@@ -24,7 +24,7 @@ struct AnnualDetectorEstimate {
 // year with the most diffuse horizontal illuminance, annual_metrics.hpp).
 AnnualHours annual_hours(const AnnualSetup& annual);
 
-// Whether a detector is a sensor grid of an annual run: illuminance detectors.
+// Whether a detector is a sensor grid of an annual run: illuminance and points detectors.
 bool annual_grid(const Detector& d);
 
 // Per Scene::detectors (empty for a scene without [annual]; std::nullopt for detectors that

@@ -3,6 +3,7 @@
 // free flight and each scattering event, which cell (if any) the photon registers in.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/detector/cylinder.hpp"
+#include "luxtrace/detector/sensor_points.hpp"
 
 #include <optional>
 #include <string>
@@ -11,8 +12,9 @@
 namespace luxtrace {
 
 // cylindrical / semicylindrical: a grid of points, each the centre of a small cylinder
-// whose axis is the grid's normal (cylinder.hpp).
-enum class DetectorType { illuminance, luminance, cylindrical, semicylindrical };
+// whose axis is the grid's normal (cylinder.hpp). points: sensors of a Radiance .pts file,
+// each a small disc counting illuminance (sensor_points.hpp); cells i = 0..n-1, ny = 1.
+enum class DetectorType { illuminance, luminance, cylindrical, semicylindrical, points };
 
 // The name a scene file and a result file give the type.
 const char* detector_type_name(DetectorType type);
@@ -47,6 +49,7 @@ struct Detector {
     double plane_tolerance_m = 1e-3;  // how far from the plane a scattering point may lie
     // cylindrical, semicylindrical: the small cylinder at every cell centre, and the
     // illuminance detector on the same grid whose values give the modelling ratio.
+    // points: radius_m is each sensor disc's radius.
     double radius_m = 0.01, height_m = 0.2;  // the loader's defaults (detector_loader.cpp says why)
     Vec3 facing{1, 0, 0};                    // semicylindrical: the curved half faces this way
     std::string horizontal;                  // name of that detector, or empty
@@ -63,11 +66,18 @@ struct Detector {
     // >= 0: the eye detector of Scene::observers[observer], stored with the observer in
     // the result (/observers/NAME), not among the user's detectors.
     int observer = -1;
+    // points: the sensors (positions, directions, the plane index), and the .pts file as
+    // the scene names it.
+    SensorPoints sensors;
+    std::string points_file;
 
     // Set derived fields (axes, cone) from the user's values; call after filling them.
     void finalize();
     int cells() const { return nx * ny; }
-    double cell_area_m2() const { return size_u * size_v / (nx * ny); }
+    // points: a sensor disc's pi r^2.
+    double cell_area_m2() const {
+        return type == DetectorType::points ? kPi * radius_m * radius_m : size_u * size_v / (nx * ny);
+    }
     bool cylinders() const { return type == DetectorType::cylindrical || type == DetectorType::semicylindrical; }
     // The curved surface a point's value is the mean illuminance on: 2 pi r h, or pi r h
     // for the half cylinder.
@@ -95,6 +105,11 @@ struct Detector {
     // the hit, within plane_tolerance_m; a surface across the plane (a wall standing on
     // the floor a detector lies on) stops the ray before it, however close.
     int crossing(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal) const;
+    // Points: append every sensor whose disc the ray crosses from the front (same rules).
+    void sensor_crossings(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal,
+                          std::vector<int>& cells) const {
+        sensors.crossings(o, d, t_max, hit_normal, plane_tolerance_m, cells);
+    }
     // Luminance: the cell where a photon leaving point p along d registers, or -1.
     int leaving(const Vec3& p, const Vec3& d) const;
     // Cylinders: append to `cells` every point whose cylinder the ray o + t d,

@@ -3,7 +3,8 @@
 // of the path registers in, and appends them to the photon's registrations (the scorer,
 // tally/photon_tally.hpp, counts them when the photon ends). Two events exist:
 //   a flight, from a point along a direction up to the next surface (or to infinity):
-//     illuminance planes it crosses, cylinders it enters; planes of indirect light only
+//     illuminance planes it crosses, cylinders it enters, sensor discs (points detectors)
+//     it crosses; planes of indirect light only
 //     skip the flight from the light;
 //   a departure, from a point (a luminaire's surface or a scattering point) along a
 //     direction: luminance detectors that see it leave.
@@ -27,11 +28,14 @@ public:
                 std::vector<Registration>& out) {
         cross(planes_, origin, direction, t_max, hit_normal, direct, out);
         if (!cylinders_.empty()) enter_cylinders(origin, direction, t_max, direct, out);
+        if (!points_.empty()) cross_sensors(origin, direction, t_max, hit_normal, direct, out);
         // Indirect only: planes that skip direct light (an observer's eye detector).
         if (!direct) cross(indirect_planes_, origin, direction, t_max, hit_normal, false, out);
     }
     void departure(const Vec3& point, const Vec3& direction, std::vector<Registration>& out) const;
-    bool sees_flights() const { return !planes_.empty() || !cylinders_.empty() || !indirect_planes_.empty(); }
+    bool sees_flights() const {
+        return !planes_.empty() || !cylinders_.empty() || !points_.empty() || !indirect_planes_.empty();
+    }
     bool sees_departures() const { return !luminance_.empty(); }
 
 private:
@@ -43,10 +47,12 @@ private:
         }
     }
     void enter_cylinders(const Vec3& o, const Vec3& d, double t_max, bool direct, std::vector<Registration>& out);
+    void cross_sensors(const Vec3& o, const Vec3& d, double t_max, const Vec3& hit_normal, bool direct,
+                       std::vector<Registration>& out);
 
     const std::vector<Detector>& detectors_;
-    std::vector<std::uint32_t> planes_, indirect_planes_, cylinders_, luminance_;
-    std::vector<int> cells_;  // scratch for cylinder entries
+    std::vector<std::uint32_t> planes_, indirect_planes_, cylinders_, points_, luminance_;
+    std::vector<int> cells_;  // scratch for cylinder entries and sensor crossings
 };
 
 }  // namespace luxtrace

@@ -79,6 +79,7 @@ TEST(Annual, UnobstructedSensorSeesEachHourOfTheWeatherFile) {
         chi2 += z * z;
     }
     const double dof = static_cast<double>(projected.size());
+    std::cout << "[annual] sky patch coefficients: chi2/dof " << chi2 / dof << " over " << dof << " patches\n";
     EXPECT_NEAR(chi2 / dof, 1.0, 4.0 * std::sqrt(2.0 / dof)) << "chi2 " << chi2 << " over " << dof << " patches";
     EXPECT_EQ(n[ground], 0u) << "an upward sensor sees no ground";
 
@@ -106,6 +107,8 @@ TEST(Annual, UnobstructedSensorSeesEachHourOfTheWeatherFile) {
     }
     ASSERT_GT(suns, 3000.0);
     const double mean = sum_z / suns, var = sum_z2 / suns - mean * mean;
+    std::cout << "[annual] direct sun of " << suns << " hours: z mean " << mean << ", variance " << var << "; " << far
+              << " of " << daylit << " daylit hours' totals beyond 4 sigma\n";
     EXPECT_LT(std::abs(mean), 5.0 / std::sqrt(suns)) << "direct sun z mean over " << suns << " hours";
     EXPECT_NEAR(var, 1.0, 0.1) << "direct sun z variance over " << suns << " hours";
     // Hours share the sky's coefficients, so their z are correlated, but each is N(0, 1).
@@ -170,8 +173,8 @@ void expect_hour_matches_sky_run(const std::string& annual_sky, const std::strin
     const ResultReader d(run_scene(dir, "hour", sky_scene));
     const Reading direct = grid_mean(d);
     const double z = (e[h] - direct.value) / std::hypot(s[h], direct.sigma);
-    std::cout << "MF " << mf << ", hour " << h + 1 << ": coefficients " << e[h] << " +- " << s[h] << " lx, sky run "
-              << direct.value << " +- " << direct.sigma << " lx, z " << z << "\n";
+    std::cout << "[annual] MF " << mf << ", hour " << h + 1 << ": coefficients " << e[h] << " +- " << s[h]
+              << " lx, sky run " << direct.value << " +- " << direct.sigma << " lx, z " << z << "\n";
     EXPECT_LT(std::abs(z), 4.0) << "hour " << h + 1 << " (" << when << "): coefficients " << e[h] << " +- " << s[h]
                                 << " lx, sky run " << direct.value << " +- " << direct.sigma << " lx";
 }
@@ -184,6 +187,57 @@ TEST(Annual, CoefficientsTimesAnHourEqualThatHoursPerezSky) {
 TEST(Annual, CoefficientsTimesAnHourEqualThatHoursCieSky) {
     expect_hour_matches_sky_run("sky = \"cie\"\ncie_type = 16\n",
                                 "sky = \"cie\"\ncie_type = 16\ndiffuse_horizontal_lx = @DIFFUSE_LX", 4);
+}
+
+}  // namespace
+}  // namespace luxtrace
+
+namespace luxtrace {
+namespace {
+
+// A 4 m cube room with a 2 m x 1 m open south window (a portal) and a work-plane grid.
+std::string window_room(const std::string& extra, std::uint64_t photons) {
+    auto wall = [](const std::string& center, const std::string& normal, const std::string& size) {
+        return "[[shape]]\ntype = \"rectangle\"\ncenter = " + center + "\nnormal = " + normal + "\nsize = " + size +
+               "\nmaterial = \"wall\"\n";
+    };
+    return "[annual]\nweather = \"" + kWeather + "\"\n" + extra +
+           "\n[[material]]\nname = \"wall\"\nreflectance = 0.5\n"
+           "[[material]]\nname = \"open\"\ntype = \"glass\"\nior = 1\n" +
+           wall("[2, 2, 0]", "[0, 0, 1]", "[4, 4]") + wall("[2, 2, 4]", "[0, 0, -1]", "[4, 4]") +
+           wall("[0, 2, 2]", "[1, 0, 0]", "[4, 4]") + wall("[4, 2, 2]", "[-1, 0, 0]", "[4, 4]") +
+           wall("[2, 4, 2]", "[0, -1, 0]", "[4, 4]") + wall("[2, 0, 0.75]", "[0, 1, 0]", "[4, 1.5]") +
+           wall("[2, 0, 3.25]", "[0, 1, 0]", "[4, 1.5]") + wall("[0.5, 0, 2]", "[0, 1, 0]", "[1, 1]") +
+           wall("[3.5, 0, 2]", "[0, 1, 0]", "[1, 1]") +
+           "[[shape]]\nname = \"window\"\ntype = \"rectangle\"\ncenter = [2, 0, 2]\nnormal = [0, 1, 0]\nsize = [2, 1]\n"
+           "material = \"open\"\n[[portal]]\nshape = \"window\"\n"
+           "[[detector]]\nname = \"desk\"\ncenter = [2, 2, 0.8]\nnormal = [0, 0, 1]\nup = [0, 1, 0]\nsize = [3.6, "
+           "3.6]\n"
+           "cells = [6, 6]\n[run]\nseed = 11\nphotons = " +
+           std::to_string(photons) + "\n";
+}
+
+TEST(Annual, RunStopsWhenAnAnnualMetricsErrorIsReached) {
+    test_support::ScratchDir dir("annual_target");
+    const fs::path scene = dir.path() / "room.toml", out = dir.path() / "room.h5";
+    std::ofstream(scene) << window_room("", 100'000'000'000ull)
+                         << "report_every_photons = 2000000\n"
+                            "[[run.target]]\non = \"annual:desk:mean_da\"\nabsolute_error = 0.01\n";
+    const auto o = test_support::run_luxtrace("run \"" + scene.string() + "\" --output \"" + out.string() +
+                                              "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    const ResultReader r(out);
+    EXPECT_EQ(r.attr_str("/", "stop_reason").rfind("target annual:desk:mean_da", 0), 0u)
+        << r.attr_str("/", "stop_reason");
+    // The final result's own (32-replicate) figure is within about the goal.
+    const std::string g = "/annual/detectors/desk";
+    const double sigma = r.attr_f64(g, "mean_da_sigma"), bias = r.attr_f64(g, "mean_da_bias");
+    EXPECT_LT(std::hypot(sigma, bias), 0.015) << "sigma " << sigma << " bias " << bias;
+    EXPECT_GT(r.attr_f64(g, "mean_da"), 0.0);
+    // The Ladybug results folder beside the result.
+    EXPECT_TRUE(fs::is_regular_file(dir.path() / "room_ladybug" / "grids_info.json"));
+    EXPECT_TRUE(
+        fs::is_regular_file(dir.path() / "room_ladybug" / "__static_apertures__" / "default" / "total" / "desk.npy"));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "luxtrace/stats/result_estimates.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -247,6 +248,15 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
         ck.budget = run_.photons;
     }
     write_result(path, scene_, layout_, tallies, i, est, control_->history(), as_checkpoint ? &ck : nullptr);
+    if (!as_checkpoint && scene_.annual && scene_.annual->options.write_ladybug) {
+        const std::filesystem::path folder = ladybug_folder_for(scene_, path);
+        try {
+            write_annual_ladybug(folder, scene_, est.annual);
+        } catch (const IoError& e) {
+            throw IoError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
+                          " was not: " + e.what());
+        }
+    }
     summary_.photons = n;
     summary_.global = est.global;
     summary_.detectors = std::move(est.detectors);

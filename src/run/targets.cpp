@@ -1,9 +1,11 @@
 #include "luxtrace/run/targets.hpp"
 
+#include "luxtrace/annual/annual_estimate.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace luxtrace {
 
@@ -12,6 +14,40 @@ TargetKind kind_of(const Target& t) {
     if (t.absolute_error > 0.0) return TargetKind::absolute_error;
     return TargetKind::relative_error;
 }
+
+namespace {
+
+// The error of a grid's annual metric from kAnnualTargetReplicates replicate years: a
+// stop criterion needs its size, not the last digit of it, and rank 0 evaluates it after
+// every reduction.
+constexpr int kAnnualTargetReplicates = 8;
+
+double annual_metric_error(const Target& t, const Scene& scene, const TallyLayout& layout,
+                           std::span<const std::uint64_t> data, double e0, std::uint64_t photons, bool relative) {
+    if (photons == 0) return std::numeric_limits<double>::quiet_NaN();
+    const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
+                                 [&](const Detector& d) { return d.name == t.detector; });
+    const std::size_t d = static_cast<std::size_t>(it - scene.detectors.begin());
+    const AnnualCoefficients c(*scene.annual, layout, data, d, static_cast<std::size_t>(it->cells()),
+                               e0 * it->value_per_lm(), photons);
+    const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& series) {
+        c.replicate(noise_scale, scene.run.seed * 0x9E3779B97F4A7C15ull + d, r, series);
+    };
+    const AnnualEstimate e = estimate_annual_metrics(draw, annual_hours(*scene.annual), {}, kAnnualTargetReplicates);
+    double AnnualMetrics::*member = &AnnualMetrics::sda;
+    if (t.annual_metric == "ase") member = &AnnualMetrics::ase;
+    else if (t.annual_metric == "mean_da") member = &AnnualMetrics::mean_da;
+    else if (t.annual_metric == "mean_continuous_da") member = &AnnualMetrics::mean_continuous_da;
+    else if (t.annual_metric == "mean_udi_fell_short") member = &AnnualMetrics::mean_udi_fell_short;
+    else if (t.annual_metric == "mean_udi_useful") member = &AnnualMetrics::mean_udi_useful;
+    else if (t.annual_metric == "mean_udi_exceeded") member = &AnnualMetrics::mean_udi_exceeded;
+    const SimexEstimate m = e.figure(member);
+    // Sigma and the bias together (simex.hpp): a bias shrinks with photons as well.
+    const double u = m.uncertainty();
+    return relative ? u / std::abs(m.value) : u;
+}
+
+}  // namespace
 
 TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
@@ -42,7 +78,9 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
         s.label += " received";
         break;
     }
-    if (t.detector.empty()) {
+    if (!t.annual_metric.empty()) {
+        s.value = annual_metric_error(t, scene, layout, data, e0, photons, s.kind == TargetKind::relative_error);
+    } else if (t.detector.empty()) {
         const GlobalEstimate scene_global = t.light_scene.empty()
                                                 ? g
                                                 : estimate_global(tallies, scene.triangle_area_m2, e0, photons);

@@ -43,6 +43,13 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
         o.occupied_from_h = (*hours)[0];
         o.occupied_to_h = (*hours)[1];
     }
+    if (const auto folder = r.string("ladybug_folder")) {
+        if (folder->empty()) {
+            o.write_ladybug = false;
+        } else {
+            o.ladybug_folder = load.resolve(*folder);
+        }
+    }
     if (const auto year = r.integer("year")) {
         if (*year < 1900 || *year > 2200) r.fail("year", "must lie in 1900 to 2200");
         o.year = static_cast<int>(*year);

@@ -1,5 +1,6 @@
 // [run] and its [[run.target]] -> the scene's run settings (docs/REFERENCE.md §2). The
 // command line overrides them (src/app).
+#include "luxtrace/annual/annual_estimate.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "scene_loader.hpp"
 
@@ -72,6 +73,25 @@ struct RunReader : StepReader {
             if (det == scene.detectors.end()) r.fail("on", "no [[observer]] is named '" + g.on.substr(9) + "'");
             g.i1 = det->nx;
             g.j1 = det->ny;
+        } else if (g.on.rfind("annual:", 0) == 0) {
+            const std::string rest = g.on.substr(7);
+            const auto colon = rest.rfind(':');
+            if (!load.scene.annual) r.fail("on", "an annual target needs [annual]");
+            if (colon == std::string::npos) r.fail("on", "expected 'annual:DETECTOR:METRIC', e.g. 'annual:desk:sda'");
+            g.detector = rest.substr(0, colon);
+            g.annual_metric = rest.substr(colon + 1);
+            const auto det = std::find_if(scene.detectors.begin(), scene.detectors.end(),
+                                          [&](const Detector& d) { return d.name == g.detector; });
+            if (det == scene.detectors.end() || !annual_grid(*det))
+                r.fail("on", "no illuminance or points [[detector]] is named '" + g.detector + "'");
+            if (std::find(std::begin(annual_target_metrics), std::end(annual_target_metrics), g.annual_metric) ==
+                std::end(annual_target_metrics)) {
+                std::string names;
+                for (const char* m : annual_target_metrics) names += (names.empty() ? "" : ", ") + std::string(m);
+                r.fail("on", "an annual target is on one of " + names + ", not '" + g.annual_metric + "'");
+            }
+            g.i1 = det->nx;
+            g.j1 = det->ny;
         } else if (g.on != "global") {
             if (g.on.rfind("detector:", 0) != 0)
                 r.fail("on", "expected 'global', 'detector:NAME', 'detector:NAME[i0:i1,j0:j1]' or 'observer:NAME'");
@@ -113,6 +133,8 @@ struct RunReader : StepReader {
             if (g.detector.empty()) r.fail("photons_received", "applies to a detector target only");
         }
         if (kinds != 1) r.fail_entry("needs exactly one of relative_error, absolute_error, photons_received");
+        if (!g.annual_metric.empty() && g.photons_received > 0.0)
+            r.fail("photons_received", "an annual target is on a metric's error: relative_error or absolute_error");
         const std::string avg = r.string("averaging").value_or("quadratic");
         if (avg == "quadratic") g.averaging = Averaging::quadratic;
         else if (avg == "arithmetic") g.averaging = Averaging::arithmetic;

@@ -18,7 +18,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
              "site", "portal", "annual"}},
         {"annual",
-         {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year"}},
+         {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year", "ladybug_folder"}},
         {"portal", {"shape", "flip"}},
         {"site",
          {"latitude_deg", "longitude_deg", "utc_offset_h", "elevation_m", "north", "time", "pressure_mbar",

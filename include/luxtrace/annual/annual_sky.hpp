@@ -33,6 +33,10 @@ struct AnnualOptions {
     // LM-83's occupied hours: the hours whose middle lies in [from, to) local standard time.
     double occupied_from_h = 8.0, occupied_to_h = 18.0;
     int year = 0;  // the calendar year of the sun positions; 0: 2017 (2016 for a leap-year file)
+    // The Ladybug Tools results folder (io/annual_ladybug.hpp): empty = beside the result;
+    // write_ladybug false: none.
+    std::filesystem::path ladybug_folder;
+    bool write_ladybug = true;
 };
 
 // One hour of the weather file.

@@ -1,5 +1,7 @@
 #include "luxtrace/annual/annual_illuminance.hpp"
 
+#include "luxtrace/scene/scene.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -8,38 +10,43 @@ namespace luxtrace {
 
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
                                        std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
-                                       double per_count, std::uint64_t photons)
+                                       double per_count, std::uint64_t photons, std::span<const char> emitting)
     : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0) {
     const AnnualSky& sky = *annual.sky;
     const std::size_t entries = sky.sky_entries(), suns = sky.suns().size();
     const double k2 = per_count * per_count;
     auto fill = [&](std::size_t group, std::size_t row, std::vector<double>& c, std::vector<double>& q,
                     std::vector<double>& var) {
+        if (group >= emitting.size() || !emitting[group]) return;  // exactly zero
         for (std::size_t cell = 0; cell < cells; ++cell) {
             const double n = static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
             const double qq = static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
             const std::size_t i = row * cells + cell;
             c[i] = per_count * n;
-            // A cell no photon of the group reached has an error of at least one photon's
-            // worth (its expected count may be ~1): a weak hour's sun is not exact in it.
-            q[i] = n > 0.0 ? k2 * qq : k2;
-            var[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : k2;
+            // A cell no photon of the group reached is not exact: its expected count may be
+            // about one. Its variance is that of half a count (Jeffreys' prior for a
+            // Poisson count seen as 0), not 0.
+            q[i] = n > 0.0 ? k2 * qq : 0.5 * k2;
+            var[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.5 * k2;
         }
     };
     sky_.assign(entries * cells, 0.0);
     sky_q_ = sky_var_ = sky_;
-    for (std::size_t e = 0; e < entries; ++e)
-        fill(e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e, e, sky_, sky_q_, sky_var_);
+    for (std::size_t e = 0; e < entries; ++e) {
+        const std::size_t group = e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e;
+        fill(group, e, sky_, sky_q_, sky_var_);
+        if (group < emitting.size() && emitting[group]) entries_.push_back(e);
+    }
     sun_.assign(suns * cells, 0.0);
     sun_q_ = sun_var_ = direct_ = direct_var_ = sun_;
     for (std::size_t s = 0; s < suns; ++s) {
         fill(annual.first_sun_group + s, s, sun_, sun_q_, sun_var_);
-        if (!layout.direct_scores()) continue;
+        if (!layout.direct_scores() || !emitting[annual.first_sun_group + s]) continue;
         for (std::size_t cell = 0; cell < cells; ++cell) {
             // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
             const double n = static_cast<double>(data[layout.detector_direct(det, cell, annual.first_sun_group + s)]);
             direct_[s * cells + cell] = per_count * n;
-            direct_var_[s * cells + cell] = n > 0.0 ? std::max(0.0, k2 * (n - n * n * inv_photons_)) : k2;
+            direct_var_[s * cells + cell] = n > 0.0 ? std::max(0.0, k2 * (n - n * n * inv_photons_)) : 0.5 * k2;
         }
     }
 }
@@ -47,7 +54,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
 void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vector<double>& sun,
                                  const std::vector<double>& direct, AnnualSeries& out) const {
     const AnnualSky& s = *annual_.sky;
-    const std::size_t entries = s.sky_entries(), hours = s.hours().size();
+    const std::size_t hours = s.hours().size();
     const std::vector<double>& yearly = s.yearly_luminance();
     out.hours = hours;
     out.sensors = cells_;
@@ -59,7 +66,7 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
         if (!hour.daylit) continue;
         std::fill(row.begin(), row.end(), 0.0);
         const double* lum = s.sky_vector(hour.row);
-        for (std::size_t e = 0; e < entries; ++e) {
+        for (const std::size_t e : entries_) {
             if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
             const double w = lum[e] / yearly[e];
             const double* c = &sky[e * cells_];
@@ -83,7 +90,6 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     combine(sky_, sun_, direct_, estimate);
     // Sum of w^2 k^2 q over the groups (the weights squared: lum^2 / yearly^2), minus E^2 / N.
     const AnnualSky& s = *annual_.sky;
-    const std::size_t entries = s.sky_entries();
     const std::vector<double>& yearly = s.yearly_luminance();
     sigma.hours = estimate.hours;
     sigma.sensors = cells_;
@@ -95,7 +101,7 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
         if (!hour.daylit) continue;
         std::fill(row.begin(), row.end(), 0.0);
         const double* lum = s.sky_vector(hour.row);
-        for (std::size_t e = 0; e < entries; ++e) {
+        for (const std::size_t e : entries_) {
             if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
             const double w = lum[e] / yearly[e];
             const double* q = &sky_q_[e * cells_];
@@ -120,30 +126,55 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
 
 void AnnualCoefficients::replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate,
                                    AnnualSeries& out) const {
+    if (!have_estimate_) {
+        combine(sky_, sun_, direct_, estimate_);
+        have_estimate_ = true;
+    }
     if (noise_scale == 0.0) {
-        combine(sky_, sun_, direct_, out);
+        out = estimate_;
         return;
     }
-    std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
-    std::normal_distribution<double> normal;
-    auto perturb = [&](const std::vector<double>& c, const std::vector<double>& var) {
-        std::vector<double> p(c.size());
-        for (std::size_t i = 0; i < c.size(); ++i)
-            p[i] = var[i] > 0.0 ? c[i] + noise_scale * std::sqrt(var[i]) * normal(rng) : c[i];
-        return p;
-    };
-    const std::vector<double> sky = perturb(sky_, sky_var_);
-    // The direct registrations are part of the sun's: perturb them together, the direct
-    // part by its own error and the rest by what remains of the sun's.
-    std::vector<double> sun(sun_.size()), direct(direct_.size());
-    for (std::size_t i = 0; i < sun_.size(); ++i) {
-        const double zd = direct_var_[i] > 0.0 ? normal(rng) : 0.0;
-        const double rest_var = std::max(0.0, sun_var_[i] - direct_var_[i]);
-        const double zr = rest_var > 0.0 ? normal(rng) : 0.0;
-        direct[i] = direct_[i] + noise_scale * std::sqrt(direct_var_[i]) * zd;
-        sun[i] = sun_[i] + noise_scale * (std::sqrt(direct_var_[i]) * zd + std::sqrt(rest_var) * zr);
+    if (replicate != noise_replicate_ || seed != noise_seed_) {
+        // The noise: the coefficients' standard errors times normal draws from (seed,
+        // replicate), through the same hourly weights.
+        std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
+        std::normal_distribution<double> normal;
+        std::vector<double> sky(sky_.size(), 0.0);
+        for (const std::size_t e : entries_)
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                const std::size_t i = e * cells_ + cell;
+                if (sky_var_[i] > 0.0) sky[i] = std::sqrt(sky_var_[i]) * normal(rng);
+            }
+        // The direct registrations are part of the sun's: their noise is shared, the rest of
+        // the sun's variance gets its own.
+        std::vector<double> sun(sun_.size(), 0.0), direct(direct_.size(), 0.0);
+        for (std::size_t i = 0; i < sun_.size(); ++i) {
+            if (!(sun_var_[i] > 0.0)) continue;
+            const double zd = direct_var_[i] > 0.0 ? normal(rng) : 0.0;
+            const double rest_var = std::max(0.0, sun_var_[i] - direct_var_[i]);
+            const double zr = rest_var > 0.0 ? normal(rng) : 0.0;
+            direct[i] = std::sqrt(direct_var_[i]) * zd;
+            sun[i] = direct[i] + std::sqrt(rest_var) * zr;
+        }
+        combine(sky, sun, direct, noise_);
+        noise_replicate_ = replicate;
+        noise_seed_ = seed;
     }
-    combine(sky, sun, direct, out);
+    out.hours = estimate_.hours;
+    out.sensors = estimate_.sensors;
+    out.total_lx.resize(estimate_.total_lx.size());
+    out.direct_lx.resize(estimate_.direct_lx.size());
+    for (std::size_t i = 0; i < out.total_lx.size(); ++i) {
+        out.total_lx[i] = estimate_.total_lx[i] + noise_scale * noise_.total_lx[i];
+        out.direct_lx[i] = estimate_.direct_lx[i] + noise_scale * noise_.direct_lx[i];
+    }
+}
+
+std::vector<char> emitting_groups(const Scene& scene) {
+    std::vector<char> out(scene.light_groups.size(), 0);
+    for (const Light& l : scene.lights.lights())
+        if (l.flux_lm > 0.0 && l.group < out.size()) out[l.group] = 1;
+    return out;
 }
 
 }  // namespace luxtrace

@@ -159,6 +159,20 @@ AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const
     each_figure(e.sigma, [&](double& x) { x = sums[i++].estimate(0.0).sigma; });
     i = 0;
     each_figure(e.bias, [&](double& x) { x = sums[i++].estimate(0.0).bias; });
+    // A straight-line extrapolation can overshoot where the noise is large (few photons):
+    // the corrected figure is kept within the figure's range, [0, 1] for shares and [0,
+    // occupied hours] for ASE hours.
+    AnnualMetrics upper = e.value;
+    each_figure(upper, [](double& x) { x = 1.0; });
+    const double occupied = static_cast<double>(std::count(hours.occupied.begin(), hours.occupied.end(), 1));
+    for (double& x : upper.sensors.ase_hours) x = occupied;
+    const std::vector<double> values = flatten(e.value), uppers = flatten(upper);
+    i = 0;
+    each_figure(e.bias, [&](double& b) {
+        const double v = values[i], corrected = std::clamp(v - b, 0.0, uppers[i]);
+        b = v - corrected;
+        ++i;
+    });
     // A level passes when both criteria do; the truth passes with P(a) P(b).
     for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
         const auto criterion = [&](const std::array<double, 3> AnnualMetrics::*f) {

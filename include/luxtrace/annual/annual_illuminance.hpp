@@ -6,8 +6,9 @@
 // k^2 (q_gc - n_gc^2 / N); hour h's illuminance is E_hc = sum_g w_hg C_gc, w_hg the hour's
 // luminance of the group over what the group emitted, and its variance
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
-// this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of a
-// group reached gets that group's variance of one count, k^2, not 0. The direct sun (LM-83's ASE)
+// this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
+// emitting group reached gets that group's variance of half a count, k^2 / 2 (Jeffreys'
+// prior for a Poisson count seen as 0), not 0. The direct sun (LM-83's ASE)
 // is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -19,12 +20,17 @@
 
 namespace luxtrace {
 
+struct Scene;
+
 class AnnualCoefficients {
 public:
     // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of one
-    // registration (e0 x Detector::value_per_lm()), `photons` N.
+    // registration (e0 x Detector::value_per_lm()), `photons` N. `emitting`, per light group:
+    // whether any of its lights emits (a patch or sun behind every portal does not); a
+    // group that emits nothing has exactly zero coefficients, with no error.
     AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
-                       std::size_t det, std::size_t cells, double per_count, std::uint64_t photons);
+                       std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
+                       std::span<const char> emitting);
 
     std::size_t cells() const { return cells_; }
     // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
@@ -34,7 +40,8 @@ public:
     // The hourly values from coefficients perturbed by `noise_scale` times their standard
     // errors (independent normal draws from (seed, replicate)): what a run with other random
     // numbers might have given, for the errors of nonlinear metrics (annual_metrics.hpp).
-    // noise_scale 0: the estimate.
+    // noise_scale 0: the estimate. The series is linear in noise_scale: one replicate's
+    // noise is computed once and kept for the next call with the same replicate.
     void replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
@@ -49,6 +56,14 @@ private:
     std::vector<double> sky_, sky_var_, sun_, sun_var_, direct_, direct_var_;
     // k^2 q and k n per entry, for the exact variance of a weighted sum.
     std::vector<double> sky_q_, sun_q_;
+    std::vector<std::size_t> entries_;  // the sky entries whose groups emit
+    // The estimate, and the last replicate's noise (replicate()).
+    mutable AnnualSeries estimate_, noise_;
+    mutable bool have_estimate_ = false;
+    mutable std::uint64_t noise_seed_ = 0, noise_replicate_ = ~std::uint64_t{0};
 };
+
+// Per light group of `scene`: 1 if any of its lights emits a positive flux.
+std::vector<char> emitting_groups(const Scene& scene);
 
 }  // namespace luxtrace

@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -550,4 +552,57 @@ TEST_F(Cli, RestartRefusesOtherLightGroups) {
                   (dir / "y.h5").string())
                   .code,
               0);
+}
+
+// An annual scene (issue 24): the run's first line and `check` name the year's thousands
+// of lights in one line, and `info` (as the end of the run) prints the year and a few lines
+// per sensor grid whose figures are the file's /annual ones.
+TEST_F(Cli, AnnualResultSummariesAreCompactAndReadTheFile) {
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "reference" / "annual_keys.toml";
+    const fs::path out = dir / "year.h5";
+    const Outcome check = run("check " + scene.string());
+    ASSERT_EQ(check.code, 0) << check.out;
+    EXPECT_NE(check.out.find("lights     145 sky patches, ground, 3925 suns (4071 light groups)"), std::string::npos)
+        << check.out;
+    EXPECT_EQ(check.out.find("sky patch 1 "), std::string::npos) << "no light listed one by one";
+    EXPECT_EQ(check.out.find("sky_001"), std::string::npos) << "no light group listed one by one";
+    EXPECT_LT(std::count(check.out.begin(), check.out.end(), '\n'), 25) << check.out;
+    const Outcome o = run("run " + scene.string() + " --photons 200k --threads 2 --output " + out.string());
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("2 triangles, 145 sky patches, ground, 3925 suns, 200000 photons"), std::string::npos)
+        << o.out;
+    const Outcome info = run("info " + out.string());
+    ASSERT_EQ(info.code, 0) << info.out;
+    // The annual lines: the year's two (and the note on the plain values), the grid's six.
+    std::istringstream lines(info.out);
+    std::vector<std::string> annual;
+    bool in_grid = false;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("annual ", 0) == 0 || line.rfind("  annual ", 0) == 0) in_grid = true;
+        else if (line.rfind("detector ", 0) == 0 || line.rfind("  whole grid", 0) == 0) in_grid = false;
+        if (in_grid && line.rfind("               U0", 0) != 0) annual.push_back(line);
+    }
+    ASSERT_EQ(annual.size(), 3u + 6u) << info.out;
+    for (const std::string& line : annual) EXPECT_NE(o.out.find(line), std::string::npos) << "run and info agree";
+    EXPECT_NE(annual[0].find("4412 daylit hours of 8760, 3925 with a sun; CIE type 12 skies over 145 patches"),
+              std::string::npos)
+        << annual[0];
+    EXPECT_NE(annual[1].find("occupied 9-17 h: 2920 hours; EN 17037: 4380 daylight hours"), std::string::npos)
+        << annual[1];
+    const luxtrace::ResultReader r(out);
+    const std::string g = "/annual/detectors/plane";
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(annual[3], m, std::regex(R"(sDA300/50% ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[3];
+    EXPECT_NEAR(std::stod(m[1]), 100.0 * r.attr_f64(g, "sda"), 0.005);
+    EXPECT_NEAR(std::stod(m[2]), 100.0 * r.attr_f64(g, "sda_sigma"), 0.005);
+    ASSERT_TRUE(std::regex_search(annual[4], m, std::regex(R"(DA +mean ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[4];
+    EXPECT_NEAR(std::stod(m[1]), 100.0 * r.attr_f64(g, "mean_da"), 0.005);
+    EXPECT_NEAR(std::stod(m[2]), 100.0 * r.attr_f64(g, "mean_da_sigma"), 0.005);
+    const char* levels[] = {"minimum", "medium", "high"};
+    for (int l = 0; l < 3; ++l) {
+        const std::string& line = annual[6 + l];
+        const std::string n = std::string("en17037_") + levels[l];
+        EXPECT_NE(line.find(levels[l]), std::string::npos) << line;
+        EXPECT_NE(line.find(r.attr_u64(g, n + "_pass") ? ": pass (flip " : ": fail (flip "), std::string::npos) << line;
+    }
 }

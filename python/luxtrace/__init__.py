@@ -7,6 +7,9 @@
     both.detectors["desk"].to_csv("desk.csv")
     luxtrace.write(both, "office-merged.h5")    # a sealed result: luxtrace info/render read it
 
+Annual daylight: ``r.annual`` (``luxtrace.annual``: the hours, each grid's hourly values and
+metrics with their errors), pictures ``luxtrace.annual_plot``.
+
 Pictures: ``luxtrace.plot`` (matplotlib), also ``python3 -m luxtrace.plot RESULT --detector NAME``.
 Needs numpy and h5py (Debian: python3-numpy, python3-h5py); pictures need matplotlib.
 """
@@ -14,6 +17,7 @@ from .combine import MismatchError, combine
 from .result_file import write
 from .result import (BACK, FRONT, NEWEST_FORMAT_VERSION, Detector, Group, History, Mesh, Result, ResultError,
                      SurfaceMap, TargetHistory, check_seal, open)
+from . import annual  # noqa: E402,F401  (after .result, whose classes it builds on)
 
 __version__ = "0.2.0"
 __all__ = ["open", "combine", "write", "check_seal", "Result", "Mesh", "SurfaceMap", "Detector", "Group", "History",

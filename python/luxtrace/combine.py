@@ -214,6 +214,8 @@ def combine(results):
                  combined_from=[_name(r) for r in rs], replicates=0 if rep_photons is None else len(rep_photons))
     if sobol:
         attrs["replicate_photons"] = rep_photons
+    if any(r.annual is not None for r in rs):
+        notes.append("/annual left out (its hourly values and metrics have no combination rule here)")
     observers = sorted({name for r in rs for name in r.observers})
     if observers:
         notes.append(f"observers left out (their glare figures have no combination rule here): "

@@ -419,6 +419,19 @@ def _parse_cell(text):
     return i, j
 
 
+def checked_input(prog, path, check):
+    """``check()``'s value, or None after one message on stderr when the input is bad (no
+    such file, a damaged file, a name or value the file does not have): the command lines
+    then exit 2 having written nothing."""
+    try:
+        return check()
+    except FileNotFoundError as e:
+        print(f"{prog}: {path}: {e.strerror}", file=sys.stderr)
+    except (ValueError, KeyError) as e:
+        print(f"{prog}: {e.args[0] if e.args else e}", file=sys.stderr)
+    return None
+
+
 def main(argv=None, prog="python3 -m luxtrace.plot"):
     """Command line: detector pictures (and with --convergence the convergence plot) of a
     result. Bad input (no such file or detector, a damaged file, a bad cell) exits 2 with
@@ -434,22 +447,22 @@ def main(argv=None, prog="python3 -m luxtrace.plot"):
     if not a.detector and not a.convergence:
         p.error("nothing to draw: give --detector NAME and/or --convergence")
     out_dir = a.out_dir or os.path.dirname(os.path.abspath(a.result))
-    try:
+
+    def check():  # everything is checked before anything is written
         res = _result.open(a.result)
         cell = _parse_cell(a.cell) if a.cell else None
-        for name in a.detector:  # everything is checked before anything is written
+        for name in a.detector:
             d = res.detector(name) if a.scene is None else res.scene_detector(a.scene, name)
             if cell and not (0 <= cell[0] < d.nx and 0 <= cell[1] < d.ny):
                 raise ValueError(f"--cell {a.cell} is outside detector '{name}' "
                                  f"(i in 0..{d.nx - 1}, j in 0..{d.ny - 1})")
         if a.convergence and (res.history is None or len(res.history) == 0):
             raise ValueError(f"{a.result}: no convergence history")
-    except FileNotFoundError as e:
-        print(f"{prog}: {a.result}: {e.strerror}", file=sys.stderr)
+        return res, cell
+    checked = checked_input(prog, a.result, check)
+    if checked is None:
         return 2
-    except (ValueError, KeyError) as e:
-        print(f"{prog}: {e.args[0] if e.args else e}", file=sys.stderr)
-        return 2
+    res, cell = checked
     written = []
     if a.convergence:
         os.makedirs(out_dir, exist_ok=True)

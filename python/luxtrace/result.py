@@ -558,6 +558,11 @@ class Result(_AttrAccess):
     # run without sun or sky; set by :func:`open`.
     daylight = None
 
+    # ``annual``: the /annual group (annual daylight: the year's hours, each sensor grid's
+    # hourly illuminance and metrics with their errors) as a :class:`luxtrace.annual.Annual`,
+    # or None for a run without ``[annual]`` (and for a combination); set by :func:`open`.
+    annual = None
+
     def scene_detector(self, scene, name):
         """Detector NAME as the run's ``[[light_scene]]`` SCENE left it in the file
         (/light_scenes/SCENE/detectors/NAME): its values and errors under that scene's
@@ -717,6 +722,8 @@ def _read(f, path):
     res = Result(attrs, mesh, surface, detectors, observers, history, path=path)
     res.light_group_tallies = group_tallies
     res.daylight = Group("daylight", _attrs(f["daylight"]), _read_datasets(f["daylight"])) if "daylight" in f else None
+    from .annual import read as read_annual  # annual.py builds on this module's classes
+    res.annual = read_annual(f, path)
     return res
 
 

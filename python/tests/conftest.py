@@ -213,3 +213,38 @@ def out_dir(tmp_path):
 def copy(src, dst):
     shutil.copyfile(src, dst)
     return str(dst)
+
+
+def edited_copy(src_path, dst_path, edit):
+    """A copy of the result changed by edit(h5py file) (its seal no longer matches)."""
+    shutil.copyfile(src_path, dst_path)
+    with h5py.File(dst_path, "r+") as f:
+        edit(f)
+    return dst_path
+
+
+# ------------------------------------------------------------------ annual daylight
+WEATHER = os.path.join(REPO, "tests", "data", "weather", "chicago.epw")
+
+
+@pytest.fixture(scope="session")
+def annual_run(binary, tmp_path_factory):
+    """A year in Chicago (the weather file's Perez skies and 3925 suns) over a grey ground,
+    with a grey roof over the left half of an 8 x 2 grid "plane" (2 m x 4 m at 0.5 m) and a
+    closed box over its two leftmost columns (no daylight: DA 0 there), and a points grid
+    "pts" of four sensors from a .pts file (the last one facing +x under the roof).
+    300k photons."""
+    d = tmp_path_factory.mktemp("annual")
+    (d / "grid.pts").write_text("0 0 0.5 0 0 1\n-1.5 0 0.5 0 0 1\n1.5 0 0.5 0 0 1\n-1.5 0 0.5 1 0 0\n")
+    scene = d / "year.toml"
+    scene.write_text(f'[site]\nlatitude_deg = 41.98\nlongitude_deg = -87.92\nutc_offset_h = -6\n\n'
+                     f'[annual]\nweather = "{WEATHER}"\n\n'
+                     '[[material]]\nname = "grey"\nreflectance = 0.3\n\n'
+                     '[[shape]]\ntype = "rectangle"\ncenter = [0, 0, 0]\nsize = [6, 6]\nmaterial = "grey"\n\n'
+                     '[[shape]]\ntype = "rectangle"\ncenter = [-1.5, 0, 1.0]\nnormal = [0, 0, -1]\nsize = [3, 6]\n'
+                     'material = "grey"\n\n'
+                     '[[shape]]\ntype = "box"\ncenter = [-1.5, 0, 0.5]\nsize = [1.0, 3.0, 0.8]\nmaterial = "grey"\n\n'
+                     '[[detector]]\nname = "plane"\ncenter = [0, 0, 0.5]\nup = [0, 1, 0]\nsize = [4, 2]\n'
+                     'cells = [8, 2]\n\n'
+                     '[[detector]]\nname = "pts"\ntype = "points"\npoints = "grid.pts"\n')
+    return run_luxtrace(binary, scene, d / "year.h5", "--photons", "300k")

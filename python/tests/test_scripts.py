@@ -31,3 +31,10 @@ def test_plot_detector(room_runs, tmp_path):
     assert p.returncode == 0, p.stderr
     assert sorted(os.listdir(out)) == ["table_error.png", "table_error_hist.png", "table_sections.png",
                                        "table_value.png"]
+
+
+def test_plot_annual(annual_run, tmp_path):
+    out = tmp_path / "pictures"
+    p = run_script("plot_annual.py", [annual_run, "--grid", "pts", "-o", str(out)], tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert sorted(os.listdir(out)) == ["pts_ase.png", "pts_da.png", "pts_hours.png"]

@@ -125,7 +125,7 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     std::signal(SIGUSR1, on_stop_signal);
     if (comm.is_root() && !a.quiet)
         std::cout << "luxtrace: " << scene.file.string() << ": " << scene.triangle_count() << " triangles, "
-                  << scene.lights.lights().size() << " lights, " << scene.run.photons << " photons on " << comm.size()
+                  << describe_lights(scene) << ", " << scene.run.photons << " photons on " << comm.size()
                   << " rank(s) x " << (opt.threads > 0 ? opt.threads : available_cores()) << " thread(s)\n"
                   << std::flush;
     // What the scene's loading noticed (a sun below the horizon, portals beside exterior

@@ -1,5 +1,7 @@
 #include "result_summary.hpp"
 
+#include "annual_summary.hpp"
+
 #include "luxtrace/io/result_data.hpp"
 
 #include "luxtrace/core/error.hpp"
@@ -152,6 +154,7 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
     // sobol (issue 22): the spread of the replicate maps, which its targets use.
     if (r.has_attr("/global", "replicate_sigma_lx"))
         global_line("  replicates   RMS error ", "replicate_", "replicate_spread");
+    print_annual_year(r, out);
     for (const std::string& name : r.children("/detectors")) {
         const std::string g = "/detectors/" + name;
         const std::string units = r.attr_str(g, "units");
@@ -197,6 +200,7 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
             }
             out << std::fixed << std::setprecision(2);
         }
+        print_annual_grid(r, name, out);
     }
     for (const std::string& name : r.has("/observers") ? r.children("/observers") : std::vector<std::string>{}) {
         const std::string g = "/observers/" + name;

@@ -4,6 +4,8 @@
 
 #include <iomanip>
 #include <ostream>
+#include <span>
+#include <string>
 
 namespace luxtrace {
 
@@ -20,10 +22,11 @@ const char* type_name(MaterialType t) {
     return "?";
 }
 
-// Only when the scene has more than the one default group, or light scenes.
+// Only when the scene has more than the one default group, or light scenes; an annual
+// scene's groups are its sky patches and suns, summarised with the lights.
 void print_light_groups(const Scene& s, std::ostream& out) {
     const bool only_default = s.light_groups.size() == 1 && s.light_groups[0] == Scene::kDefaultLightGroup;
-    if (only_default && s.light_scenes.empty()) return;
+    if ((only_default && s.light_scenes.empty()) || s.annual) return;
     std::vector<std::size_t> lights(s.light_groups.size(), 0);
     std::vector<double> flux_lm(s.light_groups.size(), 0.0);
     for (const Light& l : s.lights.lights()) {
@@ -45,7 +48,26 @@ void print_light_groups(const Scene& s, std::ostream& out) {
         out << '\n';
     }
 }
+// An annual scene's lights in a few lines instead of one per patch and sun.
+void print_annual_lights(const Scene& s, std::ostream& out) {
+    const AnnualSky& sky = *s.annual->sky;
+    out << "lights     " << describe_lights(s) << " (" << s.light_groups.size() << " light groups), total "
+        << std::setprecision(6) << s.lights.total_flux_lm() << " lm: the year's sky and sun from "
+        << s.annual->options.weather.string() << '\n'
+        << "  " << sky.daylit_hours() << " daylit hours of " << sky.hours().size() << ", " << sky.suns().size()
+        << " with a sun; "
+        << (s.annual->options.sky == "cie" ? "CIE type " + std::to_string(s.annual->options.cie_type)
+                                           : std::string("Perez"))
+        << " skies, ground reflectance " << s.annual->options.ground_reflectance << '\n';
+}
+
 }  // namespace
+
+std::string describe_lights(const Scene& s) {
+    if (!s.annual) return std::to_string(s.lights.lights().size()) + " lights";
+    return std::to_string(s.annual->sky->patches().count()) + " sky patches, ground, " +
+           std::to_string(s.annual->sky->suns().size()) + " suns";
+}
 
 void print_scene_summary(const Scene& s, const std::vector<std::string>& warnings, std::ostream& out) {
     out << "scene      " << s.name << " (" << s.file.string() << ")\n";
@@ -66,9 +88,14 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         out << "  " << std::left << std::setw(16) << s.materials[m].name << std::right << std::setw(8)
             << type_name(s.materials[m].type) << "  albedo " << std::setprecision(3) << albedo(s.materials[m], 0)
             << "  " << count[m] << " triangles, " << area[m] << " m^2\n";
-    out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6) << s.lights.total_flux_lm()
-        << " lm\n";
-    for (const Light& l : s.lights.lights()) {
+    if (s.annual) print_annual_lights(s, out);
+    else
+        out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6)
+            << s.lights.total_flux_lm() << " lm\n";
+    // An annual scene's thousands of patches and suns are summarised above, not listed.
+    const std::span<const Light> listed = s.annual ? std::span<const Light>{}
+                                                   : std::span<const Light>(s.lights.lights());
+    for (const Light& l : listed) {
         out << "  " << std::left << std::setw(24) << l.label << std::right << "  " << l.flux_lm << " lm";
         if (l.photometry) {
             const Photometry& p = *l.photometry;

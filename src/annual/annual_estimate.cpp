@@ -1,6 +1,7 @@
 #include "luxtrace/annual/annual_estimate.hpp"
 
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/stats/result_estimates.hpp"
 
 namespace luxtrace {
 
@@ -26,12 +27,12 @@ std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& 
     std::vector<std::optional<AnnualDetectorEstimate>> out(scene.annual ? scene.detectors.size() : 0);
     if (!scene.annual || photons == 0) return out;
     const AnnualHours hours = annual_hours(*scene.annual);
-    const std::vector<char> emitting = emitting_groups(scene);
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
     for (std::size_t d = 0; d < scene.detectors.size(); ++d) {
         const Detector& det = scene.detectors[d];
         if (!annual_grid(det)) continue;
         const AnnualCoefficients c(*scene.annual, layout, data, d, static_cast<std::size_t>(det.cells()),
-                                   e0 * det.value_per_lm(), photons, emitting);
+                                   e0 * det.value_per_lm(), photons, group_flux);
         AnnualDetectorEstimate e;
         c.series(e.value, e.sigma);
         const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + d;

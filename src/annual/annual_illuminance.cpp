@@ -1,7 +1,5 @@
 #include "luxtrace/annual/annual_illuminance.hpp"
 
-#include "luxtrace/scene/scene.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -10,43 +8,85 @@ namespace luxtrace {
 
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
                                        std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
-                                       double per_count, std::uint64_t photons, std::span<const char> emitting)
+                                       double per_count, std::uint64_t photons, std::span<const double> group_flux_lm)
     : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0) {
     const AnnualSky& sky = *annual.sky;
     const std::size_t entries = sky.sky_entries(), suns = sky.suns().size();
     const double k2 = per_count * per_count;
-    auto fill = [&](std::size_t group, std::size_t row, std::vector<double>& c, std::vector<double>& q,
-                    std::vector<double>& var) {
-        if (group >= emitting.size() || !emitting[group]) return;  // exactly zero
-        for (std::size_t cell = 0; cell < cells; ++cell) {
-            const double n = static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
-            const double qq = static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
-            const std::size_t i = row * cells + cell;
-            c[i] = per_count * n;
-            // A cell no photon of the group reached is not exact: its expected count may be
-            // about one. Its variance is that of half a count (Jeffreys' prior for a
-            // Poisson count seen as 0), not 0.
-            q[i] = n > 0.0 ? k2 * qq : 0.5 * k2;
-            var[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.5 * k2;
-        }
+    auto flux = [&](std::size_t group) { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; };
+    auto n_of = [&](std::size_t cell, std::size_t group) {
+        return static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
     };
+    auto direct_of = [&](std::size_t cell, std::size_t group) {
+        return layout.direct_scores() ? static_cast<double>(data[layout.detector_direct(det, cell, group)]) : 0.0;
+    };
+    std::vector<std::size_t> sky_groups, sun_groups;
+    for (std::size_t e = 0; e < entries; ++e)
+        sky_groups.push_back(e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e);
+    for (std::size_t s = 0; s < suns; ++s) sun_groups.push_back(annual.first_sun_group + s);
+    // A cell that no photon of an emitting group reached is not exact: its expected count
+    // lambda is small but not zero, and its variance is k^2 lambda. The sky patches and the
+    // ground: lambda from the cell's indirect registrations pooled over all of them, shared
+    // out by the groups' fluxes (which decide their photons), lambda = (I_c + 1/2) Phi_g /
+    // Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A sun: from the same
+    // cell's registrations of the suns of the same hour on the day before and after (their
+    // positions within half a degree: the same shadows), lambda = (n_c' + 1/2) Phi_s / Phi',
+    // for the total and for the direct count alike.
     sky_.assign(entries * cells, 0.0);
     sky_q_ = sky_var_ = sky_;
-    for (std::size_t e = 0; e < entries; ++e) {
-        const std::size_t group = e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e;
-        fill(group, e, sky_, sky_q_, sky_var_);
-        if (group < emitting.size() && emitting[group]) entries_.push_back(e);
+    {
+        double sky_flux = 0.0;
+        for (std::size_t g : sky_groups) sky_flux += flux(g);
+        std::vector<double> indirect(cells, 0.5);
+        for (std::size_t g : sky_groups)
+            if (flux(g) > 0.0)
+                for (std::size_t cell = 0; cell < cells; ++cell) indirect[cell] += n_of(cell, g) - direct_of(cell, g);
+        for (std::size_t e = 0; e < entries; ++e) {
+            const std::size_t g = sky_groups[e];
+            if (!(flux(g) > 0.0)) continue;  // emits nothing: exactly zero
+            entries_.push_back(e);
+            const double share = flux(g) / sky_flux;
+            for (std::size_t cell = 0; cell < cells; ++cell) {
+                const double n = n_of(cell, g);
+                const double qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
+                const std::size_t i = e * cells + cell;
+                sky_[i] = per_count * n;
+                sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
+                sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : sky_q_[i];
+            }
+        }
     }
     sun_.assign(suns * cells, 0.0);
     sun_q_ = sun_var_ = direct_ = direct_var_ = sun_;
+    std::vector<int> sun_at_hour(sky.hours().size(), -1);
+    for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
     for (std::size_t s = 0; s < suns; ++s) {
-        fill(annual.first_sun_group + s, s, sun_, sun_q_, sun_var_);
-        if (!layout.direct_scores() || !emitting[annual.first_sun_group + s]) continue;
+        const std::size_t g = sun_groups[s];
+        if (!(flux(g) > 0.0)) continue;
+        std::vector<std::size_t> near;
+        const std::size_t h = sky.suns()[s];
+        for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
+            if (other < sun_at_hour.size() && sun_at_hour[other] >= 0 &&
+                flux(sun_groups[static_cast<std::size_t>(sun_at_hour[other])]) > 0.0)
+                near.push_back(sun_groups[static_cast<std::size_t>(sun_at_hour[other])]);
+        double near_flux = 0.0;
+        for (std::size_t o : near) near_flux += flux(o);
+        const double share = near.empty() ? 1.0 : flux(g) / near_flux;
         for (std::size_t cell = 0; cell < cells; ++cell) {
+            const double n = n_of(cell, g), qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
             // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
-            const double n = static_cast<double>(data[layout.detector_direct(det, cell, annual.first_sun_group + s)]);
-            direct_[s * cells + cell] = per_count * n;
-            direct_var_[s * cells + cell] = n > 0.0 ? std::max(0.0, k2 * (n - n * n * inv_photons_)) : 0.5 * k2;
+            const double d = direct_of(cell, g);
+            double near_n = 0.5, near_d = 0.5;
+            for (std::size_t o : near) {
+                near_n += n_of(cell, o);
+                near_d += direct_of(cell, o);
+            }
+            const std::size_t i = s * cells + cell;
+            sun_[i] = per_count * n;
+            sun_q_[i] = n > 0.0 ? k2 * qq : k2 * near_n * share;
+            sun_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : sun_q_[i];
+            direct_[i] = per_count * d;
+            direct_var_[i] = d > 0.0 ? std::max(0.0, k2 * (d - d * d * inv_photons_)) : k2 * near_d * share;
         }
     }
 }
@@ -168,13 +208,6 @@ void AnnualCoefficients::replicate(double noise_scale, std::uint64_t seed, std::
         out.total_lx[i] = estimate_.total_lx[i] + noise_scale * noise_.total_lx[i];
         out.direct_lx[i] = estimate_.direct_lx[i] + noise_scale * noise_.direct_lx[i];
     }
-}
-
-std::vector<char> emitting_groups(const Scene& scene) {
-    std::vector<char> out(scene.light_groups.size(), 0);
-    for (const Light& l : scene.lights.lights())
-        if (l.flux_lm > 0.0 && l.group < out.size()) out[l.group] = 1;
-    return out;
 }
 
 }  // namespace luxtrace

@@ -5,6 +5,8 @@
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
 
+#include <limits>
+
 namespace luxtrace::result_parts {
 
 using namespace hdf5;
@@ -110,7 +112,13 @@ void write_metrics(hid_t g, const AnnualEstimate& e, std::size_t cells) {
         const std::string n = std::string("en17037_") + kEn17037Levels[l].name;
         attr(g, n + "_target_hours", e.value.en17037_target_hours[l]);
         attr(g, n + "_minimum_hours", e.value.en17037_minimum_hours[l]);
-        if (e.replicates == 0) continue;
+        if (e.replicates == 0) {  // a checkpoint: the verdict on the values, no probability
+            const bool pass = e.value.en17037_target_hours[l] >= kEn17037HoursShare &&
+                              e.value.en17037_minimum_hours[l] >= kEn17037HoursShare;
+            attr(g, n + "_pass", static_cast<std::uint32_t>(pass ? 1 : 0));
+            attr(g, n + "_flip_probability", std::numeric_limits<double>::quiet_NaN());
+            continue;
+        }
         attr(g, n + "_target_hours_sigma", e.sigma.en17037_target_hours[l]);
         attr(g, n + "_minimum_hours_sigma", e.sigma.en17037_minimum_hours[l]);
         attr(g, n + "_pass", static_cast<std::uint32_t>(e.en17037[l].pass ? 1 : 0));

@@ -2,6 +2,7 @@
 
 #include "luxtrace/annual/annual_estimate.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/stats/result_estimates.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,7 @@ double annual_metric_error(const Target& t, const Scene& scene, const TallyLayou
                                  [&](const Detector& d) { return d.name == t.detector; });
     const std::size_t d = static_cast<std::size_t>(it - scene.detectors.begin());
     const AnnualCoefficients c(*scene.annual, layout, data, d, static_cast<std::size_t>(it->cells()),
-                               e0 * it->value_per_lm(), photons, emitting_groups(scene));
+                               e0 * it->value_per_lm(), photons, light_group_flux_lm(scene));
     const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& series) {
         c.replicate(noise_scale, scene.run.seed * 0x9E3779B97F4A7C15ull + d, r, series);
     };

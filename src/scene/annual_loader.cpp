@@ -17,7 +17,7 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
     AnnualOptions o;
     const auto weather = r.string("weather");
     if (!weather) r.fail_entry("needs 'weather' (an EnergyPlus .epw or a Radiance .wea file)");
-    o.weather = load.resolve(*weather);
+    o.weather = load.resolve(*weather).lexically_normal();
     if (const auto mf = r.integer("sky_mf")) {
         if (*mf < 1 || *mf > 6)
             r.fail("sky_mf",

@@ -7,8 +7,8 @@
 // luminance of the group over what the group emitted, and its variance
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
 // this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
-// emitting group reached gets that group's variance of half a count, k^2 / 2 (Jeffreys'
-// prior for a Poisson count seen as 0), not 0. The direct sun (LM-83's ASE)
+// emitting group reached gets the variance of its expected count estimated from the cell's
+// indirect registrations pooled over the group's kind (AnnualCoefficients()), not 0. The direct sun (LM-83's ASE)
 // is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -20,17 +20,15 @@
 
 namespace luxtrace {
 
-struct Scene;
-
 class AnnualCoefficients {
 public:
     // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of one
-    // registration (e0 x Detector::value_per_lm()), `photons` N. `emitting`, per light group:
-    // whether any of its lights emits (a patch or sun behind every portal does not); a
-    // group that emits nothing has exactly zero coefficients, with no error.
+    // registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per light
+    // group (light_group_flux_lm): a group that emits nothing (a patch or sun behind every
+    // portal) has exactly zero coefficients, with no error.
     AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
                        std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
-                       std::span<const char> emitting);
+                       std::span<const double> group_flux_lm);
 
     std::size_t cells() const { return cells_; }
     // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
@@ -62,8 +60,5 @@ private:
     mutable bool have_estimate_ = false;
     mutable std::uint64_t noise_seed_ = 0, noise_replicate_ = ~std::uint64_t{0};
 };
-
-// Per light group of `scene`: 1 if any of its lights emits a positive flux.
-std::vector<char> emitting_groups(const Scene& scene);
 
 }  // namespace luxtrace

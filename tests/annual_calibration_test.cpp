@@ -146,10 +146,10 @@ protected:
     static inline std::vector<fs::path> results_;
 };
 
-TEST_F(AnnualCalibration, PerSensorDaScattersAsItsSigma) { expect_calibrated("per-sensor DA", sensors("da"), 16); }
-
-// Hours without a direct sun: sky patches and ground only.
-TEST_F(AnnualCalibration, SkyHoursScatterAsTheirSigma) {
+// Per-sensor DA, and every sensor's illuminance at the hours without a direct sun (sky
+// patches and ground only); one case, so that ctest runs the 10 seeds once.
+TEST_F(AnnualCalibration, DaAndSkyHoursScatterAsTheirSigma) {
+    expect_calibrated("per-sensor DA", sensors("da"), 16);
     expect_calibrated("hourly illuminance, sky-only hours", hours(false), 16 * 200);
 }
 

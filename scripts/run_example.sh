@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's first command: install dependencies, build, and simulate the bundled
-# office under mpirun with 2 ranks, then the daylit office (examples/daylight). Results go
-# to out/office/ and out/daylight/.
+# office under mpirun with 2 ranks, then the daylit office (examples/daylight) and the same
+# office over a year of weather (examples/annual). Results go to out/office/, out/daylight/
+# and out/annual/.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install_deps.sh"
@@ -46,3 +47,26 @@ echo
 echo "Daylight:      $day/side_lit_office.h5   (luxtrace info; the light scenes 'overcast' and 'sunny')"
 echo "DF map:        $day/overcast/work_plane_df.png   (daylight factor %, median, 95 % value, EN 17037 verdict)"
 echo "Sun patch:     $day/sunny/floor_value.png, rendered: $day/sunny/inside.png"
+
+# The same office through a year of Chicago weather (examples/annual): every sky patch, the
+# ground and every hour's sun as light groups of one run; each sensor's hourly illuminance
+# and LM-83's sDA and ASE, UDI and EN 17037, each with its error (README "Annual daylight").
+ann="$root/out/annual"
+mkdir -p "$ann"
+"$lux" check "$root/examples/annual/annual_office.toml" | grep -v "warning: sun of hour"
+echo
+mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/annual/annual_office.toml" \
+  --threads 1 --output "$ann/annual_office.h5" --quiet
+/usr/bin/python3 - "$ann/annual_office.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    for name, g in f["annual/detectors"].items():
+        a = g.attrs
+        print(f"annual {name}: sDA300/50% {100 * a['sda']:.1f} +- {100 * a['sda_sigma']:.1f} %, "
+              f"ASE1000,250h {100 * a['ase']:.1f} +- {100 * a['ase_sigma']:.1f} %, "
+              f"UDI 100-3000 lx {100 * a['mean_udi_useful']:.1f} +- {100 * a['mean_udi_useful_sigma']:.1f} %, "
+              f"EN 17037 minimum {'pass' if a['en17037_minimum_pass'] else 'fail'} "
+              f"(flip probability {a['en17037_minimum_flip_probability']:.2f})")
+PY
+echo
+echo "Annual:        $ann/annual_office.h5   (/annual/detectors/work_plane and /sensors: hourly values, metrics)"

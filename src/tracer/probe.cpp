@@ -49,6 +49,10 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
             sampler.start_photon(static_cast<std::uint64_t>(k));
             const double a = sampler.next(), b = sampler.next(), c = sampler.next(), d = sampler.next();
             const EmittedRay r = l.emit(a, b, c, d);
+            if (r.missed) {  // a sky patch's photon past its portal: escaped, as the tracer counts it
+                ++escaped;
+                continue;
+            }
             Vec3f o = embree.to_local(r.origin);
             if (r.emitter_triangle >= 0) {  // leave the emitter as the tracer does
                 const auto t = static_cast<unsigned>(r.emitter_triangle);

@@ -30,8 +30,9 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     // out by the groups' fluxes (which decide their photons), lambda = (I_c + 1/2) Phi_g /
     // Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A sun: from the same
     // cell's registrations of the suns of the same hour on the day before and after (their
-    // positions within half a degree: the same shadows), lambda = (n_c' + 1/2) Phi_s / Phi',
-    // for the total and for the direct count alike.
+    // positions within half a degree: the same shadows), lambda = n_c' Phi_s / Phi', for the
+    // total and for the direct count alike; where those read 0 too, the mean over all such
+    // dark (sun, cell) pairs of the detector.
     sky_.assign(entries * cells, 0.0);
     sky_q_ = sky_var_ = sky_;
     {
@@ -60,33 +61,68 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     sun_q_ = sun_var_ = direct_ = direct_var_ = sun_;
     std::vector<int> sun_at_hour(sky.hours().size(), -1);
     for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
+    // Per sun: the emitting suns of the same hour on the day before and after, and the share
+    // of their photons this sun has.
+    std::vector<std::vector<std::size_t>> near(suns);
+    std::vector<double> share(suns, 0.0);
+    for (std::size_t s = 0; s < suns; ++s) {
+        if (!(flux(sun_groups[s]) > 0.0)) continue;
+        const std::size_t h = sky.suns()[s];
+        double near_flux = 0.0;
+        for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
+            if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
+                const std::size_t o = sun_groups[static_cast<std::size_t>(sun_at_hour[other])];
+                if (flux(o) > 0.0) {
+                    near[s].push_back(o);
+                    near_flux += flux(o);
+                }
+            }
+        share[s] = near_flux > 0.0 ? flux(sun_groups[s]) / near_flux : 0.0;
+    }
+    auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
+        double m = 0.0;
+        for (std::size_t o : near[s]) m += direct ? direct_of(cell, o) : n_of(cell, o);
+        return m;
+    };
+    // Where the neighbours read nothing either (a shadow, or light too rare to show), the
+    // expected count is the mean count of all such (sun, cell) pairs of the detector, with
+    // half a count of prior: most are true shadows, and their few counts say how rare.
+    double dark_n = 0.5, dark_d = 0.5, dark_pairs = 1.0, dark_pairs_d = 1.0;
+    for (std::size_t s = 0; s < suns; ++s) {
+        if (!(flux(sun_groups[s]) > 0.0) || near[s].empty()) continue;
+        for (std::size_t cell = 0; cell < cells; ++cell) {
+            if (near_sum(s, cell, false) == 0.0) {
+                dark_n += n_of(cell, sun_groups[s]) / (share[s] * static_cast<double>(near[s].size()));
+                dark_pairs += 1.0;
+            }
+            if (near_sum(s, cell, true) == 0.0) {
+                dark_d += direct_of(cell, sun_groups[s]) / (share[s] * static_cast<double>(near[s].size()));
+                dark_pairs_d += 1.0;
+            }
+        }
+    }
+    const double dark_lambda_n = dark_n / dark_pairs, dark_lambda_d = dark_d / dark_pairs_d;  // per neighbour
     for (std::size_t s = 0; s < suns; ++s) {
         const std::size_t g = sun_groups[s];
         if (!(flux(g) > 0.0)) continue;
-        std::vector<std::size_t> near;
-        const std::size_t h = sky.suns()[s];
-        for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
-            if (other < sun_at_hour.size() && sun_at_hour[other] >= 0 &&
-                flux(sun_groups[static_cast<std::size_t>(sun_at_hour[other])]) > 0.0)
-                near.push_back(sun_groups[static_cast<std::size_t>(sun_at_hour[other])]);
-        double near_flux = 0.0;
-        for (std::size_t o : near) near_flux += flux(o);
-        const double share = near.empty() ? 1.0 : flux(g) / near_flux;
         for (std::size_t cell = 0; cell < cells; ++cell) {
             const double n = n_of(cell, g), qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
             // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
             const double d = direct_of(cell, g);
-            double near_n = 0.5, near_d = 0.5;
-            for (std::size_t o : near) {
-                near_n += n_of(cell, o);
-                near_d += direct_of(cell, o);
-            }
+            // The expected count of an unreached cell: the neighbours' counts times this
+            // sun's share of their photons, or the detector's dark mean.
+            auto lambda = [&](bool direct) {
+                if (near[s].empty()) return 0.5;
+                const double m = near_sum(s, cell, direct);
+                const double dark = direct ? dark_lambda_d : dark_lambda_n;
+                return (m > 0.0 ? m : dark * static_cast<double>(near[s].size())) * share[s];
+            };
             const std::size_t i = s * cells + cell;
             sun_[i] = per_count * n;
-            sun_q_[i] = n > 0.0 ? k2 * qq : k2 * near_n * share;
+            sun_q_[i] = n > 0.0 ? k2 * qq : k2 * lambda(false);
             sun_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : sun_q_[i];
             direct_[i] = per_count * d;
-            direct_var_[i] = d > 0.0 ? std::max(0.0, k2 * (d - d * d * inv_photons_)) : k2 * near_d * share;
+            direct_var_[i] = d > 0.0 ? std::max(0.0, k2 * (d - d * d * inv_photons_)) : k2 * lambda(true);
         }
     }
 }

@@ -57,16 +57,9 @@ mkdir -p "$ann"
 echo
 mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/annual/annual_office.toml" \
   --threads 1 --output "$ann/annual_office.h5" --quiet
-/usr/bin/python3 - "$ann/annual_office.h5" <<'PY'
-import sys, h5py
-with h5py.File(sys.argv[1], "r") as f:
-    for name, g in f["annual/detectors"].items():
-        a = g.attrs
-        print(f"annual {name}: sDA300/50% {100 * a['sda']:.1f} +- {100 * a['sda_sigma']:.1f} %, "
-              f"ASE1000,250h {100 * a['ase']:.1f} +- {100 * a['ase_sigma']:.1f} %, "
-              f"UDI 100-3000 lx {100 * a['mean_udi_useful']:.1f} +- {100 * a['mean_udi_useful_sigma']:.1f} %, "
-              f"EN 17037 minimum {'pass' if a['en17037_minimum_pass'] else 'fail'} "
-              f"(flip probability {a['en17037_minimum_flip_probability']:.2f})")
-PY
-echo
+# The year, and each grid's sDA, ASE, UDI and EN 17037 with their errors.
+"$lux" info "$ann/annual_office.h5"
+/usr/bin/python3 "$root/scripts/plot_annual.py" "$ann/annual_office.h5" -o "$ann" >/dev/null
 echo "Annual:        $ann/annual_office.h5   (/annual/detectors/work_plane and /sensors: hourly values, metrics)"
+echo "               $ann/annual_office_ladybug/   (the Ladybug Tools results folder: honeybee-radiance-postprocess reads it)"
+echo "               $ann/*.png   (DA and ASE maps of each grid, a sensor's hours x days)"

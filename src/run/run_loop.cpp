@@ -1,13 +1,12 @@
 #include "luxtrace/run/run_loop.hpp"
 
-#include "luxtrace/stats/result_estimates.hpp"
-
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/tally/message_packing.hpp"
 
 #include <unistd.h>
 
@@ -161,9 +160,9 @@ PendingReduce RunLoop::start_reduce() {
         reduced_.swap(snapshot_);
         return PendingReduce::completed();
     }
-    side_mask_ = lit_side_mask(layout_, snapshot_);
-    comm_.allreduce_or(side_mask_);
-    pack_lit_sides(layout_, side_mask_, snapshot_, packed_);
+    mask_ = message_mask(layout_, snapshot_);
+    comm_.allreduce_or(mask_);
+    pack_message(layout_, mask_, snapshot_, packed_);
     info_.reduction_message_words = packed_.size();
     return comm_.ireduce_sum_to_root(packed_, packed_reduced_);
 }
@@ -171,7 +170,7 @@ PendingReduce RunLoop::start_reduce() {
 void RunLoop::finish_reduce() {
     if (ranks_ == 1 || !comm_.is_root()) return;
     reduced_.resize(snapshot_.size());
-    unpack_lit_sides(layout_, side_mask_, packed_reduced_, reduced_);
+    unpack_message(layout_, mask_, packed_reduced_, reduced_);
 }
 
 void RunLoop::reduce() {

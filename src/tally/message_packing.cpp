@@ -1,6 +1,7 @@
 #include "luxtrace/tally/message_packing.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <stdexcept>
 
@@ -50,11 +51,16 @@ void for_each_range(const TallyLayout& L, std::span<const std::uint64_t> mask, s
     for (std::size_t b = 0; b < n;) {
         const std::uint64_t w = blocks[b / 64];
         const std::size_t stop = std::min(n, b + 64 - b % 64);
-        if (w == 0 || w == ~std::uint64_t{0}) {  // 64 blocks alike: one step
-            add((stop - b) * kMessageBlockWords, w != 0);
-            b = stop;
-        } else
-            for (; b < stop; ++b) add(kMessageBlockWords, bit(blocks, b));
+        // b is a multiple of 64 here: step over each run of equal bits of w at once.
+        for (std::uint64_t rest = w; b < stop;) {
+            const bool keep = (rest & 1u) != 0;
+            const std::size_t run = std::min<std::size_t>(stop - b,
+                                                          static_cast<std::size_t>(keep ? std::countr_one(rest)
+                                                                                        : std::countr_zero(rest)));
+            add(run * kMessageBlockWords, keep);
+            b += run;
+            rest = run < 64 ? rest >> run : 0;
+        }
     }
     end = std::min(end, message_words);  // the last block may be short
     if (end > begin) visit(begin, end - begin, kept);

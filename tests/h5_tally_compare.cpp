@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
                 for (const char* n : {"count", "sumsq", "replicate_count"})
                     if (a.has(g + "/detectors/" + d + "/" + n)) names.push_back(g + "/detectors/" + d + "/" + n);
         }
+        // Annual daylight (issue 24): every detector's coefficients per light group.
+        for (const std::string& d :
+             a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
+            for (const char* n : {"count", "sumsq", "direct_count"})
+                if (a.has("/annual/detectors/" + d + "/coefficients/" + n))
+                    names.push_back("/annual/detectors/" + d + "/coefficients/" + n);
         int differ = 0;
         if (a.attr_u64("/", "photons") != b.attr_u64("/", "photons")) {
             std::cout << "photons differ\n";

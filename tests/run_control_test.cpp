@@ -17,6 +17,7 @@
 #include "luxtrace/run/worker_pool.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
+#include "luxtrace/tally/message_packing.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
@@ -480,14 +481,14 @@ TEST(ReductionMessage, PackedSumOverRanksDecodesToTheOneRankTallies) {
     const std::vector<RankFlags> flags = {{0, 1, 0, 0}, {1, 1, 0, 1}, {1, 0, 1, 0}};
     std::vector<RankTrace> ranks;
     for (int r = 0; r < kRanks; ++r) ranks.push_back(trace_rank(scene, embree, plan, r, kRanks, flags[r]));
-    std::vector<std::uint64_t> mask = lit_side_mask(layout, ranks[0].words);
+    std::vector<std::uint64_t> mask = message_mask(layout, ranks[0].words);
     for (const RankTrace& t : ranks) {
-        const std::vector<std::uint64_t> m = lit_side_mask(layout, t.words);
+        const std::vector<std::uint64_t> m = message_mask(layout, t.words);
         for (std::size_t i = 0; i < mask.size(); ++i) mask[i] |= m[i];
     }
     std::vector<std::uint64_t> sum, packed;
     for (const RankTrace& t : ranks) {
-        pack_lit_sides(layout, mask, t.words, packed);
+        pack_message(layout, mask, t.words, packed);
         if (sum.empty()) sum.assign(packed.size(), 0);
         ASSERT_EQ(packed.size(), sum.size());
         for (std::size_t i = 0; i < packed.size(); ++i) sum[i] += packed[i];
@@ -495,7 +496,7 @@ TEST(ReductionMessage, PackedSumOverRanksDecodesToTheOneRankTallies) {
     const std::size_t full = ReductionMessage::word_count(layout.size(), kRanks);
     EXPECT_LT(sum.size(), full) << "the backs of the closed room's walls are never lit";
     std::vector<std::uint64_t> words(full, 1);  // overwritten everywhere by unpacking
-    unpack_lit_sides(layout, mask, sum, words);
+    unpack_message(layout, mask, sum, words);
     const ReductionMessage d = ReductionMessage::decode(words, layout.size(), kRanks);
 
     const WorkPlan one({}, kBudget, 4096, 1);

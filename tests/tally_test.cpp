@@ -130,45 +130,6 @@ TEST(TallyBuffer, ThreadedBuffersGiveExactSerialSums) {
     EXPECT_EQ(std::vector<std::uint64_t>(store.data().begin(), store.data().end()), expected);
 }
 
-TEST(LitSides, PackingLeavesOutUnlitSidesAndRestoresTheMessageExactly) {
-    // 50 triangles, 2 bands, a detector, 3 trailing words (progress and flags of the run's
-    // message). Some sides are lit on "rank" a, others on b; the OR of their masks packs
-    // both messages alike, the sum of the packed messages unpacks to the sum of the full ones.
-    const TallyLayout L(50, 2, {6});
-    std::mt19937_64 g(7);
-    auto message = [&](int lit_every) {
-        std::vector<std::uint64_t> m(L.size() + 3, 0);
-        for (std::size_t c = 0; c < TallyLayout::kCounters; ++c) m[c] = g() % 100;
-        for (std::size_t i = 0; i < L.sides(); i += static_cast<std::size_t>(lit_every))
-            m[L.counts_begin(i) + g() % (L.bands() * TallyLayout::kCountSlots)] = 1 + g() % 1000;
-        for (std::size_t i = 0; i < L.sides(); i += static_cast<std::size_t>(2 * lit_every))
-            m[L.repeats_begin(i) + g() % L.bands()] = 2 * (1 + g() % 100);  // some lit sides have repeats
-        for (std::size_t i = L.surface_end(); i < m.size(); ++i) m[i] = g() % 50;
-        return m;
-    };
-    const std::vector<std::uint64_t> a = message(3), b = message(5);
-    std::vector<std::uint64_t> mask = lit_side_mask(L, a);
-    const std::vector<std::uint64_t> mask_b = lit_side_mask(L, b);
-    std::size_t lit = 0;
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        const bool in_a = i % 3 == 0, in_b = i % 5 == 0;
-        EXPECT_EQ((mask[i / 64] >> (i % 64)) & 1u, in_a ? 1u : 0u) << "side " << i;
-        EXPECT_EQ((mask_b[i / 64] >> (i % 64)) & 1u, in_b ? 1u : 0u) << "side " << i;
-        lit += in_a || in_b;
-    }
-    for (std::size_t w = 0; w < mask.size(); ++w) mask[w] |= mask_b[w];
-    std::vector<std::uint64_t> pa, pb;
-    pack_lit_sides(L, mask, a, pa);
-    pack_lit_sides(L, mask, b, pb);
-    ASSERT_EQ(pa.size(), a.size() - (L.sides() - lit) * L.side_slots());
-    ASSERT_EQ(pb.size(), pa.size());
-    std::vector<std::uint64_t> sum(pa.size());
-    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] = pa[i] + pb[i];
-    std::vector<std::uint64_t> out(a.size(), 12345);  // overwritten everywhere
-    unpack_lit_sides(L, mask, sum, out);
-    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(out[i], a[i] + b[i]) << "word " << i;
-}
-
 // The store's memory: zero without being written, cache-line aligned, and untouched pages
 // not resident (a closed room's back sides cost no memory).
 TEST(WordArray, ZeroAlignedAndResidentOnlyWhereWritten) {

@@ -1,7 +1,5 @@
 #include "luxtrace/run/run_loop.hpp"
 
-#include "luxtrace/stats/result_estimates.hpp"
-
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
@@ -9,6 +7,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/tally/message_packing.hpp"
 
 #include <unistd.h>
 
@@ -162,9 +161,9 @@ PendingReduce RunLoop::start_reduce() {
         reduced_.swap(snapshot_);
         return PendingReduce::completed();
     }
-    side_mask_ = lit_side_mask(layout_, snapshot_);
-    comm_.allreduce_or(side_mask_);
-    pack_lit_sides(layout_, side_mask_, snapshot_, packed_);
+    mask_ = message_mask(layout_, snapshot_);
+    comm_.allreduce_or(mask_);
+    pack_message(layout_, mask_, snapshot_, packed_);
     info_.reduction_message_words = packed_.size();
     return comm_.ireduce_sum_to_root(packed_, packed_reduced_);
 }
@@ -172,7 +171,7 @@ PendingReduce RunLoop::start_reduce() {
 void RunLoop::finish_reduce() {
     if (ranks_ == 1 || !comm_.is_root()) return;
     reduced_.resize(snapshot_.size());
-    unpack_lit_sides(layout_, side_mask_, packed_reduced_, reduced_);
+    unpack_message(layout_, mask_, packed_reduced_, reduced_);
 }
 
 void RunLoop::reduce() {

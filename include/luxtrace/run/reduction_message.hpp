@@ -6,10 +6,9 @@
 //
 // A rank writes its progress into its own two words and zeros into the others', so the sum
 // holds every rank's progress; each flag is 0 or 1 per rank, so the sum counts the ranks
-// that raised it. With several ranks the words go out without the sides no rank has lit
-// (lit_side_mask / pack_lit_sides / unpack_lit_sides, tally.hpp), which keep every word
-// after the surface map in order. To add a field: a member here, its words in
-// word_count, encode and decode, and a case in tests/run_control_test.cpp.
+// that raised it. With several ranks the words go out without those zero on every rank
+// (the sides no rank has lit, the detector blocks no rank has written: message_packing.hpp). To add a field: a member
+// here, its words in word_count, encode and decode, and a case in tests/run_control_test.cpp.
 #include "luxtrace/run/work_plan.hpp"
 
 #include <cstdint>

@@ -99,10 +99,11 @@ private:
     // snapshot and reduce: with one rank the sum is the snapshot itself, and the two
     // buffers swap (one copy of the tallies besides the store, not two: 80 MB on a million
     // triangles, and as many page faults at the first reduction). With several ranks the
-    // message leaves out the sides no rank has hit yet (tally.hpp): a closed room's walls
-    // send their lit side only, and rank 0 restores the full message.
+    // message leaves out the words zero on every rank (message_packing.hpp): a closed room's
+    // walls send their lit side only, an annual run the detector blocks some photon has
+    // reached, and rank 0 restores the full message.
     std::vector<std::uint64_t> snapshot_, reduced_;
-    std::vector<std::uint64_t> side_mask_, packed_, packed_reduced_;
+    std::vector<std::uint64_t> mask_, packed_, packed_reduced_;  // message_packing.hpp
 
     // decide: timing, and the overhead accounting (tracing time lost to pauses, and the
     // main thread's wait for reductions while the workers trace).

@@ -110,7 +110,7 @@ public:
     }
     // Side i's counts lie in [counts_begin(i), + map_columns * kCountSlots), its repeats in
     // [repeats_begin(i), + map_columns), its replicate arrivals in [replicas_begin(i),
-    // + map_columns * R): the three runs a reduction packs per lit side.
+    // + map_columns * R): the three runs a reduction packs per lit side (message_packing.hpp).
     std::size_t counts_begin(std::size_t i) const { return kCounters + i * map_columns() * kCountSlots; }
     std::size_t repeats_begin(std::size_t i) const { return counts_begin(sides()) + i * map_columns(); }
     std::size_t replicas_begin(std::size_t i) const {
@@ -167,18 +167,6 @@ private:
     std::vector<std::size_t> det_offset_, rep_offset_, direct_offset_;
     std::vector<std::size_t> det_cells_;
 };
-
-// A reduction message without the sides nobody has hit (the back of a closed room's
-// walls is never lit): a message is the flat tally array, possibly followed by other
-// words, and everything but the unlit sides' slots is kept in order. Counts only grow, so
-// a side unlit on every rank is zero everywhere and unpacking restores the message exactly.
-// The mask has one bit per side (word i / 64, bit i % 64), OR-ed over the ranks.
-std::vector<std::uint64_t> lit_side_mask(const TallyLayout& layout, std::span<const std::uint64_t> message);
-void pack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> mask,
-                    std::span<const std::uint64_t> message, std::vector<std::uint64_t>& packed);
-// `message` must have the full length; it is overwritten.
-void unpack_lit_sides(const TallyLayout& layout, std::span<const std::uint64_t> mask,
-                      std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
 
 // The rank's shared tallies. The words live in a WordArray: zero without being written,
 // so the sides a run never reaches take no memory.

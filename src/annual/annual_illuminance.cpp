@@ -87,21 +87,26 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     // Where the neighbours read nothing either (a shadow, or light too rare to show), the
     // expected count is the mean count of all such (sun, cell) pairs of the detector, with
     // half a count of prior: most are true shadows, and their few counts say how rare.
-    double dark_n = 0.5, dark_d = 0.5, dark_pairs = 1.0, dark_pairs_d = 1.0;
+    // The rate per unit of photon share, as a ratio of sums (a mean of ratios would weigh
+    // a weak sun's rare count by its tiny share).
+    double dark_n = 0.5, dark_d = 0.5, dark_share = 0.0, dark_share_d = 0.0;
     for (std::size_t s = 0; s < suns; ++s) {
         if (!(flux(sun_groups[s]) > 0.0) || near[s].empty()) continue;
+        const double weight = share[s] * static_cast<double>(near[s].size());
         for (std::size_t cell = 0; cell < cells; ++cell) {
             if (near_sum(s, cell, false) == 0.0) {
-                dark_n += n_of(cell, sun_groups[s]) / (share[s] * static_cast<double>(near[s].size()));
-                dark_pairs += 1.0;
+                dark_n += n_of(cell, sun_groups[s]);
+                dark_share += weight;
             }
             if (near_sum(s, cell, true) == 0.0) {
-                dark_d += direct_of(cell, sun_groups[s]) / (share[s] * static_cast<double>(near[s].size()));
-                dark_pairs_d += 1.0;
+                dark_d += direct_of(cell, sun_groups[s]);
+                dark_share_d += weight;
             }
         }
     }
-    const double dark_lambda_n = dark_n / dark_pairs, dark_lambda_d = dark_d / dark_pairs_d;  // per neighbour
+    // Per neighbour and unit share.
+    const double dark_lambda_n = dark_share > 0.0 ? dark_n / dark_share : 0.5;
+    const double dark_lambda_d = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
     for (std::size_t s = 0; s < suns; ++s) {
         const std::size_t g = sun_groups[s];
         if (!(flux(g) > 0.0)) continue;

@@ -28,10 +28,8 @@ namespace fs = std::filesystem;
 const std::string kWeather = std::string(LUXTRACE_TEST_DATA_DIR) + "/weather/chicago.epw";
 
 fs::path run_scene(const test_support::ScratchDir& dir, const std::string& name, const std::string& text) {
-    const fs::path scene = dir.path() / (name + ".toml"), out = dir.path() / (name + ".h5");
-    std::ofstream(scene) << text;
-    const auto o = test_support::run_luxtrace("run \"" + scene.string() + "\" --output \"" + out.string() +
-                                              "\" --quiet --threads 2");
+    test_support::CommandOutcome o;
+    const fs::path out = test_support::run_scene_text(dir, name, text, &o);
     EXPECT_EQ(o.code, 0) << o.out;
     return out;
 }

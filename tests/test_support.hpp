@@ -76,4 +76,16 @@ inline double chi2_quantile(double dof, double z) {
     return dof * c * c * c;
 }
 
+// Writes `text` as DIR/NAME.toml and runs it (quiet, 2 threads) into DIR/NAME.h5: that
+// path, and in `outcome` (if given) what the run printed and returned.
+inline std::filesystem::path run_scene_text(const ScratchDir& dir, const std::string& name, const std::string& text,
+                                            CommandOutcome* outcome = nullptr) {
+    const std::filesystem::path scene = dir.path() / (name + ".toml"), out = dir.path() / (name + ".h5");
+    std::ofstream(scene) << text;
+    const CommandOutcome o = run_luxtrace("run \"" + scene.string() + "\" --output \"" + out.string() +
+                                          "\" --quiet --threads 2");
+    if (outcome != nullptr) *outcome = o;
+    return out;
+}
+
 }  // namespace luxtrace::test_support

@@ -132,11 +132,24 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     }
 }
 
+void AnnualCoefficients::sky_row(const AnnualHour& hour, const std::vector<double>& x, int power,
+                                 std::vector<double>& row) const {
+    const AnnualSky& s = *annual_.sky;
+    const std::vector<double>& yearly = s.yearly_luminance();
+    const double* lum = s.sky_vector(hour.row);
+    std::fill(row.begin(), row.end(), 0.0);
+    for (const std::size_t e : entries_) {
+        if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
+        const double w = power == 1 ? lum[e] / yearly[e] : (lum[e] / yearly[e]) * (lum[e] / yearly[e]);
+        const double* c = &x[e * cells_];
+        for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * c[cell];
+    }
+}
+
 void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vector<double>& sun,
                                  const std::vector<double>& direct, AnnualSeries& out) const {
     const AnnualSky& s = *annual_.sky;
     const std::size_t hours = s.hours().size();
-    const std::vector<double>& yearly = s.yearly_luminance();
     out.hours = hours;
     out.sensors = cells_;
     out.total_lx.assign(hours * cells_, 0.0);
@@ -145,14 +158,7 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
     for (std::size_t h = 0; h < hours; ++h) {
         const AnnualHour& hour = s.hours()[h];
         if (!hour.daylit) continue;
-        std::fill(row.begin(), row.end(), 0.0);
-        const double* lum = s.sky_vector(hour.row);
-        for (const std::size_t e : entries_) {
-            if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
-            const double w = lum[e] / yearly[e];
-            const double* c = &sky[e * cells_];
-            for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * c[cell];
-        }
+        sky_row(hour, sky, 1, row);
         double* total = &out.total_lx[h * cells_];
         if (hour.sun >= 0) {
             const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
@@ -171,7 +177,6 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     combine(sky_, sun_, direct_, estimate);
     // Sum of w^2 k^2 q over the groups (the weights squared: lum^2 / yearly^2), minus E^2 / N.
     const AnnualSky& s = *annual_.sky;
-    const std::vector<double>& yearly = s.yearly_luminance();
     sigma.hours = estimate.hours;
     sigma.sensors = cells_;
     sigma.total_lx.assign(estimate.total_lx.size(), 0.0);
@@ -180,14 +185,7 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     for (std::size_t h = 0; h < s.hours().size(); ++h) {
         const AnnualHour& hour = s.hours()[h];
         if (!hour.daylit) continue;
-        std::fill(row.begin(), row.end(), 0.0);
-        const double* lum = s.sky_vector(hour.row);
-        for (const std::size_t e : entries_) {
-            if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
-            const double w = lum[e] / yearly[e];
-            const double* q = &sky_q_[e * cells_];
-            for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * w * q[cell];
-        }
+        sky_row(hour, sky_q_, 2, row);
         const double* e_h = &estimate.total_lx[h * cells_];
         double* sig = &sigma.total_lx[h * cells_];
         if (hour.sun >= 0) {

@@ -43,6 +43,8 @@ public:
     void replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
+    // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
+    void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
     void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
                  AnnualSeries& out) const;
 

@@ -175,8 +175,13 @@ AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const
     });
     // A level passes when both criteria do; the truth passes with P(a) P(b).
     for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
+        // Judged on the value, with the bias in the uncertainty but not subtracted: with
+        // the hourly noise of few-photon sun hours (Poisson, not the replicates' normal
+        // draws) the straight-line SIMEX estimate can take the wrong sign (docs/VALIDATION.md
+        // §9), so it widens the verdict's doubt instead of moving it.
         const auto criterion = [&](const std::array<double, 3> AnnualMetrics::*f) {
-            return judge_threshold({(e.value.*f)[l], (e.sigma.*f)[l], (e.bias.*f)[l]}, kEn17037HoursShare);
+            return judge_threshold({(e.value.*f)[l], std::hypot((e.sigma.*f)[l], (e.bias.*f)[l]), 0.0},
+                                   kEn17037HoursShare);
         };
         const VerdictFlip a = criterion(&AnnualMetrics::en17037_target_hours);
         const VerdictFlip b = criterion(&AnnualMetrics::en17037_minimum_hours);

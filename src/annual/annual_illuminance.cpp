@@ -4,6 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace luxtrace {
 
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
@@ -154,23 +157,27 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
     out.sensors = cells_;
     out.total_lx.assign(hours * cells_, 0.0);
     out.direct_lx.assign(hours * cells_, 0.0);
-    std::vector<double> row(cells_);
-    for (std::size_t h = 0; h < hours; ++h) {
-        const AnnualHour& hour = s.hours()[h];
-        if (!hour.daylit) continue;
-        sky_row(hour, sky, 1, row);
-        double* total = &out.total_lx[h * cells_];
-        if (hour.sun >= 0) {
-            const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
-            const double* d = &direct[static_cast<std::size_t>(hour.sun) * cells_];
-            double* dir = &out.direct_lx[h * cells_];
-            for (std::size_t cell = 0; cell < cells_; ++cell) {
-                row[cell] += c[cell];
-                dir[cell] = (d[cell]);
+    // The hours are independent rows: spread over the cores (the same sums, in the same
+    // order within each row, whatever the split).
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hours, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::vector<double> row(cells_);
+        for (std::size_t h = r.begin(); h < r.end(); ++h) {
+            const AnnualHour& hour = s.hours()[h];
+            if (!hour.daylit) continue;
+            sky_row(hour, sky, 1, row);
+            double* total = &out.total_lx[h * cells_];
+            if (hour.sun >= 0) {
+                const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
+                const double* d = &direct[static_cast<std::size_t>(hour.sun) * cells_];
+                double* dir = &out.direct_lx[h * cells_];
+                for (std::size_t cell = 0; cell < cells_; ++cell) {
+                    row[cell] += c[cell];
+                    dir[cell] = d[cell];
+                }
             }
+            for (std::size_t cell = 0; cell < cells_; ++cell) total[cell] = row[cell];
         }
-        for (std::size_t cell = 0; cell < cells_; ++cell) total[cell] = (row[cell]);
-    }
+    });
 }
 
 void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) const {

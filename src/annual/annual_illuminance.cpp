@@ -12,7 +12,8 @@ namespace luxtrace {
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
                                        std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
                                        double per_count, std::uint64_t photons, std::span<const double> group_flux_lm)
-    : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0) {
+    : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0),
+      per_count_(per_count) {
     const AnnualSky& sky = *annual.sky;
     const std::size_t entries = sky.sky_entries(), suns = sky.suns().size();
     const double k2 = per_count * per_count;
@@ -221,26 +222,33 @@ void AnnualCoefficients::replicate(double noise_scale, std::uint64_t seed, std::
         return;
     }
     if (replicate != noise_replicate_ || seed != noise_seed_) {
-        // The noise: the coefficients' standard errors times normal draws from (seed,
-        // replicate), through the same hourly weights.
+        // The noise: each coefficient's count redrawn as a Poisson count of its own
+        // variance, mu = var / k^2 (the count itself, or an unreached cell's expected count),
+        // from (seed, replicate): a few-count sun hour is mostly nothing and now and then a
+        // whole count, as a run's noise is, not a small normal wobble that crosses a
+        // threshold every time. Large counts are drawn as normal (the same to 1/sqrt(mu)).
         std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
         std::normal_distribution<double> normal;
+        const double k = per_count_, k2 = k * k;
+        auto draw = [&](double var) {
+            if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
+            const double mu = var / k2;
+            if (mu > 1000.0) return k * std::sqrt(mu) * normal(rng);
+            return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(rng)) - mu);
+        };
         std::vector<double> sky(sky_.size(), 0.0);
         for (const std::size_t e : entries_)
             for (std::size_t cell = 0; cell < cells_; ++cell) {
                 const std::size_t i = e * cells_ + cell;
-                if (sky_var_[i] > 0.0) sky[i] = std::sqrt(sky_var_[i]) * normal(rng);
+                sky[i] = draw(sky_var_[i]);
             }
         // The direct registrations are part of the sun's: their noise is shared, the rest of
         // the sun's variance gets its own.
         std::vector<double> sun(sun_.size(), 0.0), direct(direct_.size(), 0.0);
         for (std::size_t i = 0; i < sun_.size(); ++i) {
             if (!(sun_var_[i] > 0.0)) continue;
-            const double zd = direct_var_[i] > 0.0 ? normal(rng) : 0.0;
-            const double rest_var = std::max(0.0, sun_var_[i] - direct_var_[i]);
-            const double zr = rest_var > 0.0 ? normal(rng) : 0.0;
-            direct[i] = std::sqrt(direct_var_[i]) * zd;
-            sun[i] = direct[i] + std::sqrt(rest_var) * zr;
+            direct[i] = draw(direct_var_[i]);
+            sun[i] = direct[i] + draw(std::max(0.0, sun_var_[i] - direct_var_[i]));
         }
         combine(sky, sun, direct, noise_);
         noise_replicate_ = replicate;

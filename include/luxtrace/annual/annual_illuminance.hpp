@@ -35,9 +35,10 @@ public:
     // weather file (0 in the dark ones).
     // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
     void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
-    // The hourly values from coefficients perturbed by `noise_scale` times their standard
-    // errors (independent normal draws from (seed, replicate)): what a run with other random
-    // numbers might have given, for the errors of nonlinear metrics (annual_metrics.hpp).
+    // The hourly values from coefficients perturbed by `noise_scale` times a draw of their
+    // noise (each count redrawn as a Poisson count of its variance, from (seed, replicate)):
+    // what a run with other random numbers might have given, for the errors of nonlinear
+    // metrics (annual_metrics.hpp).
     // noise_scale 0: the estimate. The series is linear in noise_scale: one replicate's
     // noise is computed once and kept for the next call with the same replicate.
     void replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
@@ -51,6 +52,7 @@ private:
     const AnnualSetup& annual_;
     std::size_t cells_ = 0;
     double inv_photons_ = 0.0;
+    double per_count_ = 0.0;  // k
     // [entry][cell]: sky patches then the ground (AnnualSky's sky vector order), and
     // [sun][cell] for the suns; coefficients (lx per unit weight) and their variances.
     std::vector<double> sky_, sky_var_, sun_, sun_var_, direct_, direct_var_;

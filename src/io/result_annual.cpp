@@ -121,6 +121,8 @@ void write_metrics(hid_t g, const AnnualEstimate& e, std::size_t cells) {
         }
         attr(g, n + "_target_hours_sigma", e.sigma.en17037_target_hours[l]);
         attr(g, n + "_minimum_hours_sigma", e.sigma.en17037_minimum_hours[l]);
+        attr(g, n + "_target_hours_bias", e.bias.en17037_target_hours[l]);
+        attr(g, n + "_minimum_hours_bias", e.bias.en17037_minimum_hours[l]);
         attr(g, n + "_pass", static_cast<std::uint32_t>(e.en17037[l].pass ? 1 : 0));
         attr(g, n + "_flip_probability", e.en17037[l].flip_probability);
     }

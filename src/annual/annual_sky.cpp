@@ -16,7 +16,9 @@ double AnnualHour::global_horizontal_lx() const {
     return diffuse_horizontal_lx + direct_normal_lx * std::sin(sun_altitude_deg * kPi / 180.0);
 }
 
-double hour_middle(const weather::WeatherHour& h, bool epw) { return epw ? h.hour - 0.5 : h.hour; }
+double hour_middle(const weather::WeatherHour& h, weather::WeatherFormat format) {
+    return format == weather::WeatherFormat::epw ? h.hour - 0.5 : h.hour;
+}
 
 namespace {
 
@@ -24,12 +26,6 @@ std::string hour_name(const std::string& path, std::size_t index, const AnnualHo
     char when[64];
     std::snprintf(when, sizeof when, "%02d-%02d %05.2f h", h.month, h.day, h.hour_mid);
     return path + ": hour " + std::to_string(index + 1) + " (" + when + ")";
-}
-
-bool is_epw(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return ext == ".epw";
 }
 
 LocalStandardTime at(int year, int month, int day, double hour_mid, double utc_offset_h) {
@@ -50,7 +46,6 @@ LocalStandardTime at(int year, int month, int day, double hour_mid, double utc_o
 AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, double utc_offset_h,
                      const AnnualOptions& options)
     : patches_(options.sky_mf) {
-    const bool epw = is_epw(weather.path);
     const bool leap = weather.hours.size() == 8784;
     const int year = options.year > 0 ? options.year : (leap ? 2016 : 2017);
     const std::size_t entries = sky_entries();
@@ -61,7 +56,7 @@ AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, d
         AnnualHour h;
         h.month = w.month;
         h.day = w.day;
-        h.hour_mid = hour_middle(w, epw);
+        h.hour_mid = hour_middle(w, weather.format);
         h.diffuse_horizontal_w_m2 = w.diffuse_horizontal_w_m2;
         h.direct_normal_w_m2 = w.direct_normal_w_m2;
         h.dew_point_c = w.dew_point_c;

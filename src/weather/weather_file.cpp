@@ -112,6 +112,7 @@ WeatherFile read_epw(const std::string& path) {
     std::ifstream in = open(path);
     WeatherFile file;
     file.path = path;
+    file.format = WeatherFormat::epw;
     std::string text;
     int line = 0;
     if (!std::getline(in, text)) fail(path, 1, "empty file (expected a LOCATION line)");
@@ -197,6 +198,7 @@ WeatherFile read_wea(const std::string& path) {
     std::ifstream in = open(path);
     WeatherFile file;
     file.path = path;
+    file.format = WeatherFormat::wea;
     std::string text;
     int line = 0;
     const std::array<std::string, 6> keys = {"place",     "latitude",       "longitude",

@@ -104,6 +104,6 @@ struct AnnualSetup {
 
 // The hour's middle in local standard time: an EPW hour is the hour ENDING then (hour 1 is
 // 00:00-01:00, its middle 0.5); a .wea's decimal hour is already the middle as written.
-double hour_middle(const weather::WeatherHour& h, bool epw);
+double hour_middle(const weather::WeatherHour& h, weather::WeatherFormat format);
 
 }  // namespace luxtrace

@@ -33,8 +33,12 @@ struct WeatherHour {
     double diffuse_horizontal_lx = 0.0;
 };
 
+// Which reader read it: an EPW hour is the hour ending then, a .wea hour as written.
+enum class WeatherFormat { epw, wea };
+
 struct WeatherFile {
     std::string path;
+    WeatherFormat format = WeatherFormat::epw;
     WeatherSite site;
     std::vector<WeatherHour> hours;
 };

@@ -21,31 +21,36 @@ bool annual_grid(const Detector& d) {
     return (d.type == DetectorType::illuminance || d.type == DetectorType::points) && !d.indirect_only;
 }
 
+AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                            std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                            int replicates, bool series) {
+    const Detector& d = scene.detectors[det];
+    const AnnualCoefficients c(*scene.annual, layout, data, det, static_cast<std::size_t>(d.cells()),
+                               e0 * d.value_per_lm(), photons, light_group_flux_lm(scene));
+    const AnnualHours hours = annual_hours(*scene.annual);
+    AnnualDetectorEstimate e;
+    if (series) c.series(e.value, e.sigma);
+    if (replicates > 0) {
+        const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
+        const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& s) {
+            c.replicate(noise_scale, seed, r, s);
+        };
+        e.metrics = estimate_annual_metrics(draw, hours, {}, replicates);
+    } else {
+        if (!series) c.replicate(0.0, 0, 0, e.value);
+        e.metrics.value = annual_metrics(e.value, hours);
+    }
+    return e;
+}
+
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,
                                                                    std::uint64_t photons, int replicates) {
     std::vector<std::optional<AnnualDetectorEstimate>> out(scene.annual ? scene.detectors.size() : 0);
     if (!scene.annual || photons == 0) return out;
-    const AnnualHours hours = annual_hours(*scene.annual);
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
-    for (std::size_t d = 0; d < scene.detectors.size(); ++d) {
-        const Detector& det = scene.detectors[d];
-        if (!annual_grid(det)) continue;
-        const AnnualCoefficients c(*scene.annual, layout, data, d, static_cast<std::size_t>(det.cells()),
-                                   e0 * det.value_per_lm(), photons, group_flux);
-        AnnualDetectorEstimate e;
-        c.series(e.value, e.sigma);
-        const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + d;
-        const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& series) {
-            c.replicate(noise_scale, seed, r, series);
-        };
-        if (replicates > 0) {
-            e.metrics = estimate_annual_metrics(draw, hours, {}, replicates);
-        } else {
-            e.metrics.value = annual_metrics(e.value, hours);
-        }
-        out[d] = std::move(e);
-    }
+    for (std::size_t d = 0; d < scene.detectors.size(); ++d)
+        if (annual_grid(scene.detectors[d]))
+            out[d] = estimate_annual_grid(scene, d, layout, data, e0, photons, replicates, true);
     return out;
 }
 

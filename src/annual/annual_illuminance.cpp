@@ -182,7 +182,7 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
 }
 
 void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) const {
-    combine(sky_, sun_, direct_, estimate);
+    replicate(0.0, 0, 0, estimate);  // the estimate, kept for the replicates
     // Sum of w^2 k^2 q over the groups (the weights squared: lum^2 / yearly^2), minus E^2 / N.
     const AnnualSky& s = *annual_.sky;
     sigma.hours = estimate.hours;

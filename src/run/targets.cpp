@@ -2,7 +2,6 @@
 
 #include "luxtrace/annual/annual_estimate.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,12 +28,8 @@ double annual_metric_error(const Target& t, const Scene& scene, const TallyLayou
     const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                  [&](const Detector& d) { return d.name == t.detector; });
     const std::size_t d = static_cast<std::size_t>(it - scene.detectors.begin());
-    const AnnualCoefficients c(*scene.annual, layout, data, d, static_cast<std::size_t>(it->cells()),
-                               e0 * it->value_per_lm(), photons, light_group_flux_lm(scene));
-    const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& series) {
-        c.replicate(noise_scale, scene.run.seed * 0x9E3779B97F4A7C15ull + d, r, series);
-    };
-    const AnnualEstimate e = estimate_annual_metrics(draw, annual_hours(*scene.annual), {}, kAnnualTargetReplicates);
+    const AnnualEstimate e =
+        estimate_annual_grid(scene, d, layout, data, e0, photons, kAnnualTargetReplicates, false).metrics;
     double AnnualMetrics::*member = &AnnualMetrics::sda;
     if (t.annual_metric == "ase") member = &AnnualMetrics::ase;
     else if (t.annual_metric == "mean_da") member = &AnnualMetrics::mean_da;

@@ -5,7 +5,8 @@
 // figure over the seeds, in units of its reported sigma, is 1. Pooled over sensors (and
 // hours) and seeds, (x_k - mean x) / sigma_k has K - 1 degrees of freedom per entry; the
 // bound [0.8, 1.25] is the issue's, at least 3 standard deviations of the pooled ratio wide
-// here (per-sensor DA: 144 degrees of freedom, 6 %), so a factor-2 wrong sigma fails.
+// here (per-sensor DA: 144 degrees of freedom, 6 %; ASE hours, 8 sensors in the sun patch:
+// 72, 8 %), so a factor-2 wrong sigma fails.
 // Plus: `luxtrace check` accepts the annual example (its probe counts a sky patch's photons
 // that miss the portal as escaped, as the tracer does).
 #include "luxtrace/io/result_file.hpp"
@@ -146,16 +147,21 @@ protected:
     static inline std::vector<fs::path> results_;
 };
 
-// Per-sensor DA, and every sensor's illuminance at the hours without a direct sun (sky
-// patches and ground only); one case, so that ctest runs the 10 seeds once.
-TEST_F(AnnualCalibration, DaAndSkyHoursScatterAsTheirSigma) {
+// Per-sensor DA, continuous DA, UDI useful and ASE hours (the replicates' sigma), and every
+// sensor's illuminance at the hours without a direct sun (sky patches and ground only); one
+// case, so that ctest runs the 10 seeds once.
+TEST_F(AnnualCalibration, SensorFiguresAndSkyHoursScatterAsTheirSigma) {
     expect_calibrated("per-sensor DA", sensors("da"), 16);
+    expect_calibrated("per-sensor continuous DA", sensors("continuous_da"), 16);
+    expect_calibrated("per-sensor UDI useful", sensors("udi_useful"), 16);
+    expect_calibrated("per-sensor ASE hours", sensors("ase_hours"), 8);
     expect_calibrated("hourly illuminance, sky-only hours", hours(false), 16 * 200);
 }
 
-// Disabled: fails on main (scatter / sigma 0.15, docs/VALIDATION.md "Annual daylight"). A
-// sensor that no photon of the hour's sun reached gets one count's variance for it
-// (docs/ANNUAL.md step 5), k = 340 lx here, against a real scatter of a few lx.
+// Disabled: conservative by construction here (scatter / sigma 0.62, docs/VALIDATION.md
+// "Annual daylight"). In this black room every cell outside the hour's sun patch is a true
+// shadow, yet a cell that neither this sun nor the same hour's suns of the neighbouring
+// days reached gets the detector's dark rate as its hourly variance (docs/ANNUAL.md step 5).
 TEST_F(AnnualCalibration, DISABLED_SunHoursScatterAsTheirSigma) {
     expect_calibrated("hourly illuminance, hours with a direct sun", hours(true), 16 * 2000);
 }

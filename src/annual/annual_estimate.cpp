@@ -32,12 +32,14 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     if (series) c.series(e.value, e.sigma);
     if (replicates > 0) {
         const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
-        const AnnualReplicates draw = [&](std::size_t r, double noise_scale, AnnualSeries& s) {
-            c.replicate(noise_scale, seed, r, s);
+        const AnnualReplicates draw = [&](AnnualDraw what, std::size_t r, AnnualSeries& s) {
+            if (what == AnnualDraw::estimate) c.estimate(s);
+            if (what == AnnualDraw::centre) c.centre(s);
+            if (what == AnnualDraw::replicate) c.replicate(seed, r, s);
         };
         e.metrics = estimate_annual_metrics(draw, hours, {}, replicates);
     } else {
-        if (!series) c.replicate(0.0, 0, 0, e.value);
+        if (!series) c.estimate(e.value);
         e.metrics.value = annual_metrics(e.value, hours);
     }
     return e;

@@ -28,14 +28,13 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     for (std::size_t e = 0; e < entries; ++e)
         sky_groups.push_back(e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e);
     for (std::size_t s = 0; s < suns; ++s) sun_groups.push_back(annual.first_sun_group + s);
-    // A cell that no photon of an emitting group reached is not exact: its expected count
-    // lambda is small but not zero, and its variance is k^2 lambda. The sky patches and the
-    // ground: lambda from the cell's indirect registrations pooled over all of them, shared
-    // out by the groups' fluxes (which decide their photons), lambda = (I_c + 1/2) Phi_g /
-    // Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A sun: from the same
-    // cell's registrations of the suns of the same hour on the day before and after (their
-    // positions within half a degree: the same shadows), lambda = n_c' Phi_s / Phi', for the
-    // total and for the direct count alike; where those read 0 too, the mean over all such
+    // In an hour's error, a cell that no photon of an emitting group reached is not exact:
+    // its expected count lambda is small but not zero, and its variance is k^2 lambda. The
+    // sky patches and the ground: lambda from the cell's indirect registrations pooled over
+    // all of them, shared out by the groups' fluxes (which decide their photons), lambda =
+    // (I_c + 1/2) Phi_g / Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A
+    // sun: its counts smoothed with those of the same hour on the day before and after, for
+    // the total and for the direct count alike; where all read 0, the mean over all such
     // dark (sun, cell) pairs of the detector.
     sky_.assign(entries * cells, 0.0);
     sky_q_ = sky_var_ = sky_;
@@ -57,17 +56,26 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
                 const std::size_t i = e * cells + cell;
                 sky_[i] = per_count * n;
                 sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
-                sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : sky_q_[i];
+                // The replicates' variance: the plain counts' (no floor: see the suns below).
+                sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
             }
         }
     }
     sun_.assign(suns * cells, 0.0);
-    sun_q_ = sun_var_ = direct_ = direct_var_ = sun_;
+    sun_q_ = direct_ = direct_var_ = sun_;
+    rep_direct_mu_.assign(suns * cells, 0.0f);
+    rep_rest_mu_ = rep_direct_shift_ = rep_rest_shift_ = rep_direct_mu_;
     std::vector<int> sun_at_hour(sky.hours().size(), -1);
     for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
-    // Per sun: the emitting suns of the same hour on the day before and after, and the share
-    // of their photons this sun has.
-    std::vector<std::vector<std::size_t>> near(suns);
+    // Per sun: the emitting suns of the same hour on the day before and after (their
+    // positions within half a degree: the same shadows), each with this sun's photons over
+    // theirs (the groups' fluxes decide their photons), and the share of their photons this
+    // sun has.
+    struct Neighbour {
+        std::size_t group;
+        double ratio;
+    };
+    std::vector<std::vector<Neighbour>> near(suns);
     std::vector<double> share(suns, 0.0);
     for (std::size_t s = 0; s < suns; ++s) {
         if (!(flux(sun_groups[s]) > 0.0)) continue;
@@ -77,7 +85,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
             if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
                 const std::size_t o = sun_groups[static_cast<std::size_t>(sun_at_hour[other])];
                 if (flux(o) > 0.0) {
-                    near[s].push_back(o);
+                    near[s].push_back({o, flux(sun_groups[s]) / flux(o)});
                     near_flux += flux(o);
                 }
             }
@@ -85,7 +93,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     }
     auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
         double m = 0.0;
-        for (std::size_t o : near[s]) m += direct ? direct_of(cell, o) : n_of(cell, o);
+        for (const Neighbour& o : near[s]) m += direct ? direct_of(cell, o.group) : n_of(cell, o.group);
         return m;
     };
     // Where the neighbours read nothing either (a shadow, or light too rare to show), the
@@ -114,24 +122,45 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     for (std::size_t s = 0; s < suns; ++s) {
         const std::size_t g = sun_groups[s];
         if (!(flux(g) > 0.0)) continue;
+        const double dark_scale = near[s].empty() ? 0.0 : static_cast<double>(near[s].size()) * share[s];
+        const double smooth_weight = 1.0 / static_cast<double>(1 + near[s].size());
         for (std::size_t cell = 0; cell < cells; ++cell) {
             const double n = n_of(cell, g), qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
             // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
             const double d = direct_of(cell, g);
-            // The expected count of an unreached cell: the neighbours' counts times this
-            // sun's share of their photons, or the detector's dark mean.
-            auto lambda = [&](bool direct) {
-                if (near[s].empty()) return 0.5;
-                const double m = near_sum(s, cell, direct);
-                const double dark = direct ? dark_lambda_d : dark_lambda_n;
-                return (m > 0.0 ? m : dark * static_cast<double>(near[s].size())) * share[s];
-            };
+            // A sun's expected counts, smoothed over the same hour of the day before and
+            // after (each scaled to this sun's photons): a few-count cell's own count is a
+            // poor guess of its mean (0 says "never", 1 says "always once"), and what a
+            // threshold count's error needs is the mean, not the count. Equal weights:
+            // docs/VALIDATION.md "Annual daylight" measured 1 against 0.5 and 2.
+            double m_n = n, m_q = qq, m_d = d;
+            for (const Neighbour& o : near[s]) {
+                m_n += o.ratio * n_of(cell, o.group);
+                m_q += o.ratio * static_cast<double>(data[layout.detector_q(det, cell, 0, o.group)]);
+                m_d += o.ratio * direct_of(cell, o.group);
+            }
+            m_n *= smooth_weight;
+            m_q *= smooth_weight;
+            m_d *= smooth_weight;
             const std::size_t i = s * cells + cell;
             sun_[i] = per_count * n;
-            sun_q_[i] = n > 0.0 ? k2 * qq : k2 * lambda(false);
-            sun_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : sun_q_[i];
             direct_[i] = per_count * d;
-            direct_var_[i] = d > 0.0 ? std::max(0.0, k2 * (d - d * d * inv_photons_)) : k2 * lambda(true);
+            // The hour's standard error: the smoothed second moment; where the cell and its
+            // neighbours all read nothing, the detector's dark mean (never a variance of 0
+            // for a count that might have been 1).
+            sun_q_[i] = k2 * (m_q > 0.0 ? m_q : dark_lambda_n * (dark_scale > 0.0 ? dark_scale : 1.0));
+            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d * (dark_scale > 0.0 ? dark_scale : 1.0));
+            // The replicates (replicate()): a fresh run's counts, the direct ones Poisson of
+            // mean m_d, the rest of mean m_n - m_d and variance m_q - m_d, written as noise
+            // around the estimate (a shift plus a zero-mean draw). No dark floor here: over
+            // many hours the plain counts are an unbiased variance, and a floor on every
+            // unreached (group, cell) would add a variance the counts already hold
+            // (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma twice, continuous
+            // DA's 16 times the scatter).
+            rep_direct_mu_[i] = static_cast<float>(m_d);
+            rep_rest_mu_[i] = static_cast<float>(std::max(0.0, m_q - m_d));
+            rep_direct_shift_[i] = static_cast<float>(m_d - d);
+            rep_rest_shift_[i] = static_cast<float>((m_n - m_d) - (n - d));
         }
     }
 }
@@ -182,7 +211,7 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
 }
 
 void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) const {
-    replicate(0.0, 0, 0, estimate);  // the estimate, kept for the replicates
+    this->estimate(estimate);
     // Sum of w^2 k^2 q over the groups (the weights squared: lum^2 / yearly^2), minus E^2 / N.
     const AnnualSky& s = *annual_.sky;
     sigma.hours = estimate.hours;
@@ -211,57 +240,55 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     }
 }
 
-void AnnualCoefficients::replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate,
-                                   AnnualSeries& out) const {
+void AnnualCoefficients::estimate(AnnualSeries& out) const {
     if (!have_estimate_) {
         combine(sky_, sun_, direct_, estimate_);
         have_estimate_ = true;
     }
-    if (noise_scale == 0.0) {
-        out = estimate_;
-        return;
+    out = estimate_;
+}
+
+void AnnualCoefficients::centre(AnnualSeries& out) const {
+    // The suns at their smoothed means (the constructor), the sky and ground at their counts.
+    std::vector<double> sun(sun_), direct(direct_);
+    for (std::size_t i = 0; i < sun_.size(); ++i) {
+        direct[i] += per_count_ * rep_direct_shift_[i];
+        sun[i] += per_count_ * (rep_direct_shift_[i] + rep_rest_shift_[i]);
     }
-    if (replicate != noise_replicate_ || seed != noise_seed_) {
-        // The noise: each coefficient's count redrawn as a Poisson count of its own
-        // variance, mu = var / k^2 (the count itself, or an unreached cell's expected count),
-        // from (seed, replicate): a few-count sun hour is mostly nothing and now and then a
-        // whole count, as a run's noise is, not a small normal wobble that crosses a
-        // threshold every time. Large counts are drawn as normal (the same to 1/sqrt(mu)).
-        std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
-        std::normal_distribution<double> normal;
-        const double k = per_count_, k2 = k * k;
-        auto draw = [&](double var) {
-            if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
-            const double mu = var / k2;
-            if (mu > 1000.0) return k * std::sqrt(mu) * normal(rng);
-            return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(rng)) - mu);
-        };
-        std::vector<double> sky(sky_.size(), 0.0);
-        for (const std::size_t e : entries_)
-            for (std::size_t cell = 0; cell < cells_; ++cell) {
-                const std::size_t i = e * cells_ + cell;
-                sky[i] = draw(sky_var_[i]);
-            }
-        // The direct registrations are part of the sun's: their noise is shared, the rest of
-        // the sun's variance gets its own.
-        std::vector<double> sun(sun_.size(), 0.0), direct(direct_.size(), 0.0);
-        for (std::size_t i = 0; i < sun_.size(); ++i) {
-            if (!(sun_var_[i] > 0.0)) continue;
-            direct[i] = draw(direct_var_[i]);
-            sun[i] = direct[i] + draw(std::max(0.0, sun_var_[i] - direct_var_[i]));
+    combine(sky_, sun, direct, out);
+}
+
+void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const {
+    // A fresh run's coefficients: each count redrawn as a Poisson count of its variance,
+    // mu = var / k^2, around its centre, from (seed, replicate): a few-count sun hour is
+    // mostly nothing and now and then a whole count, as a run's noise is, not a small normal
+    // wobble that crosses a threshold every time. Large counts are drawn as normal (the same
+    // to 1/sqrt(mu)).
+    std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
+    std::normal_distribution<double> normal;
+    const double k = per_count_, k2 = k * k;
+    auto draw = [&](double var) {  // zero-mean noise of variance var
+        if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
+        const double mu = var / k2;
+        if (mu > 1000.0) return k * std::sqrt(mu) * normal(rng);
+        return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(rng)) - mu);
+    };
+    std::vector<double> sky(sky_);
+    for (const std::size_t e : entries_)
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const std::size_t i = e * cells_ + cell;
+            sky[i] += draw(sky_var_[i]);
         }
-        combine(sky, sun, direct, noise_);
-        noise_replicate_ = replicate;
-        noise_seed_ = seed;
+    // A sun: the direct registrations are part of the sun's, so their draw is shared.
+    std::vector<double> sun(sun_), direct(direct_);
+    for (std::size_t i = 0; i < sun_.size(); ++i) {
+        const double mu_d = rep_direct_mu_[i], mu_r = rep_rest_mu_[i];
+        if (!(mu_d > 0.0) && !(mu_r > 0.0)) continue;
+        const double d = draw(k2 * mu_d) + k * rep_direct_shift_[i];
+        direct[i] += d;
+        sun[i] += d + draw(k2 * mu_r) + k * rep_rest_shift_[i];
     }
-    out.hours = estimate_.hours;
-    out.sensors = estimate_.sensors;
-    out.total_lx.resize(estimate_.total_lx.size());
-    out.direct_lx.resize(estimate_.direct_lx.size());
-    for (std::size_t i = 0; i < out.total_lx.size(); ++i) {
-        out.total_lx[i] = estimate_.total_lx[i] + noise_scale * noise_.total_lx[i];
-        out.direct_lx[i] = estimate_.direct_lx[i] + noise_scale * noise_.direct_lx[i];
-    }
+    combine(sky, sun, direct, out);
 }
 
 }  // namespace luxtrace

@@ -7,8 +7,9 @@
 // luminance of the group over what the group emitted, and its variance
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
 // this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
-// emitting group reached gets the variance of its expected count estimated from the cell's
-// indirect registrations pooled over the group's kind (AnnualCoefficients()), not 0. The direct sun (LM-83's ASE)
+// emitting group reached gets, in its hourly error, the variance of its expected count estimated
+// from data (AnnualCoefficients()), not 0; a sun's variance is smoothed over the same hour of
+// the neighbouring days, and the replicates draw suns around those smoothed means. The direct sun (LM-83's ASE)
 // is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -35,13 +36,16 @@ public:
     // weather file (0 in the dark ones).
     // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
     void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
-    // The hourly values from coefficients perturbed by `noise_scale` times a draw of their
-    // noise (each count redrawn as a Poisson count of its variance, from (seed, replicate)):
-    // what a run with other random numbers might have given, for the errors of nonlinear
-    // metrics (annual_metrics.hpp).
-    // noise_scale 0: the estimate. The series is linear in noise_scale: one replicate's
-    // noise is computed once and kept for the next call with the same replicate.
-    void replicate(double noise_scale, std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
+    // The estimate alone (kept: later calls copy it).
+    void estimate(AnnualSeries& out) const;
+    // What the replicates are drawn around: a fresh run's expected values as the data say
+    // them (the sky and ground at their counts, the suns at their means smoothed over the
+    // neighbouring days).
+    void centre(AnnualSeries& out) const;
+    // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
+    // a Poisson count of its variance, for the errors of nonlinear metrics
+    // (annual_metrics.hpp).
+    void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
     // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
@@ -54,15 +58,18 @@ private:
     double inv_photons_ = 0.0;
     double per_count_ = 0.0;  // k
     // [entry][cell]: sky patches then the ground (AnnualSky's sky vector order), and
-    // [sun][cell] for the suns; coefficients (lx per unit weight) and their variances.
-    std::vector<double> sky_, sky_var_, sun_, sun_var_, direct_, direct_var_;
-    // k^2 q and k n per entry, for the exact variance of a weighted sum.
+    // [sun][cell] for the suns; coefficients (lx per unit weight), the sky's variances for
+    // the replicates and the direct sun's for its hourly error.
+    std::vector<double> sky_, sky_var_, sun_, direct_, direct_var_;
+    // k^2 q per entry (suns: smoothed over days, with a dark floor), for the hourly error.
     std::vector<double> sky_q_, sun_q_;
+    // A sun's replicate draw, in counts (the constructor): the direct and the other
+    // registrations' Poisson means, and their smoothed means minus the counts.
+    std::vector<float> rep_direct_mu_, rep_rest_mu_, rep_direct_shift_, rep_rest_shift_;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
-    // The estimate, and the last replicate's noise (replicate()).
-    mutable AnnualSeries estimate_, noise_;
+    // The estimate, made once.
+    mutable AnnualSeries estimate_;
     mutable bool have_estimate_ = false;
-    mutable std::uint64_t noise_seed_ = 0, noise_replicate_ = ~std::uint64_t{0};
 };
 
 }  // namespace luxtrace

@@ -4,9 +4,9 @@
 // carry Monte Carlo errors, so a threshold metric (a count of hours crossing a threshold) has
 // an error and a bias (noise smooths the counts towards the threshold's middle). Definitions:
 // IES LM-83-12 (DA, sDA300/50%, ASE1000,250h), Nabil & Mardaljevic 2005 (UDI), Rogers 2006
-// (continuous DA), EN 17037:2018 Annex A (illuminance method). The errors come from
-// replicate series recomputed from perturbed coefficients (AnnualReplicates), by the SIMEX
-// bootstrap of stats/simex.hpp. Pure functions; docs/DAYLIGHT.md "Annual metrics".
+// (continuous DA), EN 17037:2018 Annex A (illuminance method). The errors come from a
+// parametric bootstrap: replicate series of fresh runs drawn around a centre
+// (AnnualReplicates). Pure functions; docs/DAYLIGHT.md "Annual metrics".
 #include "luxtrace/stats/simex.hpp"
 
 #include <array>
@@ -81,15 +81,15 @@ struct AnnualMetrics {
 // Bad sizes or no occupied or daylight hour throw std::invalid_argument (the caller's bug).
 AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t = {});
 
-// Fills `out` with the grid's hourly total and direct illuminance recomputed from the
-// coefficients perturbed by noise_scale times their standard errors: noise_scale 0 gives the
-// estimate itself; replicates are independent of each other, and a replicate's draws should
-// depend on the replicate alone (the same draws scaled by noise_scale), which makes the
-// SIMEX difference smooth (it is still unbiased otherwise, only noisier).
-using AnnualReplicates = std::function<void(std::size_t replicate, double noise_scale, AnnualSeries& out)>;
+// The hourly series a grid's errors come from (annual/annual_illuminance.hpp): the run's own
+// estimate; the centre the replicates are drawn around (what the data say a fresh run's
+// expected values are); replicate r, one fresh run's values drawn around that centre.
+// Replicates are independent of each other.
+enum class AnnualDraw { estimate, centre, replicate };
+using AnnualReplicates = std::function<void(AnnualDraw what, std::size_t replicate, AnnualSeries& out)>;
 
-// 32 replicates at each of lambda = 1 and 2: sigma to 1 / sqrt(2 x 31) = 13 % of itself,
-// 64 generator calls per grid (docs/DAYLIGHT.md says why this is enough).
+// 32 replicates: sigma to 1 / sqrt(2 x 31) = 13 % of itself, 32 generator calls per grid
+// (docs/DAYLIGHT.md says why this is enough).
 inline constexpr int kAnnualReplicates = 32;
 
 // A verdict "value >= target" (or "<=") from the corrected value, and the probability that
@@ -111,8 +111,10 @@ struct AnnualEstimate {
     SimexEstimate figure(double AnnualMetrics::*f) const { return {value.*f, sigma.*f, bias.*f}; }
 };
 
-// The metrics of `replicates(r, 0)`, and their errors from K replicates at noise_scale 1 and
-// sqrt(2) (the SIMEX lambdas 1 and 2, replicate r the same draws for both).
+// The metrics of the estimate, and their errors from K replicates: sigma their spread, bias
+// their mean minus the centre's figure (the bootstrap's bias: what noise does to a figure
+// around the centre, it does around the truth), kept so that value - bias stays within the
+// figure's range.
 AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,
                                        const AnnualThresholds& t = {}, int k = kAnnualReplicates);
 

@@ -64,18 +64,15 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     sun_.assign(suns * cells, 0.0);
     sun_q_ = direct_ = direct_var_ = sun_;
     rep_direct_mu_.assign(suns * cells, 0.0f);
-    rep_rest_mu_ = rep_direct_shift_ = rep_rest_shift_ = rep_direct_mu_;
+    rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
     std::vector<int> sun_at_hour(sky.hours().size(), -1);
     for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
     // Per sun: the emitting suns of the same hour on the day before and after (their
-    // positions within half a degree: the same shadows), each with this sun's photons over
-    // theirs (the groups' fluxes decide their photons), and the share of their photons this
-    // sun has.
-    struct Neighbour {
-        std::size_t group;
-        double ratio;
-    };
-    std::vector<std::vector<Neighbour>> near(suns);
+    // positions within half a degree: the same shadows and nearly the same reflections), and
+    // this sun's share of the photons of the three, pool_share_ = Phi_s / (Phi_s + sum Phi_o)
+    // (the groups' fluxes decide their photons); share: of the neighbours' photons alone.
+    pool_.assign(suns, {});
+    pool_share_.assign(suns, 1.0);
     std::vector<double> share(suns, 0.0);
     for (std::size_t s = 0; s < suns; ++s) {
         if (!(flux(sun_groups[s]) > 0.0)) continue;
@@ -83,17 +80,18 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
         double near_flux = 0.0;
         for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
             if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
-                const std::size_t o = sun_groups[static_cast<std::size_t>(sun_at_hour[other])];
-                if (flux(o) > 0.0) {
-                    near[s].push_back({o, flux(sun_groups[s]) / flux(o)});
-                    near_flux += flux(o);
+                const std::size_t o = static_cast<std::size_t>(sun_at_hour[other]);
+                if (flux(sun_groups[o]) > 0.0) {
+                    pool_[s].push_back(o);
+                    near_flux += flux(sun_groups[o]);
                 }
             }
         share[s] = near_flux > 0.0 ? flux(sun_groups[s]) / near_flux : 0.0;
+        pool_share_[s] = flux(sun_groups[s]) / (flux(sun_groups[s]) + near_flux);
     }
     auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
         double m = 0.0;
-        for (const Neighbour& o : near[s]) m += direct ? direct_of(cell, o.group) : n_of(cell, o.group);
+        for (const std::size_t o : pool_[s]) m += direct ? direct_of(cell, sun_groups[o]) : n_of(cell, sun_groups[o]);
         return m;
     };
     // Where the neighbours read nothing either (a shadow, or light too rare to show), the
@@ -103,8 +101,8 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     // a weak sun's rare count by its tiny share).
     double dark_n = 0.5, dark_d = 0.5, dark_share = 0.0, dark_share_d = 0.0;
     for (std::size_t s = 0; s < suns; ++s) {
-        if (!(flux(sun_groups[s]) > 0.0) || near[s].empty()) continue;
-        const double weight = share[s] * static_cast<double>(near[s].size());
+        if (!(flux(sun_groups[s]) > 0.0) || pool_[s].empty()) continue;
+        const double weight = share[s] * static_cast<double>(pool_[s].size());
         for (std::size_t cell = 0; cell < cells; ++cell) {
             if (near_sum(s, cell, false) == 0.0) {
                 dark_n += n_of(cell, sun_groups[s]);
@@ -119,49 +117,78 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     // Per neighbour and unit share.
     const double dark_lambda_n = dark_share > 0.0 ? dark_n / dark_share : 0.5;
     const double dark_lambda_d = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
+    // Per (sun, cell): the direct count d, the other (interreflected) registrations
+    // i = n - d and their second moment v = q - d (a photon's direct count in a cell is 0 or
+    // 1, its square itself, tally.hpp; a photon registering a cell both directly and after a
+    // reflection is taken as rare).
+    auto direct_count = [&](std::size_t s, std::size_t cell) { return direct_of(cell, sun_groups[s]); };
+    auto indirect_count = [&](std::size_t s, std::size_t cell) {
+        return n_of(cell, sun_groups[s]) - direct_of(cell, sun_groups[s]);
+    };
+    auto indirect_moment = [&](std::size_t s, std::size_t cell) {
+        return static_cast<double>(data[layout.detector_q(det, cell, 0, sun_groups[s])]) - direct_of(cell, sun_groups[s]);
+    };
     for (std::size_t s = 0; s < suns; ++s) {
-        const std::size_t g = sun_groups[s];
-        if (!(flux(g) > 0.0)) continue;
-        const double dark_scale = near[s].empty() ? 0.0 : static_cast<double>(near[s].size()) * share[s];
-        const double smooth_weight = 1.0 / static_cast<double>(1 + near[s].size());
+        if (!(flux(sun_groups[s]) > 0.0)) continue;
+        const double dark_scale = pool_[s].empty() ? 1.0 : static_cast<double>(pool_[s].size()) * share[s];
+        const double c = pool_share_[s];
         for (std::size_t cell = 0; cell < cells; ++cell) {
-            const double n = n_of(cell, g), qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
-            // A photon's direct count in a cell is 0 or 1: its square is itself (tally.hpp).
-            const double d = direct_of(cell, g);
-            // A sun's expected counts, smoothed over the same hour of the day before and
-            // after (each scaled to this sun's photons): a few-count cell's own count is a
-            // poor guess of its mean (0 says "never", 1 says "always once"), and what a
-            // threshold count's error needs is the mean, not the count. Equal weights:
-            // docs/VALIDATION.md "Annual daylight" measured 1 against 0.5 and 2.
-            double m_n = n, m_q = qq, m_d = d;
-            for (const Neighbour& o : near[s]) {
-                m_n += o.ratio * n_of(cell, o.group);
-                m_q += o.ratio * static_cast<double>(data[layout.detector_q(det, cell, 0, o.group)]);
-                m_d += o.ratio * direct_of(cell, o.group);
+            // Pooled over the three days per unit of flux (a ratio of sums: a weak
+            // neighbour's few photons count for little), for this sun's photons.
+            double d_sum = direct_count(s, cell), i_sum = indirect_count(s, cell), v_sum = indirect_moment(s, cell);
+            for (const std::size_t o : pool_[s]) {
+                d_sum += direct_count(o, cell);
+                i_sum += indirect_count(o, cell);
+                v_sum += indirect_moment(o, cell);
             }
-            m_n *= smooth_weight;
-            m_q *= smooth_weight;
-            m_d *= smooth_weight;
+            const double d = direct_count(s, cell);
+            const double m_d = c * d_sum, m_i = c * i_sum, m_v = c * v_sum;
             const std::size_t i = s * cells + cell;
-            sun_[i] = per_count * n;
+            // The estimate: the hour's own direct sun (a shadow's edge moves between days:
+            // ASE's direct sun stays the hour's own), plus the interreflected sun pooled over
+            // the three days. The sun moves at most 0.4 degrees a day at a given hour, which
+            // hardly moves its reflections, and the pooled count has a third of the lumps:
+            // at 10 M photons one count is 1,000-3,600 lx on the example's sensors, more
+            // than every threshold, so the lumps decide the threshold figures' noise bias
+            // (docs/VALIDATION.md "Annual daylight": UDI useful's halved).
+            sun_[i] = per_count * (d + m_i);
             direct_[i] = per_count * d;
-            // The hour's standard error: the smoothed second moment; where the cell and its
-            // neighbours all read nothing, the detector's dark mean (never a variance of 0
-            // for a count that might have been 1).
-            sun_q_[i] = k2 * (m_q > 0.0 ? m_q : dark_lambda_n * (dark_scale > 0.0 ? dark_scale : 1.0));
-            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d * (dark_scale > 0.0 ? dark_scale : 1.0));
-            // The replicates (replicate()): a fresh run's counts, the direct ones Poisson of
-            // mean m_d, the rest of mean m_n - m_d and variance m_q - m_d, written as noise
-            // around the estimate (a shift plus a zero-mean draw). No dark floor here: over
-            // many hours the plain counts are an unbiased variance, and a floor on every
-            // unreached (group, cell) would add a variance the counts already hold
-            // (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma twice, continuous
-            // DA's 16 times the scatter).
+            // The hour's errors. Direct: its count's variance, taken from the pooled mean (a
+            // few-count cell's own count is a poor guess of it: 0 says "never"). Total: that
+            // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
+            // neighbours all read nothing, the detector's dark mean (never a variance of 0 for
+            // a count that might have been 1).
+            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d * dark_scale);
+            const double total_var = m_d + c * m_v;
+            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n * dark_scale);
+            // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
+            // count of mean m_i and variance m_v, pooled like the estimate. No dark floor
+            // here: over many hours the plain counts are an unbiased variance, and a floor on
+            // every unreached (group, cell) would add a variance the counts already hold
+            // (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma twice,
+            // continuous DA's 16 times the scatter).
             rep_direct_mu_[i] = static_cast<float>(m_d);
-            rep_rest_mu_[i] = static_cast<float>(std::max(0.0, m_q - m_d));
-            rep_direct_shift_[i] = static_cast<float>(m_d - d);
-            rep_rest_shift_[i] = static_cast<float>((m_n - m_d) - (n - d));
+            rep_indirect_mu_[i] = static_cast<float>(m_i);
+            rep_indirect_var_[i] = static_cast<float>(std::max(0.0, m_v));
         }
+    }
+}
+
+void AnnualCoefficients::pool(const std::vector<double>& indirect, const std::vector<double>& direct,
+                              std::vector<double>& sun) const {
+    const std::size_t suns = pool_.size();
+    sun.assign(suns * cells_, 0.0);
+    for (std::size_t s = 0; s < suns; ++s) {
+        const double c = pool_share_[s];
+        double* out = &sun[s * cells_];
+        const double* own = &indirect[s * cells_];
+        for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] = own[cell];
+        for (const std::size_t o : pool_[s]) {
+            const double* x = &indirect[o * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] += x[cell];
+        }
+        const double* d = &direct[s * cells_];
+        for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] = d[cell] + c * out[cell];
     }
 }
 
@@ -249,12 +276,14 @@ void AnnualCoefficients::estimate(AnnualSeries& out) const {
 }
 
 void AnnualCoefficients::centre(AnnualSeries& out) const {
-    // The suns at their smoothed means (the constructor), the sky and ground at their counts.
-    std::vector<double> sun(sun_), direct(direct_);
+    // The sky and ground at their counts; a sun's direct and indirect counts at their pooled
+    // means, the indirect pooled again as the estimate pools it.
+    std::vector<double> indirect(sun_.size()), direct(direct_.size()), sun;
     for (std::size_t i = 0; i < sun_.size(); ++i) {
-        direct[i] += per_count_ * rep_direct_shift_[i];
-        sun[i] += per_count_ * (rep_direct_shift_[i] + rep_rest_shift_[i]);
+        indirect[i] = per_count_ * rep_indirect_mu_[i];
+        direct[i] = per_count_ * rep_direct_mu_[i];
     }
+    pool(indirect, direct, sun);
     combine(sky_, sun, direct, out);
 }
 
@@ -279,15 +308,15 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
         }
-    // A sun: the direct registrations are part of the sun's, so their draw is shared.
-    std::vector<double> sun(sun_), direct(direct_);
+    // A sun: its direct count around its pooled mean, its indirect count too, then pooled
+    // over the days as the estimate is.
+    std::vector<double> indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
     for (std::size_t i = 0; i < sun_.size(); ++i) {
-        const double mu_d = rep_direct_mu_[i], mu_r = rep_rest_mu_[i];
-        if (!(mu_d > 0.0) && !(mu_r > 0.0)) continue;
-        const double d = draw(k2 * mu_d) + k * rep_direct_shift_[i];
-        direct[i] += d;
-        sun[i] += d + draw(k2 * mu_r) + k * rep_rest_shift_[i];
+        const double mu_d = rep_direct_mu_[i], mu_i = rep_indirect_mu_[i], var_i = rep_indirect_var_[i];
+        if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
+        if (mu_i != 0.0 || var_i > 0.0) indirect[i] = k * mu_i + draw(k2 * var_i);
     }
+    pool(indirect, direct, sun);
     combine(sky, sun, direct, out);
 }
 

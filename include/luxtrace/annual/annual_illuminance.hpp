@@ -8,8 +8,9 @@
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
 // this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
 // emitting group reached gets, in its hourly error, the variance of its expected count estimated
-// from data (AnnualCoefficients()), not 0; a sun's variance is smoothed over the same hour of
-// the neighbouring days, and the replicates draw suns around those smoothed means. The direct sun (LM-83's ASE)
+// from data (AnnualCoefficients()), not 0. A sun's interreflected part is pooled over the same
+// hour of the neighbouring days (its direct part stays the hour's own), and the replicates
+// draw suns around their pooled means. The direct sun (LM-83's ASE)
 // is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -52,6 +53,9 @@ private:
     void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
     void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
                  AnnualSeries& out) const;
+    // [sun][cell]: sun = direct + the indirect pooled over the sun's day and its neighbours
+    // (pool_share_ times their sum).
+    void pool(const std::vector<double>& indirect, const std::vector<double>& direct, std::vector<double>& sun) const;
 
     const AnnualSetup& annual_;
     std::size_t cells_ = 0;
@@ -61,11 +65,16 @@ private:
     // [sun][cell] for the suns; coefficients (lx per unit weight), the sky's variances for
     // the replicates and the direct sun's for its hourly error.
     std::vector<double> sky_, sky_var_, sun_, direct_, direct_var_;
-    // k^2 q per entry (suns: smoothed over days, with a dark floor), for the hourly error.
+    // k^2 q per entry (suns: the pooled estimate's variance, with a dark floor), for the
+    // hourly error.
     std::vector<double> sky_q_, sun_q_;
-    // A sun's replicate draw, in counts (the constructor): the direct and the other
-    // registrations' Poisson means, and their smoothed means minus the counts.
-    std::vector<float> rep_direct_mu_, rep_rest_mu_, rep_direct_shift_, rep_rest_shift_;
+    // Per sun: the suns of the same hour on the neighbouring days, and this sun's share of
+    // the three's photons.
+    std::vector<std::vector<std::size_t>> pool_;
+    std::vector<double> pool_share_;
+    // A sun's fresh-run draw, in counts (the constructor): the direct count's pooled mean,
+    // and the indirect count's pooled mean and variance.
+    std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
     // The estimate, made once.
     mutable AnnualSeries estimate_;

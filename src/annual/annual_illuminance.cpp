@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <tbb/blocked_range.h>
@@ -126,8 +127,44 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
         return n_of(cell, sun_groups[s]) - direct_of(cell, sun_groups[s]);
     };
     auto indirect_moment = [&](std::size_t s, std::size_t cell) {
-        return static_cast<double>(data[layout.detector_q(det, cell, 0, sun_groups[s])]) - direct_of(cell, sun_groups[s]);
+        return static_cast<double>(data[layout.detector_q(det, cell, 0, sun_groups[s])]) -
+               direct_of(cell, sun_groups[s]);
     };
+    // The replicates' centre for a sun's interreflected count (empirical Bayes): light too
+    // rare to have been seen on any of the three days (a deep cell's rare sun reflection)
+    // must still be drawn now and then, or the bootstrap cannot see the bias it causes. The
+    // suns of one clock hour (similar positions over the year) share a prior per cell: a
+    // Gamma distribution of the count per unit flux, its mean rho the class's ratio of sums
+    // and its shape alpha by the method of moments (Var n = mu + mu^2 / alpha for a
+    // Poisson-Gamma count of mean mu = Phi rho). Each sun's centre is its posterior mean
+    // given the three days' counts N3 over their flux E3: Phi (N3 + alpha) / (E3 + alpha / rho).
+    constexpr std::size_t kClockHours = 24;
+    std::vector<double> eb_rho(kClockHours * cells, 0.0), eb_alpha(kClockHours * cells, 0.0);
+    {
+        std::vector<double> class_flux(kClockHours, 0.0), sum_mu2(kClockHours * cells, 0.0),
+            excess(kClockHours * cells, 0.0);
+        auto clock = [&](std::size_t s) { return sky.suns()[s] % kClockHours; };
+        for (std::size_t s = 0; s < suns; ++s) {
+            if (!(flux(sun_groups[s]) > 0.0)) continue;
+            class_flux[clock(s)] += flux(sun_groups[s]);
+            for (std::size_t cell = 0; cell < cells; ++cell) eb_rho[clock(s) * cells + cell] += indirect_count(s, cell);
+        }
+        for (std::size_t h = 0; h < kClockHours; ++h)
+            for (std::size_t cell = 0; cell < cells; ++cell)
+                eb_rho[h * cells + cell] = class_flux[h] > 0.0 ? eb_rho[h * cells + cell] / class_flux[h] : 0.0;
+        for (std::size_t s = 0; s < suns; ++s) {
+            if (!(flux(sun_groups[s]) > 0.0)) continue;
+            for (std::size_t cell = 0; cell < cells; ++cell) {
+                const std::size_t j = clock(s) * cells + cell;
+                const double mu = flux(sun_groups[s]) * eb_rho[j], n = indirect_count(s, cell);
+                sum_mu2[j] += mu * mu;
+                excess[j] += (n - mu) * (n - mu) - n;
+            }
+        }
+        // No excess over Poisson: the suns of the class share one rate (alpha infinite).
+        for (std::size_t j = 0; j < eb_alpha.size(); ++j)
+            eb_alpha[j] = excess[j] > 0.0 ? sum_mu2[j] / excess[j] : std::numeric_limits<double>::infinity();
+    }
     for (std::size_t s = 0; s < suns; ++s) {
         if (!(flux(sun_groups[s]) > 0.0)) continue;
         const double dark_scale = pool_[s].empty() ? 1.0 : static_cast<double>(pool_[s].size()) * share[s];
@@ -142,7 +179,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
                 v_sum += indirect_moment(o, cell);
             }
             const double d = direct_count(s, cell);
-            const double m_d = c * d_sum, m_i = c * i_sum, m_v = c * v_sum;
+            const double m_d = c * d_sum, m_i = c * i_sum, m_v = c * v_sum;  // pooled means
             const std::size_t i = s * cells + cell;
             // The estimate: the hour's own direct sun (a shadow's edge moves between days:
             // ASE's direct sun stays the hour's own), plus the interreflected sun pooled over
@@ -162,14 +199,23 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
             const double total_var = m_d + c * m_v;
             sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n * dark_scale);
             // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
-            // count of mean m_i and variance m_v, pooled like the estimate. No dark floor
-            // here: over many hours the plain counts are an unbiased variance, and a floor on
-            // every unreached (group, cell) would add a variance the counts already hold
-            // (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma twice,
-            // continuous DA's 16 times the scatter).
+            // count around its empirical-Bayes centre (above), pooled like the estimate. No
+            // dark floor here: over many hours the plain counts are an unbiased variance,
+            // and a floor on every unreached (group, cell) would add a variance the counts
+            // already hold (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma
+            // twice, continuous DA's 16 times the scatter); the posterior mean adds none on
+            // average over the class.
+            const std::size_t j = (sky.suns()[s] % kClockHours) * cells + cell;
+            const double rho = eb_rho[j], alpha = eb_alpha[j];
+            const double e3 = flux(sun_groups[s]) / c;  // the three days' flux
+            const double centre_i = !(rho > 0.0)        ? 0.0
+                                    : std::isinf(alpha) ? flux(sun_groups[s]) * rho
+                                                        : flux(sun_groups[s]) * (i_sum + alpha) / (e3 + alpha / rho);
             rep_direct_mu_[i] = static_cast<float>(m_d);
-            rep_indirect_mu_[i] = static_cast<float>(m_i);
-            rep_indirect_var_[i] = static_cast<float>(std::max(0.0, m_v));
+            rep_indirect_mu_[i] = static_cast<float>(centre_i);
+            // Its variance in the pooled counts' proportion of second moment to count (a
+            // photon may register a cell more than once).
+            rep_indirect_var_[i] = static_cast<float>(centre_i * (i_sum > 0.0 ? std::max(1.0, v_sum / i_sum) : 1.0));
         }
     }
 }

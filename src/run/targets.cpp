@@ -30,15 +30,11 @@ double annual_metric_error(const Target& t, const Scene& scene, const TallyLayou
     const std::size_t d = static_cast<std::size_t>(it - scene.detectors.begin());
     const AnnualEstimate e =
         estimate_annual_grid(scene, d, layout, data, e0, photons, kAnnualTargetReplicates, false).metrics;
-    double AnnualMetrics::*member = &AnnualMetrics::sda;
-    if (t.annual_metric == "ase") member = &AnnualMetrics::ase;
-    else if (t.annual_metric == "mean_da") member = &AnnualMetrics::mean_da;
-    else if (t.annual_metric == "mean_continuous_da") member = &AnnualMetrics::mean_continuous_da;
-    else if (t.annual_metric == "mean_udi_fell_short") member = &AnnualMetrics::mean_udi_fell_short;
-    else if (t.annual_metric == "mean_udi_useful") member = &AnnualMetrics::mean_udi_useful;
-    else if (t.annual_metric == "mean_udi_exceeded") member = &AnnualMetrics::mean_udi_exceeded;
-    const SimexEstimate m = e.figure(member);
-    // Sigma and the bias together (simex.hpp): a bias shrinks with photons as well.
+    const auto figure = std::find_if(std::begin(kAnnualTargetFigures), std::end(kAnnualTargetFigures),
+                                     [&](const AnnualGridFigure& f) { return t.annual_metric == f.name; });
+    // The loader accepts only these names (run_loader.cpp).
+    const SimexEstimate m = e.figure(figure != std::end(kAnnualTargetFigures) ? figure->member : &AnnualMetrics::sda);
+    // Sigma and the bias together: a bias shrinks with photons as well.
     const double u = m.uncertainty();
     return relative ? u / std::abs(m.value) : u;
 }

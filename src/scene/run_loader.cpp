@@ -84,10 +84,11 @@ struct RunReader : StepReader {
                                           [&](const Detector& d) { return d.name == g.detector; });
             if (det == scene.detectors.end() || !annual_grid(*det))
                 r.fail("on", "no illuminance or points [[detector]] is named '" + g.detector + "'");
-            if (std::find(std::begin(annual_target_metrics), std::end(annual_target_metrics), g.annual_metric) ==
-                std::end(annual_target_metrics)) {
+            if (std::none_of(std::begin(kAnnualTargetFigures), std::end(kAnnualTargetFigures),
+                             [&](const AnnualGridFigure& f) { return g.annual_metric == f.name; })) {
                 std::string names;
-                for (const char* m : annual_target_metrics) names += (names.empty() ? "" : ", ") + std::string(m);
+                for (const AnnualGridFigure& f : kAnnualTargetFigures)
+                    names += (names.empty() ? "" : ", ") + std::string(f.name);
                 r.fail("on", "an annual target is on one of " + names + ", not '" + g.annual_metric + "'");
             }
             g.i1 = det->nx;

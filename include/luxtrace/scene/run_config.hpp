@@ -22,13 +22,9 @@ struct Target {
     // every group at full output, the plain run.
     std::string light_scene;
     // `on = "annual:DETECTOR:METRIC"` (annual runs): the error of a grid's annual metric
-    // (annual_target_metrics), the detector in `detector`.
+    // (stats/annual_metrics.hpp, kAnnualTargetFigures), the detector in `detector`.
     std::string annual_metric;
 };
-
-// The grid figures an annual target may be on (stats/annual_metrics.hpp's AnnualMetrics).
-inline constexpr const char* annual_target_metrics[] =
-    {"sda", "ase", "mean_da", "mean_continuous_da", "mean_udi_fell_short", "mean_udi_useful", "mean_udi_exceeded"};
 
 // Seconds between reductions and progress lines when the scene and the command line
 // leave report_every_s out (or set 0).

@@ -78,6 +78,21 @@ struct AnnualMetrics {
     std::array<double, 3> en17037_target_hours{}, en17037_minimum_hours{};
 };
 
+// The grid figures a run target may be on (`on = "annual:GRID:NAME"`), by their names in
+// the result's /annual attributes.
+struct AnnualGridFigure {
+    const char* name;
+    double AnnualMetrics::*member;
+};
+inline constexpr AnnualGridFigure kAnnualTargetFigures[] = {{"sda", &AnnualMetrics::sda},
+                                                            {"ase", &AnnualMetrics::ase},
+                                                            {"mean_da", &AnnualMetrics::mean_da},
+                                                            {"mean_continuous_da", &AnnualMetrics::mean_continuous_da},
+                                                            {"mean_udi_fell_short",
+                                                             &AnnualMetrics::mean_udi_fell_short},
+                                                            {"mean_udi_useful", &AnnualMetrics::mean_udi_useful},
+                                                            {"mean_udi_exceeded", &AnnualMetrics::mean_udi_exceeded}};
+
 // Bad sizes or no occupied or daylight hour throw std::invalid_argument (the caller's bug).
 AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t = {});
 

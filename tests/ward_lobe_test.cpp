@@ -2,13 +2,18 @@
 // the integral of its BRDF, it is reciprocal, photons leave along f cos / a and survive
 // with a, and a glossy material reflects rho_d + rho_s a(cos_i) of what arrives.
 #include "luxtrace/material/ward_lobe.hpp"
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/scene/scene.hpp"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -214,6 +219,34 @@ TEST(WardLobe, GlossyMaterialReflectsRhoTimesAlbedo) {
     const Scattered r = scatter(scatter_model(m, 0), dir, kN, 0.5, 0.1, 0.2);
     EXPECT_EQ(r.event, ScatterEvent::specular_reflection);
     EXPECT_EQ(r.direction, dir - 2.0 * glm::dot(dir, kN) * kN);
+}
+
+// [[material]] roughness: read on mirror and general, refused out of [0, 1] and on the
+// other types, with the key named.
+TEST(WardLobe, SceneKeyRoughness) {
+    namespace fs = std::filesystem;
+    const fs::path file = fs::temp_directory_path() / ("luxtrace_ward_" + std::to_string(::getpid()) + ".toml");
+    auto load = [&](const std::string& material) -> std::string {
+        std::ofstream(file) << "[[material]]\nname = \"m\"\n"
+                            << material
+                            << "[[shape]]\ntype = \"rectangle\"\nsize = [1, 1]\nmaterial = \"m\"\n"
+                               "[[light]]\ntype = \"point\"\nposition = [0, 0, 1]\nflux_lm = 10\n";
+        try {
+            const Scene scene = load_scene(file);
+            const Material& m = scene.materials.at(0);
+            return m.lobe ? "lobe " + std::to_string(m.lobe->alpha()) : "no lobe";
+        } catch (const InputError& e) {
+            return e.what();
+        }
+    };
+    EXPECT_EQ(load("type = \"mirror\"\nspecular_reflectance = 0.9\nroughness = 0.25\n"), "lobe 0.250000");
+    EXPECT_EQ(load("type = \"general\"\nspecular_reflectance = 0.5\nroughness = 0\n"), "no lobe");
+    const std::string high = load("type = \"general\"\nspecular_reflectance = 0.5\nroughness = 1.5\n");
+    EXPECT_NE(high.find("roughness"), std::string::npos) << high;
+    EXPECT_NE(high.find("must lie in [0, 1]"), std::string::npos) << high;
+    const std::string diffuse = load("reflectance = 0.5\nroughness = 0.1\n");
+    EXPECT_NE(diffuse.find("'roughness' does not apply"), std::string::npos) << diffuse;
+    fs::remove(file);
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(WardLobe, AlbedoIsTheIntegralOfTheBrdf) {
 }
 
 TEST(WardLobe, NormalIncidenceAlbedoInClosedForm) {
-    // At cos_i = 1 the weight W5 is 1 - tan^2(theta_h) below 45 degrees, and tan^2 is
+    // At cos_i = 1 the weight W4 is 1 - tan^2(theta_h) below 45 degrees, and tan^2 is
     // exponential with mean alpha^2: a = 1 - alpha^2 (1 - exp(-1 / alpha^2)).
     for (double alpha : {0.02, 0.1, 0.3, 0.6, 1.0}) {
         const double exact = 1.0 - alpha * alpha * (1.0 - std::exp(-1.0 / (alpha * alpha)));

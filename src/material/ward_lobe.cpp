@@ -17,7 +17,7 @@ constexpr int kAlbedoNodes = 129;
 constexpr int kMaxProposals = 200;
 
 // The weight f cos_o / (rho_s q(wo)) of a reflection drawn by Ward's inversion (q: the
-// density of W3 carried over to wo): 2 cos_o / (cos_i + cos_o) (W5), in (0, 2 / (1 + cos_i)].
+// density of W3 carried over to wo): 2 cos_o / (cos_i + cos_o) (W4), in (0, 2 / (1 + cos_i)].
 double proposal_weight(double cos_i, double cos_o) { return 2.0 * cos_o / (cos_i + cos_o); }
 
 // SplitMix64 over the bits of the three numbers a glossy event was given: more uniforms
@@ -44,7 +44,7 @@ private:
 double ward_albedo_quadrature(double alpha, double cos_i) {
     // Local frame: n = z, wi = (sin_i, 0, cos_i), h at polar angle theta_h, azimuth phi.
     // cos_o = 2 (wi.h) cos_h - cos_i > 0 exactly where cos(phi) > k (below), and the
-    // integrand is the weight W5 under Ward's density, so a = E[W5 [cos_o > 0]].
+    // integrand is the weight W4 under Ward's density, so a = E[W4 [cos_o > 0]].
     constexpr int kU = 1024, kPhi = 64;
     const double ci = std::clamp(cos_i, 0.0, 1.0);
     const double si = std::sqrt(std::max(0.0, 1.0 - ci * ci));
@@ -110,7 +110,7 @@ std::optional<Vec3> WardLobe::reflect(const Vec3& dir, const Vec3& n, double u_s
     const double cos_i = std::max(0.0, glm::dot(wi, n));
     const double a = albedo(cos_i);
     if (!(u_survive < a)) return std::nullopt;
-    // Rejection: a proposal from W3 is kept with probability W5 / bound, so the kept
+    // Rejection: a proposal from W3 is kept with probability W4 / bound, so the kept
     // direction has density f cos / a; the survival above already carried a.
     const double bound = 2.0 / (1.0 + cos_i);
     double accept = u_survive / a;  // uniform on [0, 1) given survival

@@ -20,7 +20,7 @@ public:
     // Roughnesses accepted: (0, kMaxRoughness]; 0 is the exact mirror, handled without a lobe.
     static constexpr double kMaxRoughness = 1.0;
 
-    // Tabulates the albedo for `alpha` (about 30 ms).
+    // Tabulates the albedo for `alpha` (about 60 ms).
     explicit WardLobe(double alpha);
 
     double alpha() const { return alpha_; }
@@ -34,7 +34,7 @@ public:
     Vec3 sample_half(const Vec3& n, double u1, double u2) const;
 
     // The directional albedo a(cos_i) = integral of f cos(theta_o) / rho_s over the
-    // hemisphere (W4), from the table (linear between nodes).
+    // hemisphere (W2), from the table (linear between nodes).
     double albedo(double cos_i) const;
 
     // A photon travelling along unit `dir` onto the side of unit normal n (dot(dir, n) < 0)
@@ -49,7 +49,7 @@ private:
     std::vector<double> table_;  // a at cos_i = s^2, s = k / (size - 1)
 };
 
-// The albedo (W4) by quadrature, without the table: midpoint in Ward's u1 (1024 nodes) and
+// The albedo (W2) by quadrature, without the table: midpoint in Ward's u1 (1024 nodes) and
 // in the azimuth of the half vector over the part of the circle whose reflection stays
 // above the surface (found in closed form, so the integrand is smooth).
 double ward_albedo_quadrature(double alpha, double cos_i);

@@ -3,6 +3,7 @@
 // origin, with a 2 mm thin shelf in it, gives the same answer within its sigmas and
 // loses no photon either. Runs the real binary; photon fates come from the result file.
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/material/ward_lobe.hpp"
 
 #include "test_support.hpp"
 
@@ -118,4 +119,46 @@ TEST_F(Closure, TheSameRoomTenKilometresAwayGivesTheSameAnswer) {
     double max_x = 0.0;
     for (std::size_t i = 0; i < verts.size(); i += 3) max_x = std::max(max_x, verts[i]);
     EXPECT_NEAR(max_x, 10004.0, 1e-9);
+}
+
+TEST_F(Closure, GlossyWallsLoseNoPhotonAndReflectWithinTheirAlbedo) {
+    // Glossy walls (docs/MATERIALS.md#glossy-reflection) send photons out near grazing,
+    // where the edges are: none may leave. Each arrival reflects with probability
+    // rho_d + rho_s a(cos_i), so the share of arrivals that reflect, (A - N) / A in a closed
+    // room where all N photons end absorbed, lies between that over the angles' extremes.
+    const fs::path scene = dir / "glossy.toml";
+    std::ofstream(scene) << R"(
+[[material]]
+name = "satin"
+type = "general"
+diffuse_reflectance = 0.3
+specular_reflectance = 0.6
+roughness = 0.3
+[[shape]]
+type = "box"
+center = [2, 1.5, 1.5]
+size = [4, 3, 3]
+inward = true
+subdivisions = 6
+material = "satin"
+[[light]]
+type = "point"
+position = [1.3, 1.1, 2.2]
+flux_lm = 1000
+)";
+    const ResultReader r(run_closed(scene, "glossy", "400k", 5));
+    const double n = static_cast<double>(r.attr_u64("/", "photons"));
+    double arrivals = 0.0;
+    for (const char* d : {"/global/count_odd", "/global/count_even"})
+        for (std::uint64_t c : r.u64(d)) arrivals += static_cast<double>(c);
+    const double reflected = (arrivals - n) / arrivals;
+    const luxtrace::WardLobe lobe(0.3);
+    double lo = 1.0, hi = 0.0;
+    for (int k = 0; k <= 1000; ++k) {
+        const double p = 0.3 + 0.6 * lobe.albedo(k / 1000.0);
+        lo = std::min(lo, p);
+        hi = std::max(hi, p);
+    }
+    EXPECT_GT(reflected, lo) << "reflected share of arrivals";
+    EXPECT_LT(reflected, hi) << "reflected share of arrivals";
 }

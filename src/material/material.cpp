@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 
 namespace luxtrace {
 
@@ -26,7 +28,22 @@ Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2.0 * glm::dot(d, n) * n
 
 double at(const std::vector<double>& v, int band) { return v.empty() ? 0.0 : v[static_cast<size_t>(band)]; }
 
+// The specular reflection chosen by u in [lo, hi): the mirror direction, or with a lobe a
+// direction from it with probability a(cos_i), (u - lo) / (hi - lo) deciding (ward_lobe.hpp).
+Scattered specular(const WardLobe* lobe, const Vec3& dir, const Vec3& n, double u, double lo, double hi, double u1,
+                   double u2) {
+    if (lobe == nullptr) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+    const std::optional<Vec3> d = lobe->reflect(dir, n, (u - lo) / (hi - lo), u1, u2);
+    if (!d) return {};
+    return {ScatterEvent::specular_reflection, *d, 1};
+}
+
 }  // namespace
+
+void Material::set_roughness(double alpha) {
+    roughness = alpha;
+    lobe = alpha > 0.0 ? std::make_shared<const WardLobe>(alpha) : nullptr;
+}
 
 ScatterModel scatter_model(const Material& m, int band) {
     ScatterModel s;
@@ -34,8 +51,12 @@ ScatterModel scatter_model(const Material& m, int band) {
     switch (m.type) {
     case MaterialType::black: break;
     case MaterialType::diffuse: s.diffuse_reflection = at(m.diffuse_reflectance, band); break;
-    case MaterialType::mirror: s.specular_reflection = at(m.specular_reflectance, band); break;
+    case MaterialType::mirror:
+        s.specular_reflection = at(m.specular_reflectance, band);
+        s.lobe = m.lobe.get();
+        break;
     case MaterialType::general:
+        s.lobe = m.lobe.get();
         s.diffuse_reflection = at(m.diffuse_reflectance, band);
         s.specular_reflection = s.diffuse_reflection + at(m.specular_reflectance, band);
         s.diffuse_transmission = s.specular_reflection + at(m.diffuse_transmittance, band);
@@ -63,11 +84,12 @@ Scattered scatter(const ScatterModel& m, const Vec3& dir, const Vec3& ng, double
         if (u < m.diffuse_reflection) s = {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
         return s;
     case MaterialType::mirror:
-        if (u < m.specular_reflection) s = {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        if (u < m.specular_reflection) s = specular(m.lobe, dir, n, u, 0.0, m.specular_reflection, u1, u2);
         return s;
     case MaterialType::general:
         if (u < m.diffuse_reflection) return {ScatterEvent::diffuse_reflection, sample_cosine_hemisphere(n, u1, u2), 1};
-        if (u < m.specular_reflection) return {ScatterEvent::specular_reflection, reflect(dir, n), 1};
+        if (u < m.specular_reflection)
+            return specular(m.lobe, dir, n, u, m.diffuse_reflection, m.specular_reflection, u1, u2);
         if (u < m.diffuse_transmission)
             return {ScatterEvent::diffuse_transmission, sample_cosine_hemisphere(-n, u1, u2), -1};
         if (u < m.specular_transmission) return {ScatterEvent::specular_transmission, dir, -1};
@@ -106,10 +128,11 @@ double albedo(const Material& m, int band) {
     switch (m.type) {
     case MaterialType::black: return 0.0;
     case MaterialType::diffuse: return at(m.diffuse_reflectance, band);
-    case MaterialType::mirror: return at(m.specular_reflectance, band);
+    case MaterialType::mirror: return at(m.specular_reflectance, band) * (m.lobe ? m.lobe->albedo(1.0) : 1.0);
     case MaterialType::general:
-        return at(m.diffuse_reflectance, band) + at(m.specular_reflectance, band) + at(m.diffuse_transmittance, band) +
-               at(m.specular_transmittance, band);
+        return at(m.diffuse_reflectance, band) +
+               at(m.specular_reflectance, band) * (m.lobe ? m.lobe->albedo(1.0) : 1.0) +
+               at(m.diffuse_transmittance, band) + at(m.specular_transmittance, band);
     case MaterialType::glass:
         return m.transmittance.empty() ? 1.0
                                        : std::max(fresnel_dielectric(1.0, 1.0 / m.ior), 0.0) +

@@ -60,6 +60,7 @@ struct GeometryReader : StepReader {
         } else if (type == "mirror") {
             m.type = MaterialType::mirror;
             m.specular_reflectance = required("specular_reflectance");
+            read_roughness(r, m);
         } else if (type == "glass") {
             m.type = MaterialType::glass;
             m.ior = r.number("ior").value_or(1.5);
@@ -72,6 +73,7 @@ struct GeometryReader : StepReader {
             m.specular_reflectance = r.per_band("specular_reflectance", nb).value_or(zero);
             m.diffuse_transmittance = r.per_band("diffuse_transmittance", nb).value_or(zero);
             m.specular_transmittance = r.per_band("specular_transmittance", nb).value_or(zero);
+            read_roughness(r, m);
             for (std::size_t b = 0; b < nb; ++b) {
                 const double sum = m.diffuse_reflectance[b] + m.specular_reflectance[b] + m.diffuse_transmittance[b] +
                                    m.specular_transmittance[b];
@@ -91,6 +93,15 @@ struct GeometryReader : StepReader {
         r.finish();
         material_index[m.name] = static_cast<std::uint32_t>(scene.materials.size());
         scene.materials.push_back(std::move(m));
+    }
+
+    // mirror, general: the specular reflection's roughness (ward_lobe.hpp), 0 a mirror.
+    static void read_roughness(TableReader& r, Material& m) {
+        const double alpha = r.number("roughness").value_or(0.0);
+        if (!(alpha >= 0.0 && alpha <= WardLobe::kMaxRoughness))
+            r.fail("roughness",
+                   "must lie in [0, " + fmt_number(WardLobe::kMaxRoughness) + "], got " + fmt_number(alpha));
+        m.set_roughness(alpha);
     }
 
     // An array of numbers of any length (a glazing table's column).

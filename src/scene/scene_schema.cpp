@@ -27,7 +27,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"material",
          {"name", "type", "reflectance", "specular_reflectance", "ior", "transmittance", "diffuse_reflectance",
           "diffuse_transmittance", "specular_transmittance", "refractive_index", "angles_deg", "transmittance_at",
-          "reflectance_at"}},
+          "reflectance_at", "roughness"}},
         {"mesh", {"file", "material", "transform"}},
         {"mesh.transform", {"translate", "rotate_deg", "scale"}},
         {"shape", {"type", "name", "material", "center", "normal", "up", "size", "radius", "subdivisions", "inward"}},

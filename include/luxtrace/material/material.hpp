@@ -4,6 +4,7 @@
 // so every tally stays an integer count (SPEC §3).
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/material/glazing.hpp"
+#include "luxtrace/material/ward_lobe.hpp"
 
 #include <memory>
 #include <string>
@@ -23,6 +24,11 @@ struct Material {
     std::vector<double> specular_reflectance;
     std::vector<double> diffuse_transmittance;
     std::vector<double> specular_transmittance;
+    // mirror, general: the specular reflection's roughness (Radiance's, the rms facet
+    // slope alpha of ward_lobe.hpp). 0 reflects as a mirror; above 0 into the glossy lobe,
+    // which `lobe` holds (make it with set_roughness), shared by every copy.
+    double roughness = 0.0;
+    std::shared_ptr<const WardLobe> lobe;
     // glass: refractive index (Fresnel at each interface) and the probability that a
     // refracted photon survives the crossing (1 = clear glass).
     // glazing: the same two fields hold the pane's refractive index and its normal
@@ -32,6 +38,9 @@ struct Material {
     // glazing: R and T against the angle of incidence, one curve per band (glazing.hpp),
     // shared by every copy of the material.
     std::shared_ptr<const std::vector<GlazingCurve>> glazing;
+
+    // Sets `roughness` in [0, WardLobe::kMaxRoughness] and the lobe it needs (none for 0).
+    void set_roughness(double alpha);
 };
 
 enum class ScatterEvent {
@@ -43,6 +52,7 @@ enum class ScatterEvent {
     refraction
 };
 
+// A glossy reflection is reported as specular_reflection (its direction is the lobe's).
 struct Scattered {
     ScatterEvent event = ScatterEvent::absorbed;
     Vec3 direction{0.0};
@@ -60,14 +70,16 @@ Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2);
 // One material in one band, flattened for the tracing path: the event thresholds as
 // cumulative probabilities (u_event below `diffuse_reflection` reflects diffusely, below
 // `specular_reflection` specularly, and so on; above the last one the photon is
-// absorbed), for glass its index and the survival of a crossing, for glazing its curve
-// (owned by the Material, which must outlive the model).
+// absorbed), for glass its index and the survival of a crossing, for glazing its curve,
+// for a rough specular reflection its lobe (both owned by the Material, which must
+// outlive the model).
 struct ScatterModel {
     MaterialType type = MaterialType::black;
     double diffuse_reflection = 0.0, specular_reflection = 0.0;
     double diffuse_transmission = 0.0, specular_transmission = 0.0;
     double ior = 1.5, transmittance = 1.0;
     const GlazingCurve* glazing = nullptr;
+    const WardLobe* lobe = nullptr;
 };
 ScatterModel scatter_model(const Material& m, int band);
 

@@ -182,6 +182,10 @@ public:
     Reader(const RadianceOptions& options, RadianceModel& model) : options_(options), model_(model) {}
 
     void read_file(const fs::path& path, const Context& ctx, const std::string& included_at) {
+        // xform arrays of files that include others multiply: a bound on the work.
+        if (++files_read_ > kMaxFileReads)
+            throw InputError(included_at + ": more than " + std::to_string(kMaxFileReads) +
+                             " files read through xform (arrays of nested includes?)");
         std::ifstream in(path, std::ios::binary);
         if (!in || fs::is_directory(path))
             throw InputError(included_at.empty() ? "cannot open Radiance file '" + path.string() + "'"
@@ -425,6 +429,8 @@ private:
         if (ctx.invert) type = inverse_type(type);
         // A mirroring transform turns the winding; xform -I turns the surface.
         const bool flip = (glm::determinant(glm::dmat3(ctx.matrix)) < 0.0) != ctx.invert;
+        if (model_.mesh.vertices.size() + scratch_.vertices.size() > kMaxVertices)
+            throw bad("the model would hold more than " + std::to_string(kMaxVertices) + " vertices");
         const auto base = static_cast<std::uint32_t>(model_.mesh.vertices.size());
         for (const Vec3& v : scratch_.vertices) model_.mesh.vertices.push_back(Vec3(world * glm::dvec4(v, 1.0)));
         RadianceSurface s{std::move(name), type, material, model_.mesh.triangles.size(), scratch_.triangles.size(), at};
@@ -435,8 +441,12 @@ private:
         model_.surfaces.push_back(std::move(s));
     }
 
+    static constexpr int kMaxFileReads = 100000;
+    static constexpr std::size_t kMaxVertices = std::size_t{1} << 30;  // indices are 32-bit
+
     const RadianceOptions& options_;
     RadianceModel& model_;
+    int files_read_ = 0;
     std::unordered_map<std::string, int> by_name_;  // the latest definition of each name
     TriangleMesh scratch_;
 };

@@ -66,14 +66,17 @@ bool append_polygon(const std::vector<Vec3>& vertices, TriangleMesh& out) {
     // vertices strictly inside; pass 2 takes any convex vertex (a self-intersecting outline).
     bool clean = true;
     int pass = 0;
+    std::size_t start = 0;  // the search goes on where the last ear was cut: O(n^2) for usual outlines
     while (ring.size() > 3) {
         const std::size_t n = ring.size();
         bool clipped = false;
-        for (std::size_t k = 0; k < n && !clipped; ++k) {
+        for (std::size_t step = 0; step < n && !clipped; ++step) {
+            const std::size_t k = (start + step) % n;
             const std::size_t ia = ring[(k + n - 1) % n], ib = ring[k], ic = ring[(k + 1) % n];
             const double o = orient(p[ia], p[ib], p[ic]);
             if (std::abs(o) <= flat) {  // a flat vertex or a spike: drop it, no triangle
                 ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+                start = k == 0 ? 0 : k - 1;
                 clipped = true;
                 break;
             }
@@ -98,6 +101,7 @@ bool append_polygon(const std::vector<Vec3>& vertices, TriangleMesh& out) {
             if (blocked) continue;
             emit(ia, ib, ic);
             ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+            start = k == 0 ? 0 : k - 1;
             clipped = true;
         }
         if (clipped) {

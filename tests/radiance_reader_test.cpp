@@ -332,6 +332,7 @@ TEST(RadianceReader, MalformedInputNamesFileLineAndProblem) {
         {head + "!genbox white box 1 1 1\n", ":5:", "would run a program"},
         {head + "!xform -t 0 0 1 tri.rad | xform -s 2\n", ":5:", "uses the shell"},
         {head + "\n!xform -t 0 0 1 missing.rad\n", ":6:", "'missing.rad' does not exist"},
+        {head + "!xform " + std::string(300, 'n') + ".rad\n", ":5:", "does not exist"},  // longer than NAME_MAX
         {head + "!xform -t 0 1 tri.rad\n", ":5:", "-t takes a number"},
         {head + "!xform -q tri.rad\n", ":5:", "'-q' is not read"},
         {head + "!xform -t 0 0 1\n", ":5:", "names no file"},

@@ -187,7 +187,8 @@ public:
             throw InputError(included_at + ": more than " + std::to_string(kMaxFileReads) +
                              " files read through xform (arrays of nested includes?)");
         std::ifstream in(path, std::ios::binary);
-        if (!in || fs::is_directory(path))
+        std::error_code ec;  // a name the file system cannot look up is a missing file, not a crash
+        if (!in || fs::is_directory(path, ec))
             throw InputError(included_at.empty() ? "cannot open Radiance file '" + path.string() + "'"
                                                  : included_at + ": cannot open '" + path.string() + "'");
         std::ostringstream buf;
@@ -250,7 +251,8 @@ private:
                 inner.new_modifier = ctx.new_modifier.empty() ? xf.new_modifier : ctx.new_modifier;
                 inner.depth = ctx.depth + 1;
                 const fs::path p = fs::path(f).is_absolute() ? fs::path(f) : path.parent_path() / f;
-                if (!fs::is_regular_file(p))
+                std::error_code ec;
+                if (!fs::is_regular_file(p, ec))
                     throw InputError(where + ": xform file '" + f + "' does not exist (looked for '" + p.string() +
                                      "')");
                 read_file(p, inner, where);

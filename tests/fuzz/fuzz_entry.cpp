@@ -13,6 +13,7 @@
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/renderer.hpp"
 #include "luxtrace/render/tone_map.hpp"
+#include "luxtrace/scene/radiance_reader.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/weather/weather_file.hpp"
@@ -82,6 +83,21 @@ TILT=NONE
 300 250 120 10 0
 300 240 100 5 0
 300 230 90 0 0
+)";
+
+// A Radiance file that fuzzed .rad inputs may include with !xform.
+constexpr std::string_view kPartRad = R"(void plastic grey
+0
+0
+5 .5 .5 .5 0 0
+grey polygon floor
+0
+0
+12 0 0 0 1 0 0 1 1 0 0 1 0
+grey sphere ball
+0
+0
+4 .5 .5 .5 .2
 )";
 
 // The scene of the result target's seeds (tests/fuzz/make_result_seeds.sh writes results
@@ -231,6 +247,7 @@ const fs::path& private_dir() {
         write_file(d / "cube.mtl", kCubeMtl);
         write_file(d / "tri.ply", kTriPly);
         write_file(d / "light.ies", kLightIes);
+        write_file(d / "part.rad", kPartRad);
         std::atexit([] {
             std::error_code ec;
             fs::remove_all(private_dir(), ec);
@@ -528,6 +545,40 @@ int fuzz_pts(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+int fuzz_radiance(const std::uint8_t* data, std::size_t size) {
+    const fs::path file = write_input("input.rad", data, size);
+    RadianceModel m;
+    RadianceOptions options;
+    options.chord_tolerance = 0.05;  // coarse: many curved surfaces stay quick
+    try {
+        m = read_radiance(file, options);
+    } catch (const InputError&) {
+        return 0;
+    }
+    // What a read model promises: triangles naming existing vertices, finite vertices,
+    // one material per triangle that is a material record, surfaces covering the
+    // triangles in order, unit source directions.
+    if (m.triangle_modifier.size() != m.mesh.triangles.size()) broken("per-triangle modifiers differ in size");
+    for (const Vec3& v : m.mesh.vertices)
+        if (!finite(v)) broken("vertex not finite");
+    for (std::size_t t = 0; t < m.mesh.triangles.size(); ++t) {
+        for (int k = 0; k < 3; ++k)
+            if (m.mesh.triangles[t][k] >= m.mesh.vertices.size()) broken("triangle names a missing vertex");
+        if (m.triangle_modifier[t] >= m.modifiers.size()) broken("triangle modifier out of range");
+    }
+    std::size_t next = 0;
+    for (const RadianceSurface& s : m.surfaces) {
+        if (s.first_triangle != next) broken("surfaces do not cover the triangles in order");
+        next += s.triangle_count;
+        if (s.modifier < 0 || static_cast<std::size_t>(s.modifier) >= m.modifiers.size()) broken("surface modifier");
+    }
+    if (next != m.mesh.triangles.size()) broken("surfaces do not cover the triangles");
+    for (const RadianceSource& src : m.sources)
+        if (!(std::abs(glm::length(src.direction) - 1.0) < 1e-9) || !(src.angle_deg > 0.0))
+            broken("source direction or angle");
+    return 0;
+}
+
 Entry entry_by_name(const std::string& name) {
     if (name == "scene") return fuzz_scene;
     if (name == "ies") return fuzz_ies;
@@ -535,6 +586,7 @@ Entry entry_by_name(const std::string& name) {
     if (name == "result") return fuzz_result;
     if (name == "weather") return fuzz_weather;
     if (name == "pts") return fuzz_pts;
+    if (name == "radiance") return fuzz_radiance;
     return nullptr;
 }
 

@@ -31,8 +31,12 @@ int fuzz_weather(const std::uint8_t* data, std::size_t size);
 // detector's plane lookup built on what it read.
 int fuzz_pts(const std::uint8_t* data, std::size_t size);
 
+// A Radiance scene file (.rad), read by luxtrace::read_radiance; its `!xform` lines may
+// name part.rad, a valid small file beside it (see fuzz_entry.cpp).
+int fuzz_radiance(const std::uint8_t* data, std::size_t size);
+
 using Entry = int (*)(const std::uint8_t*, std::size_t);
-// "scene", "ies", "mesh", "result", "weather", "pts" -> the entry function, or nullptr.
+// "scene", "ies", "mesh", "result", "weather", "pts", "radiance" -> the entry function, or nullptr.
 Entry entry_by_name(const std::string& name);
 
 }  // namespace luxtrace::fuzz

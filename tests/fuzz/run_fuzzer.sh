@@ -2,7 +2,7 @@
 # Runs one libFuzzer target of build-fuzz/ (tests/fuzz/README.md) on a working copy of
 # its committed corpus:
 #   bash tests/fuzz/run_fuzzer.sh TARGET SECONDS [more libFuzzer options]
-# TARGET is scene, ies, mesh, result, weather or pts. New inputs go to build-fuzz/fuzz/TARGET/corpus,
+# TARGET is scene, ies, mesh, result, weather, pts or radiance. New inputs go to build-fuzz/fuzz/TARGET/corpus,
 # crashes to build-fuzz/fuzz/TARGET/artifacts/, the log to build-fuzz/fuzz/TARGET/log.
 # LUXTRACE_FUZZ_WORK=DIR puts corpus/, artifacts/ and log there instead; LUXTRACE_FUZZ_SEEDS
 # lists the seed files or folders to copy into it (globs allowed) instead of the whole
@@ -37,6 +37,7 @@ case $target in
   # leaves open are caught by the entry function instead.
   weather) opts+=(-max_len=16384) ;;
   pts)    opts+=(-max_len=16384) ;;
+  radiance) opts+=(-max_len=16384) ;;
   result) opts+=(-max_len=65536 -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
           asan+=:suppressions=$here/asan.supp ;;
   *) echo "unknown target $target" >&2; exit 2 ;;

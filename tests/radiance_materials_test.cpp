@@ -18,13 +18,13 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kY{"Y"}, kRgb{"R", "G", "B"};
 
+// Each test process writes its own files (ctest runs the cases as parallel processes).
 RadianceModel model_of(const std::string& text) {
+    static const test_support::ScratchDir dir("radiance_materials");
     static int n = 0;
-    const fs::path p = fs::temp_directory_path() / ("luxtrace_radmat_" + std::to_string(++n) + ".rad");
+    const fs::path p = dir.path() / ("model_" + std::to_string(++n) + ".rad");
     std::ofstream(p) << text;
-    RadianceModel m = read_radiance(p);
-    fs::remove(p);
-    return m;
+    return read_radiance(p);
 }
 
 double y_of(double r, double g, double b) {

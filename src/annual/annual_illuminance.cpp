@@ -34,7 +34,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
     // sky patches and the ground: lambda from the cell's indirect registrations pooled over
     // all of them, shared out by the groups' fluxes (which decide their photons), lambda =
     // (I_c + 1/2) Phi_g / Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A
-    // sun: its counts smoothed with those of the same hour on the day before and after, for
+    // sun: its counts pooled with those of the same hour on the day before and after, for
     // the total and for the direct count alike; where all read 0, the mean over all such
     // dark (sun, cell) pairs of the detector.
     sky_.assign(entries * cells, 0.0);

@@ -2,10 +2,10 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/material/glazing.hpp"
+#include "scene_loader.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace luxtrace {
 namespace {
@@ -18,15 +18,9 @@ std::vector<double> to_bands(const double rgb[3], const std::vector<std::string>
     return {rgb[0], rgb[1], rgb[2]};
 }
 
-std::string fmt(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
-}
-
 std::string list(const std::vector<double>& v) {
     std::string s;
-    for (const double x : v) s += (s.empty() ? "" : " ") + fmt(x);
+    for (const double x : v) s += (s.empty() ? "" : " ") + detail::fmt_number(x);
     return s;
 }
 
@@ -42,13 +36,14 @@ std::string RadianceMapping::describe() const {
         switch (material.type) {
         case MaterialType::black: s += "black"; break;
         case MaterialType::glazing:
-            s += "glazing, transmittance " + list(material.transmittance) + ", index " + fmt(material.ior);
+            s += "glazing, transmittance " + list(material.transmittance) + ", index " +
+                 detail::fmt_number(material.ior);
             break;
-        case MaterialType::glass: s += "glass, index " + fmt(material.ior); break;
+        case MaterialType::glass: s += "glass, index " + detail::fmt_number(material.ior); break;
         default:
             s += "diffuse reflectance " + list(material.diffuse_reflectance) + ", specular " +
                  list(material.specular_reflectance) +
-                 (material.roughness > 0.0 ? " (roughness " + fmt(material.roughness) + ")" : "") +
+                 (material.roughness > 0.0 ? " (roughness " + detail::fmt_number(material.roughness) + ")" : "") +
                  ", diffuse transmittance " + list(material.diffuse_transmittance) + ", specular transmittance " +
                  list(material.specular_transmittance);
         }
@@ -70,9 +65,9 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
     auto colour = [&](std::size_t first) {
         double c[3] = {m.reals.at(first), m.reals.at(first + 1), m.reals.at(first + 2)};
         for (double& x : c) {
-            if (x < 0.0) throw InputError(where + ": a negative colour component (" + fmt(x) + ")");
+            if (x < 0.0) throw InputError(where + ": a negative colour component (" + detail::fmt_number(x) + ")");
             if (x > 1.0) {
-                out.notes.push_back("colour component " + fmt(x) + " above 1 taken as 1");
+                out.notes.push_back("colour component " + detail::fmt_number(x) + " above 1 taken as 1");
                 x = 1.0;
             }
         }
@@ -84,7 +79,7 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
     };
     auto unit_fraction = [&](double x, const char* what) {
         if (x < 0.0 || x > 1.0) {
-            out.notes.push_back(std::string(what) + " " + fmt(x) + " clamped to [0, 1]");
+            out.notes.push_back(std::string(what) + " " + detail::fmt_number(x) + " clamped to [0, 1]");
             return std::clamp(x, 0.0, 1.0);
         }
         return x;
@@ -92,8 +87,9 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
     auto roughness = [&](double rough, double spec) {
         if (!(spec > 0.0)) return;
         if (rough > WardLobe::kMaxRoughness) {
-            out.notes.push_back("roughness " + fmt(rough) + " above " + fmt(WardLobe::kMaxRoughness) + " taken as " +
-                                fmt(WardLobe::kMaxRoughness));
+            out.notes.push_back("roughness " + detail::fmt_number(rough) + " above " +
+                                detail::fmt_number(WardLobe::kMaxRoughness) + " taken as " +
+                                detail::fmt_number(WardLobe::kMaxRoughness));
             rough = WardLobe::kMaxRoughness;
         }
         out.material.set_roughness(std::max(0.0, rough));
@@ -136,15 +132,15 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
             out.notes.push_back("the alternate material '" + m.strings[0] + "' for rays not from sources ignored");
     } else if (t == "glass") {
         // Radiance gives the transmissivity tn (one pass through the glass); luxtrace's
-        // glazing takes the pane's normal transmittance T = (1 - r0)^2 tn / (1 - r0^2 tn^2).
+        // glazing takes the pane's normal transmittance, that of a pane of transmissivity tn
+        // (glazing.hpp: T = (1 - r0)^2 tn / (1 - r0^2 tn^2)).
         const std::vector<double> tn = colour(0);
         const double ior = m.reals.size() > 3 ? m.reals[3] : 1.52;
         out.material.type = MaterialType::glazing;
         out.material.ior = ior;
-        const double r0 = interface_reflectance(ior);
         auto curves = std::make_shared<std::vector<GlazingCurve>>();
         for (const double tau : tn) {
-            const double tt = (1.0 - r0) * (1.0 - r0) * tau / (1.0 - r0 * r0 * tau * tau);
+            const double tt = pane_optics(1.0, ior, tau).transmittance;
             out.material.transmittance.push_back(tt);
             curves->push_back(pane_curve(std::clamp(tt, 1e-9, max_pane_transmittance(ior)), ior));
         }
@@ -162,7 +158,7 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
         out.material.type = MaterialType::black;
         double c[3] = {m.reals[0], m.reals[1], m.reals[2]};
         for (const double x : c)
-            if (x < 0.0) throw InputError(where + ": a negative radiance (" + fmt(x) + ")");
+            if (x < 0.0) throw InputError(where + ": a negative radiance (" + detail::fmt_number(x) + ")");
         out.luminance_cd_m2 = scaled(to_bands(c, bands), kRadianceEfficacy_lm_per_W);
         if (t == "glow") out.notes.push_back("glow's radius of influence ignored: a light everywhere");
         if (t == "spotlight") out.notes.push_back("spotlight cone ignored: a Lambertian emitter");

@@ -9,9 +9,10 @@
 // this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
 // emitting group reached gets, in its hourly error, the variance of its expected count estimated
 // from data (AnnualCoefficients()), not 0. A sun's interreflected part is pooled over the same
-// hour of the neighbouring days (its direct part stays the hour's own), and the replicates
-// draw suns around their pooled means. The direct sun (LM-83's ASE)
-// is the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
+// hour of the neighbouring days (its direct part stays the hour's own); the replicates draw
+// a sun's direct count around its pooled mean and its interreflected count around an
+// empirical-Bayes centre. The direct sun (LM-83's ASE) is the hour's sun group's direct
+// registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 #include "luxtrace/tally/tally.hpp"
@@ -40,8 +41,8 @@ public:
     // The estimate alone (kept: later calls copy it).
     void estimate(AnnualSeries& out) const;
     // What the replicates are drawn around: a fresh run's expected values as the data say
-    // them (the sky and ground at their counts, the suns at their means smoothed over the
-    // neighbouring days).
+    // them (the sky and ground at their counts, a sun's direct count at its mean pooled over
+    // the neighbouring days, its interreflected count at its empirical-Bayes centre).
     void centre(AnnualSeries& out) const;
     // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
     // a Poisson count of its variance, for the errors of nonlinear metrics
@@ -73,7 +74,7 @@ private:
     std::vector<std::vector<std::size_t>> pool_;
     std::vector<double> pool_share_;
     // A sun's fresh-run draw, in counts (the constructor): the direct count's pooled mean,
-    // and the indirect count's pooled mean and variance.
+    // and the indirect count's empirical-Bayes centre and its variance.
     std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
     // The estimate, made once.

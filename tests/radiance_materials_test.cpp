@@ -82,7 +82,11 @@ TEST(RadianceMaterials, LightsAreLuminanceAt179LumensPerWatt) {
     EXPECT_EQ(lamp.role, RadianceRole::light);
     EXPECT_NEAR(lamp.luminance_cd_m2[0], 1790.0, 1e-9);  // the weights sum to 1
     const RadianceMapping dim = map_radiance_modifier(m, 1, kRgb);
-    EXPECT_NEAR(dim.luminance_cd_m2[2], 3.0 * 179.0, 1e-12);
+    // R, G, B bands share the luminance as Radiance weighs the channels: they sum to 179 x
+    // its luminance, as the one band Y does.
+    EXPECT_NEAR(dim.luminance_cd_m2[2], 3.0 * 179.0 * kRadianceLuminanceWeights[2], 1e-12);
+    EXPECT_NEAR(dim.luminance_cd_m2[0] + dim.luminance_cd_m2[1] + dim.luminance_cd_m2[2],
+                map_radiance_modifier(m, 1, kY).luminance_cd_m2[0], 1e-9);
     EXPECT_FALSE(dim.notes.empty());  // glow's radius is an approximation, and says so
     EXPECT_EQ(map_radiance_modifier(m, 2, kY).role, RadianceRole::portal);
 }

@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -30,8 +31,65 @@ using namespace luxtrace;
 
 namespace {
 
+// The scene: one TOML scene file, or Radiance model files (sky first, as oconv takes them)
+// with a sensor file.
+struct SceneArgs {
+    std::vector<std::string> files;
+    std::string sensors;
+    std::optional<double> sensor_radius_m, scale;
+
+    bool radiance() const { return !files.empty() && is_radiance_file(files.front()); }
+    // As the user would type them again (for "continue with").
+    std::string command_line() const {
+        std::string s;
+        for (const std::string& f : files) s += (s.empty() ? "" : " ") + f;
+        if (!sensors.empty()) s += " --sensors " + sensors;
+        return s;
+    }
+};
+
+Scene load_scene_args(const SceneArgs& a) {
+    if (!a.radiance()) {
+        if (a.files.size() != 1)
+            throw InputError("give one scene file (TOML), or Radiance models (.rad) with --sensors; got " +
+                             std::to_string(a.files.size()) + " files");
+        if (!a.sensors.empty() || a.sensor_radius_m || a.scale)
+            throw InputError("--sensors, --sensor-radius and --scale apply to Radiance models (.rad); a scene file "
+                             "names its own sensors ([[detector]] type = \"points\") and [[radiance]] scale");
+        return load_scene(a.files.front());
+    }
+    RadianceRun run;
+    for (const std::string& f : a.files) {
+        if (!is_radiance_file(f))
+            throw InputError(f + ": give either one scene file (TOML) or Radiance files (.rad, .mat, .sky), not both");
+        run.models.emplace_back(f);
+    }
+    if (!a.sensors.empty()) run.sensors = a.sensors;
+    if (a.sensor_radius_m) {
+        if (!(*a.sensor_radius_m > 0.0)) throw InputError("--sensor-radius: must be positive");
+        if (a.sensors.empty()) throw InputError("--sensor-radius: applies with --sensors");
+        run.sensor_radius_m = a.sensor_radius_m;
+    }
+    if (a.scale) {
+        if (!(*a.scale > 0.0 && std::isfinite(*a.scale))) throw InputError("--scale: must be positive");
+        run.scale = *a.scale;
+    }
+    return load_radiance_scene(run);
+}
+
+void add_scene_options(CLI::App* app, SceneArgs& a, const std::string& verb) {
+    app->add_option("scene", a.files,
+                    "scene file (TOML), or Radiance files (.rad, .mat, .sky: sky first, as oconv takes them) to " +
+                        verb)
+        ->required();
+    app->add_option("--sensors", a.sensors, "Radiance models: a sensor file (.pts, x y z dx dy dz a line)");
+    app->add_option("--sensor-radius", a.sensor_radius_m,
+                    "Radiance models: the sensors' disc radius in m (default: half the smallest spacing)");
+    app->add_option("--scale", a.scale, "Radiance models: metres per model unit (0.3048 for feet; default 1)");
+}
+
 struct RunArgs {
-    std::string scene;
+    SceneArgs scene;
     std::string photons, seed, report_every_photons;
     std::optional<double> time_limit, target, report_every, checkpoint_every;
     std::optional<int> threads;
@@ -113,7 +171,7 @@ std::atomic<int> g_stop_signal{0};
 extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
 
 int cmd_run(const Communicator& comm, const RunArgs& a) {
-    Scene scene = load_scene(a.scene);
+    Scene scene = load_scene_args(a.scene);
     apply_overrides(scene, a);
     if (a.threads && *a.threads < 1) throw InputError("--threads: must be at least 1");
     RunOptions opt;
@@ -161,14 +219,14 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
         std::cout << "result: " << fs::absolute(s.output).string() << '\n';
         if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';
         if (s.exit_code == 3)
-            std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run " << a.scene
-                      << " --restart " << s.checkpoint << '\n';
+            std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run "
+                      << a.scene.command_line() << " --restart " << s.checkpoint << '\n';
     }
     return s.exit_code;
 }
 
-int cmd_check(const std::string& path) {
-    const Scene scene = load_scene(path);
+int cmd_check(const SceneArgs& args) {
+    const Scene scene = load_scene_args(args);
     const EmbreeScene embree(scene);
     std::vector<std::string> warnings = scene.warnings;
     for (std::string& w : probe_scene(scene, embree)) warnings.push_back(std::move(w));
@@ -195,7 +253,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "luxtrace " LUXTRACE_VERSION, "print the version and git commit, then exit");
     RunArgs ra;
     auto* run = app.add_subcommand("run", "simulate a scene and write the result file");
-    run->add_option("scene", ra.scene, "scene file (TOML)")->required();
+    add_scene_options(run, ra.scene, "simulate");
     run->add_option("--photons", ra.photons,
                     "photon budget (1000000, 1e6 and 1M are the same); with --restart the new budget, at least the "
                     "checkpoint's photons");
@@ -214,9 +272,10 @@ int main(int argc, char** argv) {
     run->add_option("--sampler", ra.sampler, "random (Philox) | sobol (Owen-scrambled, docs/QMC.md)");
     run->add_option("--replicates", ra.replicates, "sobol: independent randomisations R, even (default 8)");
     run->add_flag("--quiet", ra.quiet, "no progress output");
-    std::string check_path, info_path;
+    std::string info_path;
+    SceneArgs check_args;
     auto* check = app.add_subcommand("check", "parse and validate a scene, print a summary");
-    check->add_option("scene", check_path, "scene file (TOML)")->required();
+    add_scene_options(check, check_args, "check");
     auto* info = app.add_subcommand("info", "print the stored summary of a result file");
     info->add_option("result", info_path, "result file (.h5)")->required();
     std::optional<std::string> info_scene;
@@ -268,7 +327,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*run) return cmd_run(comm, ra);
-        if (*check) return comm.is_root() ? cmd_check(check_path) : 0;
+        if (*check) return comm.is_root() ? cmd_check(check_args) : 0;
         if (*info) return comm.is_root() ? cmd_info(info_path, info_scene) : 0;
         if (*render) return comm.is_root() ? cmd_render(rd) : 0;
         if (*photometry) return comm.is_root() ? cmd_photometry(photometry_files, lamp_set) : 0;

@@ -88,6 +88,11 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
         out << "  " << std::left << std::setw(16) << s.materials[m].name << std::right << std::setw(8)
             << type_name(s.materials[m].type) << "  albedo " << std::setprecision(3) << albedo(s.materials[m], 0)
             << "  " << count[m] << " triangles, " << area[m] << " m^2\n";
+    // What each Radiance modifier became, with the approximations made (docs/RADIANCE.md).
+    if (!s.radiance_modifiers.empty()) {
+        out << "radiance   " << s.radiance_modifiers.size() << " modifiers\n";
+        for (const std::string& m : s.radiance_modifiers) out << "  " << m << '\n';
+    }
     if (s.annual) print_annual_lights(s, out);
     else
         out << "lights     " << s.lights.lights().size() << ", total " << std::setprecision(6)

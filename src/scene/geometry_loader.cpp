@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -165,36 +166,21 @@ struct GeometryReader : StepReader {
     }
 
     void add_triangles(const TriangleMesh& mesh, std::uint32_t default_material, TableReader& r) {
-        if (scene.triangles.size() + mesh.triangles.size() > kMaxSceneTriangles)
-            r.fail_entry("the scene would have " + std::to_string(scene.triangles.size() + mesh.triangles.size()) +
-                         " triangles; a scene may have at most " + std::to_string(kMaxSceneTriangles));
-        for (const Vec3& v : mesh.vertices)
-            if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate &&
-                  std::abs(v.z) <= kMaxCoordinate))
-                r.fail_entry("a vertex at (" + fmt_number(v.x) + ", " + fmt_number(v.y) + ", " + fmt_number(v.z) +
-                             ") lies outside the +-" + fmt_number(kMaxCoordinate) + " m that luxtrace can place");
-        const auto base = static_cast<unsigned>(scene.vertices.size());
-        for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-            std::uint32_t mat = default_material;
-            const std::string& usemtl = mesh.material_names[t];
-            if (!usemtl.empty()) {
-                const auto it = material_index.find(usemtl);
-                if (it != material_index.end()) mat = it->second;
-            }
-            if (mat == UINT32_MAX)
-                r.fail_entry("triangles with file material '" + usemtl +
-                             "' match no [[material]] and no default 'material' is given");
-            const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
-            const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
-            const Vec3 cr = glm::cross(b - a, c - a);
-            const double area = 0.5 * glm::length(cr);
-            if (!(area > 0.0)) continue;  // degenerate triangles carry no light and no map entry
-            scene.triangles.push_back(tri);
-            scene.triangle_material.push_back(mat);
-            scene.triangle_area_m2.push_back(area);
-            scene.triangle_normal.push_back(cr / (2.0 * area));
-        }
+        add_mesh_triangles(
+            load, mesh,
+            [&](std::size_t t) {
+                std::uint32_t mat = default_material;
+                const std::string& usemtl = mesh.material_names[t];
+                if (!usemtl.empty()) {
+                    const auto it = material_index.find(usemtl);
+                    if (it != material_index.end()) mat = it->second;
+                }
+                if (mat == UINT32_MAX)
+                    r.fail_entry("triangles with file material '" + usemtl +
+                                 "' match no [[material]] and no default 'material' is given");
+                return mat;
+            },
+            [&](const std::string& what) { r.fail_entry(what); });
     }
 
     void parse_mesh(const toml::table& t, std::size_t i) {
@@ -288,6 +274,36 @@ struct GeometryReader : StepReader {
 
 }  // namespace
 
+std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh& mesh,
+                                             const std::function<std::uint32_t(std::size_t)>& material_of,
+                                             const std::function<void(const std::string&)>& fail) {
+    Scene& scene = load.scene;
+    if (scene.triangles.size() + mesh.triangles.size() > kMaxSceneTriangles)
+        fail("the scene would have " + std::to_string(scene.triangles.size() + mesh.triangles.size()) +
+             " triangles; a scene may have at most " + std::to_string(kMaxSceneTriangles));
+    for (const Vec3& v : mesh.vertices)
+        if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate))
+            fail("a vertex at (" + fmt_number(v.x) + ", " + fmt_number(v.y) + ", " + fmt_number(v.z) +
+                 ") lies outside the +-" + fmt_number(kMaxCoordinate) + " m that luxtrace can place");
+    const auto base = static_cast<unsigned>(scene.vertices.size());
+    for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
+    std::vector<std::int64_t> placed(mesh.triangles.size(), -1);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::uint32_t mat = material_of(t);
+        const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
+        const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
+        const Vec3 cr = glm::cross(b - a, c - a);
+        const double area = 0.5 * glm::length(cr);
+        if (!(area > 0.0)) continue;  // degenerate triangles carry no light and no map entry
+        placed[t] = static_cast<std::int64_t>(scene.triangles.size());
+        scene.triangles.push_back(tri);
+        scene.triangle_material.push_back(mat);
+        scene.triangle_area_m2.push_back(area);
+        scene.triangle_normal.push_back(cr / (2.0 * area));
+    }
+    return placed;
+}
+
 void read_geometry(SceneLoad& load, TableReader& root) {
     GeometryReader g(load);
     const auto materials = tables_of(root, "material");
@@ -296,6 +312,7 @@ void read_geometry(SceneLoad& load, TableReader& root) {
     for (std::size_t i = 0; i < meshes.size(); ++i) g.parse_mesh(*meshes[i], i);
     const auto shapes = tables_of(root, "shape");
     for (std::size_t i = 0; i < shapes.size(); ++i) g.parse_shape(*shapes[i], i);
+    read_radiance_models(load, root);
     g.finish_geometry();
 }
 

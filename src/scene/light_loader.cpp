@@ -227,7 +227,10 @@ struct LightReader : StepReader {
     std::size_t group_of(TableReader& r) {
         const auto name = r.string("group");
         if (name) check_group_name(r, "group", *name);
-        const std::string group = name.value_or(Scene::kDefaultLightGroup);
+        return group_named(name.value_or(Scene::kDefaultLightGroup));
+    }
+
+    std::size_t group_named(const std::string& group) {
         const auto it = std::find(groups.begin(), groups.end(), group);
         if (it != groups.end()) return static_cast<std::size_t>(it - groups.begin());
         groups.push_back(group);
@@ -304,11 +307,13 @@ struct LightReader : StepReader {
         return v;
     }
 
-    std::vector<Light> parse_light(const toml::table& t, std::size_t i) {
-        TableReader r(t, fname, entry_name("light", i, t), "light");
+    // `label`: the light's name in messages and results, "light i (type)" unless given
+    // (a Radiance model's lights are named by their modifier).
+    std::vector<Light> parse_light(const toml::table& t, std::size_t i, const std::string& label = "") {
+        TableReader r(t, fname, label.empty() ? entry_name("light", i, t) : label, "light");
         Light l;
         const std::string type = r.string("type").value_or("");
-        l.label = "light " + std::to_string(i + 1) + " (" + type + ")";
+        l.label = label.empty() ? "light " + std::to_string(i + 1) + " (" + type + ")" : label;
         l.group = group_of(r);  // shared by every copy at `positions` or on the `grid`
         auto flux = [&](const char* key) {
             const auto f = r.number(key);
@@ -496,13 +501,9 @@ void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
 
 }  // namespace
 
-EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
-                             const std::string& name) {
-    const auto it = load.named_shapes.find(name);
-    if (it == load.named_shapes.end()) r.fail(key, "no [[shape]] is named '" + name + "'");
-    const Scene& scene = load.scene;
+EmitterSurface triangles_surface(const Scene& scene, const std::vector<std::size_t>& triangles) {
     EmitterSurface s;
-    for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) {
+    for (const std::size_t tri : triangles) {
         const glm::uvec3 v = scene.triangles[tri];
         const Vec3 a(scene.vertices[v.x]), b(scene.vertices[v.y]), c(scene.vertices[v.z]);
         s.p0.push_back(a);
@@ -513,9 +514,20 @@ EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const 
         s.area_m2 += scene.triangle_area_m2[tri];
         s.cdf.push_back(s.area_m2);
     }
+    if (s.area_m2 > 0.0 && std::isfinite(s.area_m2))
+        for (double& c : s.cdf) c /= s.area_m2;
+    return s;
+}
+
+EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
+                             const std::string& name) {
+    const auto it = load.named_shapes.find(name);
+    if (it == load.named_shapes.end()) r.fail(key, "no [[shape]] is named '" + name + "'");
+    std::vector<std::size_t> triangles;
+    for (std::size_t tri = it->second.first; tri < it->second.second; ++tri) triangles.push_back(tri);
+    EmitterSurface s = triangles_surface(load.scene, triangles);
     if (!(s.area_m2 > 0.0 && std::isfinite(s.area_m2)))
         r.fail(key, "shape '" + name + "' has no area to emit from (its triangles are degenerate)");
-    for (double& c : s.cdf) c /= s.area_m2;
     return s;
 }
 
@@ -533,6 +545,11 @@ void read_lights(SceneLoad& load, TableReader& root) {
     const auto tables = tables_of(root, "light");
     Scene& scene = load.scene;
     if (root.has("annual")) {
+        if (!load.radiance_lights.empty())
+            throw InputError(load.fname +
+                             ": [annual] makes the scene's lights (sky patches and suns from the weather "
+                             "file), and its Radiance model brings " +
+                             load.radiance_lights[0].label + ": leave the model's sky and lights out of an annual run");
         if (!tables.empty())
             throw InputError(load.fname + ": [annual] makes the scene's lights (sky patches and suns from the weather "
                                           "file): remove its [[light]] tables");
@@ -543,7 +560,20 @@ void read_lights(SceneLoad& load, TableReader& root) {
     }
     for (std::size_t i = 0; i < tables.size(); ++i)
         for (Light& l : reader.parse_light(*tables[i], i)) lights.push_back(std::move(l));
-    if (lights.empty()) throw InputError(load.fname + ": the scene has no [[light]]");
+    for (SceneLoad::RadianceLight& rl : load.radiance_lights) {
+        if (!rl.table.empty()) {
+            for (Light& l : reader.parse_light(rl.table, lights.size(), rl.label)) lights.push_back(std::move(l));
+            continue;
+        }
+        rl.light.group = reader.group_named(Scene::kDefaultLightGroup);
+        lights.push_back(std::move(rl.light));
+    }
+    if (lights.empty())
+        throw InputError(load.fname + (root.has("radiance")
+                                           ? ": the scene has no light: no [[light]], and its Radiance models have no "
+                                             "light, glow or spotlight surface, no distant source and no !gensky or "
+                                             "!gendaylit (add the sky file: luxtrace run sky.rad model.rad ...)"
+                                           : ": the scene has no [[light]]"));
     reader.add_sun_ground_glow(lights);
     place_beams(scene.bounds_min, scene.bounds_max, lights);
     check_fluxes(load.fname, lights);

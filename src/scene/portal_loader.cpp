@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 
 namespace luxtrace::detail {
@@ -35,20 +36,15 @@ void warn_of_exterior_geometry(SceneLoad& load, const Portal& portal, double ext
                                       "(docs/DAYLIGHT.md, Portals)");
 }
 
-// The opening on [[shape]] `name`: its triangles, which must lie in one plane with one
-// orientation. The shape's front normal points into the room; `flip` turns that round.
-std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::vector<std::string>& used) {
-    const auto shape = r.string("shape");
-    if (!shape) r.fail_entry("needs 'shape' (the name of a planar [[shape]], the opening)");
-    if (std::find(used.begin(), used.end(), *shape) != used.end())
-        r.fail("shape", "shape '" + *shape + "' is already a portal");
-    used.push_back(*shape);
-    const bool flip = r.boolean("flip").value_or(false);
-    r.finish();
+// The opening `surface` named `name`: its triangles must lie in one plane with one
+// orientation (`fail`, which throws, says otherwise). Its front normal points into the room;
+// `flip` turns that round.
+std::shared_ptr<const Portal> make_portal(SceneLoad& load, const std::string& name, EmitterSurface surface, bool flip,
+                                          const std::function<void(const std::string&)>& fail) {
     const Scene& scene = load.scene;
     auto portal = std::make_shared<Portal>();
-    portal->name = *shape;
-    portal->surface = shape_surface(load, r, "shape", *shape);
+    portal->name = name;
+    portal->surface = std::move(surface);
     const EmitterSurface& s = portal->surface;
     // Planar: one normal (the first triangle's with area), every vertex on its plane.
     Vec3 normal(0.0);
@@ -63,9 +59,9 @@ std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::
                                      std::abs(glm::dot(s.p0[i] + s.e2[i] - s.p0[0], normal))});
         const bool has_area = scene.triangle_area_m2[static_cast<std::size_t>(s.scene_triangle[i])] > 0.0;
         if ((has_area && glm::dot(s.normal[i], normal) < 1.0 - 1e-9) || off > 1e-6 * (1.0 + extent))
-            r.fail("shape", "shape '" + *shape +
-                                "' is not planar (a portal is one flat opening; its triangles must lie in one plane "
-                                "and face one way)");
+            fail("'" + name +
+                 "' is not planar (a portal is one flat opening; its triangles must lie in one plane and face one "
+                 "way)");
     }
     portal->side = flip ? 1 : -1;  // photons start outside: opposite the inward normal
     portal->outward = flip ? normal : -normal;
@@ -74,22 +70,44 @@ std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::
     return portal;
 }
 
+// The opening on [[shape]] `name`.
+std::shared_ptr<const Portal> read_portal(SceneLoad& load, TableReader& r, std::vector<std::string>& used) {
+    const auto shape = r.string("shape");
+    if (!shape) r.fail_entry("needs 'shape' (the name of a planar [[shape]], the opening)");
+    if (std::find(used.begin(), used.end(), *shape) != used.end())
+        r.fail("shape", "shape '" + *shape + "' is already a portal");
+    used.push_back(*shape);
+    const bool flip = r.boolean("flip").value_or(false);
+    r.finish();
+    return make_portal(load, *shape, shape_surface(load, r, "shape", *shape), flip,
+                       [&](const std::string& what) { r.fail("shape", "shape " + what); });
+}
+
 }  // namespace
 
 void read_portals(SceneLoad& load, TableReader& root) {
     const auto tables = tables_of(root, "portal");
-    if (tables.empty()) return;
+    if (tables.empty() && load.radiance_portals.empty()) return;
     std::vector<std::shared_ptr<const Portal>> portals;
     std::vector<std::string> used;
     for (std::size_t i = 0; i < tables.size(); ++i) {
         TableReader r(*tables[i], load.fname, entry_name("portal", i, *tables[i]), "portal");
         portals.push_back(read_portal(load, r, used));
     }
+    // A Radiance model's illum surfaces face into the room, as a light source's front does.
+    for (const SceneLoad::RadiancePortal& p : load.radiance_portals)
+        portals.push_back(
+            make_portal(load, p.name, triangles_surface(load.scene, p.triangles), false,
+                        [&](const std::string& what) { throw InputError(p.where + ": illum surface " + what); }));
     Scene& scene = load.scene;
     const auto& old = scene.lights.lights();
     if (std::none_of(old.begin(), old.end(), [](const Light& l) {
             return l.type == LightType::sun || l.type == LightType::sky || l.type == LightType::sky_patch;
         })) {
+        if (tables.empty())
+            throw InputError(load.radiance_portals[0].where + ": illum surface '" + load.radiance_portals[0].name +
+                             "' is a daylight portal, and the scene has no sky or sun (no !gensky or !gendaylit, "
+                             "no [[light]] of type 'sun' or 'sky')");
         TableReader r(*tables[0], load.fname, entry_name("portal", 0, *tables[0]), "portal");
         r.fail_entry("a portal lets sun and sky light in, and the scene has no [[light]] of type 'sun' or 'sky'");
     }

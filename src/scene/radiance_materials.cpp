@@ -159,6 +159,10 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
         double c[3] = {m.reals[0], m.reals[1], m.reals[2]};
         for (const double x : c)
             if (x < 0.0) throw InputError(where + ": a negative radiance (" + detail::fmt_number(x) + ")");
+        // Bands sum to the photometric total (as a [[light]]'s colour shares do): R, G, B
+        // carry each channel's part of the luminance, w_c c_c.
+        if (bands.size() == 3)
+            for (int k = 0; k < 3; ++k) c[k] *= kRadianceLuminanceWeights[k];
         out.luminance_cd_m2 = scaled(to_bands(c, bands), kRadianceEfficacy_lm_per_W);
         if (t == "glow") out.notes.push_back("glow's radius of influence ignored: a light everywhere");
         if (t == "spotlight") out.notes.push_back("spotlight cone ignored: a Lambertian emitter");

@@ -7,6 +7,7 @@
 #include "luxtrace/scene/scene_schema.hpp"
 
 #include <sstream>
+#include <string_view>
 
 namespace luxtrace {
 
@@ -90,10 +91,13 @@ void refuse_unknown_tables(const toml::table& root, const std::string& fname) {
 
 }  // namespace
 
-Scene load_scene(const fs::path& file) {
-    detail::SceneLoad load{file, file.string(), {}, {}};
+namespace {
+
+Scene load_from_table(const toml::table& root_table, const fs::path& file, const std::string& fname) {
+    detail::SceneLoad load;
+    load.file = file;
+    load.fname = fname;
     load.scene.file = file;
-    const toml::table root_table = parse_toml(file, load.fname);
     refuse_unknown_tables(root_table, load.fname);
     detail::TableReader root(root_table, load.fname, "top level", "");
     detail::read_scene_table(load, root);
@@ -109,6 +113,56 @@ Scene load_scene(const fs::path& file) {
     detail::read_run(load, root);
     root.finish();
     return std::move(load.scene);
+}
+
+// A detector name from a file name: HDF5 group names and target paths refuse "/[]:. ".
+std::string detector_name_of(const fs::path& file) {
+    std::string name = file.stem().string();
+    for (char& c : name)
+        if (std::string_view("/[]:. ").find(c) != std::string_view::npos) c = '_';
+    return name.empty() ? "sensors" : name;
+}
+
+}  // namespace
+
+Scene load_scene(const fs::path& file) {
+    if (is_radiance_file(file))
+        throw InputError(file.string() + ": a Radiance model, not a scene file: run it with `luxtrace run " +
+                         file.filename().string() +
+                         " --sensors GRID.pts`, or name it in a scene's [[radiance]] table (docs/RADIANCE.md)");
+    return load_from_table(parse_toml(file, file.string()), file, file.string());
+}
+
+bool is_radiance_file(const fs::path& file) {
+    const std::string ext = file.extension().string();
+    return ext == ".rad" || ext == ".mat" || ext == ".sky" || ext == ".RAD";
+}
+
+Scene load_radiance_scene(const RadianceRun& run) {
+    if (run.models.empty()) throw InputError("no Radiance model given");
+    for (const fs::path& m : run.models)
+        if (!fs::is_regular_file(m)) throw InputError(m.string() + ": no such file");
+    // The scene a user would write: [[radiance]] per model, the sensors as a points detector.
+    toml::table root;
+    toml::array models;
+    // Paths as given while they resolve the same from the last model's folder (messages
+    // then name the files as the user typed them), else absolute.
+    const fs::path& last = run.models.back();
+    const auto as_given = [&](const fs::path& p) {
+        return p.is_absolute() || last.parent_path().empty() ? p.string() : fs::absolute(p).string();
+    };
+    for (const fs::path& m : run.models) models.push_back(toml::table{{"file", as_given(m)}});
+    root.insert("radiance", std::move(models));
+    if (run.scale != 1.0) {
+        for (toml::node& m : *root["radiance"].as_array()) m.as_table()->insert("scale", run.scale);
+    }
+    if (run.sensors) {
+        toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", as_given(*run.sensors)}};
+        if (run.sensor_radius_m) d.insert("radius_m", *run.sensor_radius_m);
+        root.insert("detector", toml::array{std::move(d)});
+    }
+    // Named after the last model (Radiance's order puts the sky first, the model last).
+    return load_from_table(root, last, last.string());
 }
 
 }  // namespace luxtrace

@@ -5,10 +5,13 @@
 // calls them in the order below; a step may rely on what the steps before it have put
 // into the scene.
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/scene/shapes.hpp"
 #include "toml_reader.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -22,6 +25,21 @@ struct SceneLoad {
     Scene scene;
     // [[shape]] name -> its triangles [first, last) in scene.triangles, for area lights.
     std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;
+    // What [[radiance]] models bring besides surfaces (radiance_loader.cpp): lights made
+    // whole (area and distant sources), sky and sun lights as [[light]] tables for
+    // read_lights to read like the user's, and the openings of `illum` surfaces.
+    struct RadianceLight {
+        toml::table table;  // a [[light]] table (sky, sun), or empty when `light` is set
+        Light light;
+        std::string label;
+    };
+    struct RadiancePortal {
+        std::string name;
+        std::vector<std::size_t> triangles;  // scene triangles of the opening
+        std::string where;                   // "file:line" of the illum surface
+    };
+    std::vector<RadianceLight> radiance_lights;
+    std::vector<RadiancePortal> radiance_portals;
 
     // A path in the scene file, relative to the scene file's folder unless absolute.
     std::filesystem::path resolve(const std::string& path) const;
@@ -45,6 +63,15 @@ Vec3 unit_vector(TableReader& r, const std::string& key, Vec3 v);
 // A number as the user would write it (up to 15 significant digits).
 std::string fmt_number(double v);
 
+// Appends the mesh's triangles to the scene, triangle t with material material_of(t); leaves
+// out degenerate ones. Returns each mesh triangle's index in the scene (-1 if left out).
+// `fail` is called (and must throw) for a scene grown too large or a vertex out of range.
+std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh& mesh,
+                                             const std::function<std::uint32_t(std::size_t)>& material_of,
+                                             const std::function<void(const std::string&)>& fail);
+// The scene triangles as a surface to emit from, uniform in area (any order, any planes).
+EmitterSurface triangles_surface(const Scene& scene, const std::vector<std::size_t>& triangles);
+
 // The triangles of [[shape]] `name` as a surface to emit from (area lights, portals),
 // uniform in area; refuses (at `key`) an unknown shape or one without area (light_loader.cpp).
 EmitterSurface shape_surface(const SceneLoad& load, const TableReader& r, const std::string& key,
@@ -60,6 +87,9 @@ void read_scene_table(SceneLoad& load, TableReader& root);  // scene_loader.cpp
 void read_site(SceneLoad& load, TableReader& root);
 // [[material]], [[mesh]], [[shape]]; the scene's bounds. Refuses a scene without surfaces.
 void read_geometry(SceneLoad& load, TableReader& root);
+// [[radiance]]: Radiance models' surfaces and materials (called by read_geometry, after the
+// shapes), their lights and portals kept in the load for read_lights and read_portals.
+void read_radiance_models(SceneLoad& load, TableReader& root);
 // [[light]]: Scene::lights and Scene::light_groups (directional beams need the bounds).
 // Refuses a scene without lights.
 void read_lights(SceneLoad& load, TableReader& root);

@@ -16,7 +16,8 @@ const std::vector<SceneTableSchema>& scene_schema() {
     // clang-format off
     static const std::vector<SceneTableSchema> schema = {
         {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
-             "site", "portal", "annual"}},
+             "site", "portal", "annual", "radiance"}},
+        {"radiance", {"file", "scale"}},
         {"annual",
          {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year", "ladybug_folder"}},
         {"portal", {"shape", "flip"}},

@@ -1,0 +1,202 @@
+// [[radiance]] -> a Radiance model's surfaces, materials, lights and portals in the scene
+// (docs/RADIANCE.md "Running Radiance models"). The model is read by radiance_reader, its
+// modifiers mapped by radiance_materials; this step places the triangles and turns the
+// emitters into lights: light/glow/spotlight surfaces into area lights, narrow distant
+// sources into directional beams, a 180-degree glow source overhead into a uniform sky,
+// and the !gensky / !gendaylit lines into the daylight lights (radiance_sky.hpp).
+#include "luxtrace/core/error.hpp"
+#include "luxtrace/scene/radiance_materials.hpp"
+#include "luxtrace/scene/radiance_reader.hpp"
+#include "scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace luxtrace::detail {
+
+namespace {
+
+// Distant sources up to this full angle are read as parallel beams (the sun subtends 0.53).
+constexpr double kMaxBeamSourceAngleDeg = 5.0;
+
+struct RadianceModelReader : StepReader {
+    using StepReader::StepReader;
+    const RadianceModel* model = nullptr;
+    std::vector<RadianceMapping> mappings;
+    std::vector<std::int64_t> material_of_modifier;  // scene material, -1 until used
+
+    // Whether modifier `index` is, or is modified by, the `skyfunc` of a sky command: the
+    // glow of Radiance's sky description, which the command's sky replaces.
+    bool from_sky(int index) const {
+        for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
+            if (model->modifiers[k].type == "skyfunc") return true;
+        return false;
+    }
+    bool from_brightdata(int index) const {
+        for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
+            if (model->modifiers[k].type == "brightdata") return true;
+        return false;
+    }
+    std::string modifier_where(int index) const {
+        const RadianceModifier& m = model->modifiers[static_cast<std::size_t>(index)];
+        return model->where(m.at) + ": modifier '" + m.name + "' (" + m.type + ")";
+    }
+
+    // The scene material of modifier `index`, added when first used; a name a [[material]]
+    // or an earlier modifier has taken gets the modifier's place appended.
+    std::uint32_t material(int index) {
+        std::int64_t& slot = material_of_modifier[static_cast<std::size_t>(index)];
+        if (slot >= 0) return static_cast<std::uint32_t>(slot);
+        Material m = mappings[static_cast<std::size_t>(index)].material;
+        const auto taken = [&](const std::string& name) {
+            return std::any_of(scene.materials.begin(), scene.materials.end(),
+                               [&](const Material& x) { return x.name == name; });
+        };
+        if (taken(m.name)) m.name += " (" + model->where(model->modifiers[static_cast<std::size_t>(index)].at) + ")";
+        slot = static_cast<std::int64_t>(scene.materials.size());
+        scene.materials.push_back(std::move(m));
+        return static_cast<std::uint32_t>(slot);
+    }
+
+    void read(const toml::table& t, std::size_t i) {
+        TableReader r(t, fname, entry_name("radiance", i, t), "radiance");
+        const auto file = r.string("file");
+        if (!file) r.fail_entry("needs a 'file' (a Radiance scene description, .rad)");
+        RadianceOptions options;
+        options.scale = r.number("scale").value_or(1.0);
+        if (!(options.scale > 0.0 && std::isfinite(options.scale)))
+            r.fail("scale", "must be positive (metres per model unit: 1, 0.3048 for feet, 0.001 for mm), got " +
+                                fmt_number(options.scale));
+        r.finish();
+        const RadianceModel m = read_radiance(load.resolve(*file), options);
+        model = &m;
+        for (const std::string& w : m.warnings) scene.warnings.push_back(w);
+        mappings.clear();
+        for (std::size_t k = 0; k < m.modifiers.size(); ++k) {
+            mappings.push_back(map_radiance_modifier(m, k, scene.bands));
+            scene.radiance_modifiers.push_back(model->where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " +
+                                               mappings.back().describe());
+        }
+        material_of_modifier.assign(m.modifiers.size(), -1);
+        const std::string context = fname + ":" + std::to_string(r.line("file")) + ": " + r.context();
+        const std::vector<std::int64_t> placed = add_mesh_triangles(
+            load, m.mesh, [&](std::size_t tri) { return material(static_cast<int>(m.triangle_modifier[tri])); },
+            [&](const std::string& what) { throw InputError(context + ": " + what); });
+        add_surface_lights(placed);
+        add_portals(placed);
+        add_sources();
+        add_skies();
+        model = nullptr;
+    }
+
+    // One area light per light modifier, over every surface it modifies.
+    void add_surface_lights(const std::vector<std::int64_t>& placed) {
+        std::map<std::uint32_t, std::vector<std::size_t>> triangles;  // by modifier
+        for (std::size_t tri = 0; tri < placed.size(); ++tri)
+            if (placed[tri] >= 0 && mappings[model->triangle_modifier[tri]].role == RadianceRole::light)
+                triangles[model->triangle_modifier[tri]].push_back(static_cast<std::size_t>(placed[tri]));
+        for (auto& [index, tris] : triangles) {
+            const int k = static_cast<int>(index);
+            if (from_sky(k)) {
+                scene.warnings.push_back(modifier_where(k) +
+                                         ": a surface of the sky's glow emits nothing (the sky is the !gensky or "
+                                         "!gendaylit command's)");
+                continue;
+            }
+            if (from_brightdata(k))
+                throw InputError(modifier_where(k) +
+                                 ": a light modified by brightdata (an ies2rad luminaire) is not read yet");
+            const RadianceMapping& map = mappings[index];
+            const double luminance = std::accumulate(map.luminance_cd_m2.begin(), map.luminance_cd_m2.end(), 0.0);
+            if (!(luminance > 0.0)) {
+                scene.warnings.push_back(modifier_where(k) + ": a light of zero radiance emits nothing");
+                continue;
+            }
+            SceneLoad::RadianceLight out;
+            out.label = "radiance light '" + model->modifiers[index].name + "'";
+            Light& l = out.light;
+            l.label = out.label;
+            l.type = LightType::area;
+            l.surface = triangles_surface(scene, tris);
+            // Lambertian from the front side: M = pi L, the flux M A.
+            l.flux_lm = kPi * luminance * l.surface.area_m2;
+            l.maintenance_factor = scene.maintenance_factor;
+            for (const double x : map.luminance_cd_m2) l.band_share.push_back(x / luminance);
+            load.radiance_lights.push_back(std::move(out));
+        }
+    }
+
+    void add_portals(const std::vector<std::int64_t>& placed) {
+        for (const RadianceSurface& s : model->surfaces) {
+            if (s.modifier < 0 || mappings[static_cast<std::size_t>(s.modifier)].role != RadianceRole::portal) continue;
+            SceneLoad::RadiancePortal p{s.name, {}, model->where(s.at)};
+            for (std::size_t tri = s.first_triangle; tri < s.first_triangle + s.triangle_count; ++tri)
+                if (placed[tri] >= 0) p.triangles.push_back(static_cast<std::size_t>(placed[tri]));
+            if (!p.triangles.empty()) load.radiance_portals.push_back(std::move(p));
+        }
+    }
+
+    // Distant sources: a narrow one is a parallel beam of illuminance L x its solid angle;
+    // a glow over the whole upper hemisphere a uniform sky; the sky's own glow is the sky
+    // command's.
+    void add_sources() {
+        for (const RadianceSource& s : model->sources) {
+            const std::string where = model->where(s.at) + ": source '" + s.name + "'";
+            if (s.modifier < 0) continue;
+            if (from_sky(s.modifier)) {
+                if (model->sky_commands.empty())
+                    throw InputError(where + ": the sky's glow without the !gensky or !gendaylit line that defines it");
+                continue;
+            }
+            const RadianceMapping& map = mappings[static_cast<std::size_t>(s.modifier)];
+            if (map.role != RadianceRole::light) {
+                scene.warnings.push_back(where + ": a distant source of a non-emitting material emits nothing");
+                continue;
+            }
+            const double luminance = std::accumulate(map.luminance_cd_m2.begin(), map.luminance_cd_m2.end(), 0.0);
+            if (!(luminance > 0.0)) continue;
+            SceneLoad::RadianceLight out;
+            out.label = "radiance source '" + s.name + "'";
+            if (s.angle_deg >= 179.999 && s.direction.z > 1.0 - 1e-9) {
+                out.table.insert("type", "sky");
+                out.table.insert("sky", "uniform");
+                out.table.insert("zenith_luminance_cd_m2", luminance);
+                load.radiance_lights.push_back(std::move(out));
+                continue;
+            }
+            if (!(s.angle_deg > 0.0 && s.angle_deg <= kMaxBeamSourceAngleDeg))
+                throw InputError(where + ": a distant source of " + fmt_number(s.angle_deg) +
+                                 " degrees; luxtrace reads sources up to " + fmt_number(kMaxBeamSourceAngleDeg) +
+                                 " degrees (parallel beams) and a glow over the whole sky (180 degrees, straight up) "
+                                 "as a uniform sky; give other skies as !gensky or !gendaylit");
+            Light& l = out.light;
+            l.label = out.label;
+            l.type = LightType::directional;
+            l.aim = -s.direction;  // the direction the light travels
+            l.frame = Frame::around(l.aim);
+            // E = L Omega, Omega = 2 pi (1 - cos(angle / 2)) the cone's solid angle.
+            const double omega_sr = 2.0 * kPi * (1.0 - std::cos(0.5 * s.angle_deg * kPi / 180.0));
+            l.illuminance_lx = luminance * omega_sr;
+            l.maintenance_factor = scene.maintenance_factor;
+            for (const double x : map.luminance_cd_m2) l.band_share.push_back(x / luminance);
+            load.radiance_lights.push_back(std::move(out));
+        }
+    }
+
+    void add_skies() {
+        for (const RadianceCommand& c : model->sky_commands)
+            throw InputError(model->where(c.at) + ": !" + c.program + " is read but not yet made a sky");
+    }
+};
+
+}  // namespace
+
+void read_radiance_models(SceneLoad& load, TableReader& root) {
+    RadianceModelReader reader(load);
+    const auto tables = tables_of(root, "radiance");
+    for (std::size_t i = 0; i < tables.size(); ++i) reader.read(*tables[i], i);
+}
+
+}  // namespace luxtrace::detail

@@ -1,0 +1,199 @@
+// Radiance models run as they are (issue 25; docs/RADIANCE.md "Running Radiance models"):
+// `luxtrace run model.rad --sensors grid.pts` and [[radiance]] in a scene. Physics judged by
+// each run's own error: a Lambertian `light` panel over sensors gives the exact illuminance
+// of a uniform rectangle (Radiance's 179 lm/W), a narrow distant `source` gives L times its
+// solid angle, and a model in millimetres with `scale` gives the same flux as in metres.
+// Bad input exits 2 naming the file and line, with nothing written.
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/scene/radiance_materials.hpp"
+#include "luxtrace/scene/scene.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace luxtrace {
+namespace {
+
+namespace fs = std::filesystem;
+using test_support::run_luxtrace;
+using test_support::ScratchDir;
+
+// Illuminance at a point a distance h below the corner of a parallel Lambertian rectangle
+// a x b of luminance L (the configuration factor of a differential area to a parallel
+// rectangle, times pi L).
+double corner_illuminance(double L, double a, double b, double h) {
+    const double x = a / h, y = b / h;
+    const double sx = std::sqrt(1.0 + x * x), sy = std::sqrt(1.0 + y * y);
+    return 0.5 * L * (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy));
+}
+
+// Below (px, py) at depth h from the panel [x0, x1] x [y0, y1]: the four rectangles that
+// share the point's foot as a corner, with signs.
+double panel_illuminance(double L, double x0, double x1, double y0, double y1, double px, double py, double h) {
+    const auto part = [&](double dx, double dy) {
+        const double s = (dx < 0 ? -1.0 : 1.0) * (dy < 0 ? -1.0 : 1.0);
+        return std::abs(dx) > 0 && std::abs(dy) > 0 ? s * corner_illuminance(L, std::abs(dx), std::abs(dy), h) : 0.0;
+    };
+    return part(x1 - px, y1 - py) - part(x0 - px, y1 - py) - part(x1 - px, y0 - py) + part(x0 - px, y0 - py);
+}
+
+// The mean over a sensor's disc of radius r (polar midpoint rule: the illuminance varies
+// on the scale of h, so 16 x 32 points are exact far below the runs' errors).
+double disc_mean(double L, double x0, double x1, double y0, double y1, double px, double py, double h, double r) {
+    const int nr = 16, nt = 32;
+    double sum = 0.0, weight = 0.0;
+    for (int i = 0; i < nr; ++i) {
+        const double rho = r * (i + 0.5) / nr;
+        for (int j = 0; j < nt; ++j) {
+            const double t = 2.0 * kPi * (j + 0.5) / nt;
+            sum += rho * panel_illuminance(L, x0, x1, y0, y1, px + rho * std::cos(t), py + rho * std::sin(t), h);
+            weight += rho;
+        }
+    }
+    return sum / weight;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+// A 1 m x 0.6 m panel of radiance 10 W/sr/m^2 (1790 cd/m^2) facing down, 1 m above a
+// black floor, and nine sensors on the floor.
+constexpr double kPanelX0 = -0.5, kPanelX1 = 0.5, kPanelY0 = -0.3, kPanelY1 = 0.3, kHeight = 1.0;
+const char* const kPanelRad = R"(# a ceiling panel over a black floor
+void light panel_light 0 0 3 10 10 10
+void plastic black_floor 0 0 5 0 0 0 0 0
+panel_light polygon panel 0 0 12
+  -0.5 -0.3 1   -0.5 0.3 1   0.5 0.3 1   0.5 -0.3 1
+black_floor polygon floor 0 0 12
+  -3 -3 0   3 -3 0   3 3 0   -3 3 0
+)";
+
+std::vector<Vec3> panel_sensors() {
+    std::vector<Vec3> s;
+    for (const double x : {-0.6, 0.0, 0.3})
+        for (const double y : {-0.2, 0.0, 0.4}) s.emplace_back(x, y, 0.0);
+    return s;
+}
+
+void write_pts(const fs::path& p, const std::vector<Vec3>& sensors) {
+    std::ofstream f(p);
+    for (const Vec3& s : sensors) f << s.x << ' ' << s.y << ' ' << s.z << " 0 0 1\n";
+}
+
+// Each sensor within 4.5 of its own sigma, and the mean z^2 within chi-square bounds.
+void expect_within_errors(const fs::path& result, const std::string& detector, const std::vector<double>& exact) {
+    const ResultReader r(result);
+    const std::vector<double> value = r.f64("/detectors/" + detector + "/value");
+    const std::vector<double> sigma_rel = r.f64("/detectors/" + detector + "/sigma_rel");
+    ASSERT_EQ(value.size(), exact.size());
+    double z2 = 0.0;
+    for (std::size_t k = 0; k < exact.size(); ++k) {
+        const double z = (value[k] - exact[k]) / (sigma_rel[k] * value[k]);
+        EXPECT_LT(std::abs(z), 4.5) << "sensor " << k << ": " << value[k] << " lx, exact " << exact[k]
+                                    << " lx, sigma_rel " << sigma_rel[k];
+        z2 += z * z;
+    }
+    const double n = static_cast<double>(exact.size());
+    EXPECT_LT(z2, test_support::chi2_quantile(n, test_support::kZ999)) << "sum of z^2 over " << n << " sensors";
+}
+
+TEST(RadianceRun, LightPanelGivesTheRectanglesIlluminanceAt179LumensPerWatt) {
+    ScratchDir dir("radiance_panel");
+    write(dir.path() / "panel.rad", kPanelRad);
+    const std::vector<Vec3> sensors = panel_sensors();
+    write_pts(dir.path() / "floor.pts", sensors);
+    const fs::path out = dir.path() / "panel.h5";
+    const auto o = run_luxtrace(
+        "run \"" + (dir.path() / "panel.rad").string() + "\" --sensors \"" + (dir.path() / "floor.pts").string() +
+        "\" --sensor-radius 0.1 --photons 8M --output \"" + out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    // Radiance's luminance of radiance 10 in each channel: 179 x 10 (the weights sum to 1).
+    const double L = kRadianceEfficacy_lm_per_W * 10.0;
+    std::vector<double> exact;
+    for (const Vec3& s : sensors)
+        exact.push_back(disc_mean(L, kPanelX0, kPanelX1, kPanelY0, kPanelY1, s.x, s.y, kHeight, 0.1));
+    expect_within_errors(out, "floor", exact);
+    const ResultReader r(out);
+    EXPECT_NEAR(r.attr_f64("/", "total_flux_lm"), kPi * L * 0.6, 1e-9 * L);
+}
+
+TEST(RadianceRun, NarrowDistantSourceGivesLuminanceTimesSolidAngle) {
+    ScratchDir dir("radiance_source");
+    // A sun-like source 30 degrees from the zenith over a black ground; the sensors face up.
+    const double angle_deg = 0.5, radiance = 1e5;
+    write(dir.path() / "sun.rad", R"(void light solar 0 0 3 1e5 1e5 1e5
+solar source sun 0 0 4 0.5 0 0.8660254037844387 0.5
+void plastic ground 0 0 5 0 0 0 0 0
+ground polygon g 0 0 12 -2 -2 0  2 -2 0  2 2 0  -2 2 0
+)");
+    write_pts(dir.path() / "grid.pts", {Vec3(-0.5, 0, 0.01), Vec3(0.5, 0, 0.01), Vec3(0, 0.5, 0.01)});
+    const fs::path out = dir.path() / "sun.h5";
+    const auto o = run_luxtrace("run \"" + (dir.path() / "sun.rad").string() + "\" --sensors \"" +
+                                (dir.path() / "grid.pts").string() + "\" --sensor-radius 0.2 --photons 2M --output \"" +
+                                out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    const double omega = 2.0 * kPi * (1.0 - std::cos(0.5 * angle_deg * kPi / 180.0));
+    // On a horizontal sensor: E_n cos(30 degrees).
+    const double exact = kRadianceEfficacy_lm_per_W * radiance * omega * std::cos(kPi / 6.0);
+    expect_within_errors(out, "grid", std::vector<double>(3, exact));
+}
+
+TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
+    ScratchDir dir("radiance_scale");
+    write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10
+panel_light polygon panel 0 0 12 -500 -300 1000  -500 300 1000  500 300 1000  500 -300 1000
+)");
+    write(dir.path() / "scene.toml", R"([[radiance]]
+file = "panel_mm.rad"
+scale = 0.001
+)");
+    const Scene s = load_scene(dir.path() / "scene.toml");
+    ASSERT_EQ(s.lights.lights().size(), 1u);
+    EXPECT_NEAR(s.lights.total_flux_lm(), kPi * 1790.0 * 0.6, 1e-6);
+    EXPECT_NEAR(s.bounds_max.z, 1.0, 1e-6);
+    RadianceRun run;
+    run.models = {dir.path() / "panel_mm.rad"};
+    run.scale = 0.001;
+    EXPECT_NEAR(load_radiance_scene(run).lights.total_flux_lm(), s.lights.total_flux_lm(), 1e-9);
+}
+
+TEST(RadianceRun, CheckPrintsWhatEachModifierBecomes) {
+    const auto o = run_luxtrace("check \"" + std::string(LUXTRACE_TEST_DATA_DIR) + "/radiance/cornell.rad\"");
+    ASSERT_EQ(o.code, 0) << o.out;
+    EXPECT_NE(o.out.find("cornell.rad:31: plastic mat.red_wall -> diffuse reflectance"), std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("dielectric mat.sphere -> glass, index 1.5; absorption per metre"), std::string::npos)
+        << o.out;
+    EXPECT_NE(o.out.find("radiance light 'mat.light'"), std::string::npos) << o.out;
+}
+
+TEST(RadianceRun, BadInputExitsTwoNamingTheFileAndWritesNothing) {
+    ScratchDir dir("radiance_bad");
+    write(dir.path() / "box.rad", "void plastic white 0 0 5 .5 .5 .5 0 0\n!genbox white box 1 1 1\n");
+    write(dir.path() / "panel.rad", kPanelRad);
+    write(dir.path() / "grid.pts", "0 0 0 0 0 1\n0 0 0.5 0 0\n");
+    const std::string out = (dir.path() / "out.h5").string();
+    const auto cmd = run_luxtrace("run \"" + (dir.path() / "box.rad").string() + "\" --output \"" + out + "\"");
+    EXPECT_EQ(cmd.code, 2) << cmd.out;
+    EXPECT_NE(cmd.out.find("box.rad:2:"), std::string::npos) << cmd.out;
+    const auto pts = run_luxtrace("run \"" + (dir.path() / "panel.rad").string() + "\" --sensors \"" +
+                                  (dir.path() / "grid.pts").string() + "\" --output \"" + out + "\"");
+    EXPECT_EQ(pts.code, 2) << pts.out;
+    EXPECT_NE(pts.out.find("grid.pts:2"), std::string::npos) << pts.out;
+    const auto mixed = run_luxtrace("run \"" + (dir.path() / "panel.rad").string() + "\" \"" +
+                                    (dir.path() / "grid.pts").string() + "\" --output \"" + out + "\"");
+    EXPECT_EQ(mixed.code, 2) << mixed.out;
+    const auto no_light = run_luxtrace("check \"" + std::string(LUXTRACE_TEST_DATA_DIR) + "/radiance/corner.rad\"");
+    EXPECT_EQ(no_light.code, 2) << no_light.out;
+    EXPECT_NE(no_light.out.find("no light"), std::string::npos) << no_light.out;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator{}), 3);
+}
+
+}  // namespace
+}  // namespace luxtrace

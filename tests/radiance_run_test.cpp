@@ -144,6 +144,46 @@ ground polygon g 0 0 12 -2 -2 0  2 -2 0  2 2 0  -2 2 0
     expect_within_errors(out, "grid", std::vector<double>(3, exact));
 }
 
+// A uniform sky seen through an opening is a Lambertian panel of the sky's luminance in the
+// opening: the same exact illuminance as above, with the sky a 180-degree glow source and the
+// opening an `illum` (a portal whose photons start at the opening).
+TEST(RadianceRun, UniformSkyThroughAnIllumOpeningIsTheOpeningsConfigurationFactor) {
+    ScratchDir dir("radiance_illum");
+    write(dir.path() / "sky.rad", R"(void glow skyglow 0 0 4 2 2 2 0
+skyglow source sky 0 0 4 0 0 1 180
+)");
+    // A black 4 m x 4 m x 1 m room; the roof is four pieces around the opening, which is
+    // an illum facing down into the room (the light of a source leaves its front side).
+    write(dir.path() / "room.rad", R"(void plastic black 0 0 5 0 0 0 0 0
+void illum window 0 0 3 1 1 1
+black polygon floor 0 0 12 -2 -2 0  2 -2 0  2 2 0  -2 2 0
+black polygon w1 0 0 12 -2 -2 0  -2 -2 1  2 -2 1  2 -2 0
+black polygon w2 0 0 12 -2 2 0  2 2 0  2 2 1  -2 2 1
+black polygon w3 0 0 12 -2 -2 0  -2 2 0  -2 2 1  -2 -2 1
+black polygon w4 0 0 12 2 -2 0  2 -2 1  2 2 1  2 2 0
+black polygon r1 0 0 12 -2 -2 1  -2 2 1  -0.5 2 1  -0.5 -2 1
+black polygon r2 0 0 12 0.5 -2 1  0.5 2 1  2 2 1  2 -2 1
+black polygon r3 0 0 12 -0.5 0.3 1  -0.5 2 1  0.5 2 1  0.5 0.3 1
+black polygon r4 0 0 12 -0.5 -2 1  -0.5 -0.3 1  0.5 -0.3 1  0.5 -2 1
+window polygon opening 0 0 12 -0.5 -0.3 1  -0.5 0.3 1  0.5 0.3 1  0.5 -0.3 1
+)");
+    const std::vector<Vec3> sensors = panel_sensors();
+    write_pts(dir.path() / "floor.pts", sensors);
+    const fs::path out = dir.path() / "room.h5";
+    const auto o = run_luxtrace(
+        "run \"" + (dir.path() / "sky.rad").string() + "\" \"" + (dir.path() / "room.rad").string() +
+        "\" --sensors \"" + (dir.path() / "floor.pts").string() + "\" --sensor-radius 0.1 --photons 4M --output \"" +
+        out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    const double L = kRadianceEfficacy_lm_per_W * 2.0;
+    std::vector<double> exact;
+    for (const Vec3& s : sensors)
+        exact.push_back(disc_mean(L, kPanelX0, kPanelX1, kPanelY0, kPanelY1, s.x, s.y, kHeight, 0.1));
+    expect_within_errors(out, "floor", exact);
+    // Every photon starts at the opening: the flux is the sky's through it, L pi A.
+    EXPECT_NEAR(ResultReader(out).attr_f64("/", "total_flux_lm"), kPi * L * 0.6, 1e-6 * L);
+}
+
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
     ScratchDir dir("radiance_scale");
     write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10

@@ -28,6 +28,10 @@ ResultFile::ResultFile(const std::filesystem::path& path) : reader_(path) {
     RunInfo& i = info_;
     optional_attr(r, "luxtrace_version", i.luxtrace_version, str);
     optional_attr(r, "scene_file", i.scene_file, str);
+    if (r.has_attr(kRoot, "radiance_models")) i.radiance_models = r.attr_strs(kRoot, "radiance_models");
+    optional_attr(r, "radiance_sensors", i.radiance_sensors, str);
+    optional_attr(r, "radiance_sensor_radius_m", i.radiance_sensor_radius_m, f64);
+    optional_attr(r, "radiance_scale", i.radiance_scale, f64);
     optional_attr(r, "seed", i.seed, u64);
     optional_attr(r, "ranks", i.ranks, [&](const char* n) { return static_cast<int>(u64(n)); });
     optional_attr(r, "threads_per_rank", i.threads_per_rank, [&](const char* n) { return static_cast<int>(u64(n)); });

@@ -15,6 +15,15 @@ void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
     attr(file, "format_version", kResultFormatVersion);
     attr(file, "luxtrace_version", info.luxtrace_version);
     attr(file, "scene_file", info.scene_file);
+    if (scene.radiance_run) {  // a bare Radiance model run: how to load its scene again
+        std::vector<std::string> models;
+        for (const auto& m : scene.radiance_run->models) models.push_back(m.string());
+        attr_strings(file, "radiance_models", models, false);
+        if (scene.radiance_run->sensors) attr(file, "radiance_sensors", scene.radiance_run->sensors->string());
+        if (scene.radiance_run->sensor_radius_m)
+            attr(file, "radiance_sensor_radius_m", *scene.radiance_run->sensor_radius_m);
+        attr(file, "radiance_scale", scene.radiance_run->scale);
+    }
     attr(file, "scene_name", scene.name);
     attr(file, "seed", info.seed);
     attr(file, "ranks", static_cast<std::uint64_t>(info.ranks));

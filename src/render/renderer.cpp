@@ -420,6 +420,21 @@ LuminanceImage Renderer::render(const PinholeCamera& camera, const RenderOptions
     return image;
 }
 
+namespace {
+
+// The scene a result was made from: its scene file, or the Radiance files of a bare model run.
+Scene reload_scene(const RunInfo& info) {
+    if (info.radiance_models.empty()) return load_scene(info.scene_file);
+    RadianceRun run;
+    for (const std::string& m : info.radiance_models) run.models.emplace_back(m);
+    if (!info.radiance_sensors.empty()) run.sensors = info.radiance_sensors;
+    if (info.radiance_sensor_radius_m > 0.0) run.sensor_radius_m = info.radiance_sensor_radius_m;
+    run.scale = info.radiance_scale;
+    return load_radiance_scene(run);
+}
+
+}  // namespace
+
 RenderInput load_render_input(const fs::path& result, const std::string& light_scene) {
     const ResultFile r(result);
     const std::string name = result.string();
@@ -430,7 +445,7 @@ RenderInput load_render_input(const fs::path& result, const std::string& light_s
     if (!fs::is_regular_file(scene_file))
         throw InputError(name + ": its scene file " + scene_file.string() + " does not exist any more");
     const std::vector<double> vertices = r.vertices();
-    RenderInput in{load_scene(scene_file), {}, {}};
+    RenderInput in{reload_scene(r.run_info()), {}, {}};
     const Scene& s = in.scene;
     std::string map_group = "/global";
     if (!light_scene.empty()) {

@@ -162,7 +162,12 @@ Scene load_radiance_scene(const RadianceRun& run) {
         root.insert("detector", toml::array{std::move(d)});
     }
     // Named after the last model (Radiance's order puts the sky first, the model last).
-    return load_from_table(root, last, last.string());
+    Scene scene = load_from_table(root, last, last.string());
+    RadianceRun made = run;
+    for (fs::path& m : made.models) m = fs::absolute(m);
+    if (made.sensors) made.sensors = fs::absolute(*made.sensors);
+    scene.radiance_run = std::move(made);
+    return scene;
 }
 
 }  // namespace luxtrace

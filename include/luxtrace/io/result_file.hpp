@@ -32,6 +32,11 @@ struct HistoryRow {
 struct RunInfo {
     std::string luxtrace_version;
     std::string scene_file;
+    // A bare Radiance model run (root attributes radiance_*): its files, sensors, radius, scale.
+    std::vector<std::string> radiance_models;
+    std::string radiance_sensors;
+    double radiance_sensor_radius_m = 0.0;  // 0: the default
+    double radiance_scale = 1.0;
     std::uint64_t seed = 0;
     int ranks = 1;
     int threads_per_rank = 1;

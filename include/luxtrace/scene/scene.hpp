@@ -34,6 +34,16 @@ struct LightScene {
     std::vector<double> weights;  // per light group (Scene::light_groups), 0 = off
 };
 
+// A bare Radiance model run (`luxtrace run sky.rad model.rad --sensors grid.pts`): the scene
+// of a [[radiance]] table per model, in order, and a points detector on the sensor file
+// (named after it), with every other key at its default; the scene is named after the last
+// model. docs/RADIANCE.md "Running Radiance models".
+struct RadianceRun {
+    std::vector<std::filesystem::path> models;
+    std::optional<std::filesystem::path> sensors;
+    std::optional<double> sensor_radius_m;
+    double scale = 1.0;  // metres per model unit
+};
 struct Scene {
     std::filesystem::path file;
     std::string name;
@@ -64,6 +74,9 @@ struct Scene {
     // [[radiance]] models: each modifier and what luxtrace makes of it, "file:line: TYPE
     // NAME -> ...; approximations" (radiance_materials.hpp), for `luxtrace check`.
     std::vector<std::string> radiance_modifiers;
+    // A bare Radiance model run: what it was made from (absolute paths), for the result's
+    // root attributes and for reloading it (render).
+    std::optional<RadianceRun> radiance_run;
     // [scene] maintenance_factor: the default of every light's (EN 12464-1 MF).
     double maintenance_factor = 1.0;
     Vec3 bounds_min{0.0}, bounds_max{0.0};
@@ -79,16 +92,6 @@ struct Scene {
 // Parse and validate a scene file; throws InputError naming the file and line or key.
 Scene load_scene(const std::filesystem::path& file);
 
-// A bare Radiance model run (`luxtrace run sky.rad model.rad --sensors grid.pts`): the scene
-// of a [[radiance]] table per model, in order, and a points detector on the sensor file
-// (named after it), with every other key at its default; the scene is named after the last
-// model. docs/RADIANCE.md "Running Radiance models".
-struct RadianceRun {
-    std::vector<std::filesystem::path> models;
-    std::optional<std::filesystem::path> sensors;
-    std::optional<double> sensor_radius_m;
-    double scale = 1.0;  // metres per model unit
-};
 Scene load_radiance_scene(const RadianceRun& run);
 // Whether a file given as a scene is a Radiance model (.rad, .mat, .sky) by its extension.
 bool is_radiance_file(const std::filesystem::path& file);

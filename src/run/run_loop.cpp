@@ -3,6 +3,7 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
+#include "luxtrace/io/sensor_table.hpp"
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
@@ -99,6 +100,8 @@ void RunLoop::check_writable() {
         try {
             luxtrace::check_writable(run_.output, "result file");
             luxtrace::check_writable(checkpoint_path_, "checkpoint");
+            for (const std::filesystem::path& table : sensor_table_paths(scene_, run_.output))
+                luxtrace::check_writable(table, "sensor table");
         } catch (const IoError& e) {
             not_writable = e.what();
             writable[0] = 0.0;
@@ -254,6 +257,16 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
         } catch (const IoError& e) {
             throw IoError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
                           " was not: " + e.what());
+        }
+    }
+    // Each points detector's table beside the final result (not beside checkpoints).
+    if (!as_checkpoint) {
+        summary_.sensor_tables.clear();
+        try {
+            for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n))
+                summary_.sensor_tables.push_back(table.string());
+        } catch (const IoError& e) {
+            throw IoError("the result " + path + " was written, its sensor table was not: " + e.what());
         }
     }
     summary_.photons = n;

@@ -3,8 +3,8 @@
 // digits, in order, after '#' lines only; and end to end, a run with a points detector
 // under a point light writes one line per sensor in the .pts order whose E and sigma_E are
 // the result file's band-summed cell and its eq. (8) error and whose E matches the disc's
-// analytic mean within sigma_E, a scene without points detectors writes no table, and a
-// bad .pts file writes nothing.
+// analytic mean within sigma_E, a scene without points detectors writes no table, one that
+// cannot be written warns and keeps the result, and a bad .pts file writes nothing.
 #include "luxtrace/io/sensor_table.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "test_support.hpp"
@@ -194,6 +194,23 @@ TEST(SensorTableRun, NoTableWithoutAPointsDetector) {
     for (const fs::directory_entry& f : fs::directory_iterator(dir.path()))
         EXPECT_NE(f.path().extension(), ".txt") << f.path();
     EXPECT_EQ(o.out.find("sensor table"), std::string::npos) << o.out;
+}
+
+// A table that cannot be written (a folder in its place) warns; the result is kept, exit 0.
+TEST(SensorTableRun, ATableThatCannotBeWrittenWarnsAndTheResultStays) {
+    ScratchDir dir("sensor_table_blocked");
+    std::ofstream(dir.path() / "grid.pts") << "0 0 0 0 0 1\n0 0.5 0 0 0 1\n";
+    fs::create_directories(dir.path() / "s.sensors.txt" / "inside");
+    const std::string text = std::string(kBlackSpeck) +
+                             "\n[[light]]\ntype = \"point\"\nposition = [0, 0, 1.5]\nflux_lm = 1000\n"
+                             "\n[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\n"
+                             "\n[run]\nphotons = 10000\n";
+    CommandOutcome o;
+    run_scene_text(dir, "s", text, &o);
+    EXPECT_EQ(o.code, 0) << o.out;
+    EXPECT_TRUE(fs::exists(dir.path() / "s.h5"));
+    EXPECT_NE(o.out.find("warning: sensor table not written: "), std::string::npos) << o.out;
+    EXPECT_EQ(o.out.find("sensor table: "), std::string::npos) << o.out;
 }
 
 // A malformed .pts line: exit 2 naming the file and line, and neither result nor table.

@@ -1,5 +1,6 @@
 #include "luxtrace/io/sensor_table.hpp"
 
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/result_estimates.hpp"
@@ -86,15 +87,20 @@ std::vector<std::filesystem::path> sensor_table_paths(const Scene& scene, const 
 }
 
 std::vector<std::filesystem::path> write_sensor_tables(const std::filesystem::path& result, const Scene& scene,
-                                                       const ResultEstimates& estimates, std::uint64_t photons) {
+                                                       const ResultEstimates& estimates, std::uint64_t photons,
+                                                       std::vector<std::string>& failures) {
     std::vector<std::filesystem::path> written;
     for (std::size_t di = 0; di < scene.detectors.size(); ++di) {
         const Detector& d = scene.detectors[di];
         if (!is_table_detector(d)) continue;
         const std::filesystem::path path = sensor_table_path(result, d.name);
         const std::string text = format_sensor_table(sensor_table(scene, di, estimates.detectors[di], photons));
-        write_file_atomically(path, text);
-        written.push_back(path);
+        try {
+            write_file_atomically(path, text);
+            written.push_back(path);
+        } catch (const IoError& e) {
+            failures.push_back(e.what());
+        }
     }
     return written;
 }

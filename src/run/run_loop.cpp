@@ -259,15 +259,17 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
                           " was not: " + e.what());
         }
     }
-    // Each points detector's table beside the final result (not beside checkpoints).
+    // Each points detector's table beside the final result (not beside checkpoints). The
+    // tables repeat numbers the result holds: one that cannot be written only warns.
     if (!as_checkpoint) {
+        std::vector<std::string> failures;
         summary_.sensor_tables.clear();
-        try {
-            for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n))
-                summary_.sensor_tables.push_back(table.string());
-        } catch (const IoError& e) {
-            throw IoError("the result " + path + " was written, its sensor table was not: " + e.what());
-        }
+        for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n, failures))
+            summary_.sensor_tables.push_back(table.string());
+        for (const std::string& f : failures)
+            std::cerr << "luxtrace: warning: sensor table not written: " << f << "; the result " << path
+                      << " holds its numbers (Python: luxtrace.sensor_table)\n"
+                      << std::flush;
     }
     summary_.photons = n;
     summary_.global = est.global;

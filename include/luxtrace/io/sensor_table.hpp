@@ -49,8 +49,10 @@ std::filesystem::path sensor_table_path(const std::filesystem::path& result, con
 std::vector<std::filesystem::path> sensor_table_paths(const Scene& scene, const std::filesystem::path& result);
 
 // Writes each points detector's table atomically beside `result` (estimates and photons as
-// the result was written with); returns the paths written. Throws IoError.
+// the result was written with); returns the paths written. A table that cannot be written
+// is left out, its IoError's message appended to `failures`: the result holds its numbers.
 std::vector<std::filesystem::path> write_sensor_tables(const std::filesystem::path& result, const Scene& scene,
-                                                       const ResultEstimates& estimates, std::uint64_t photons);
+                                                       const ResultEstimates& estimates, std::uint64_t photons,
+                                                       std::vector<std::string>& failures);
 
 }  // namespace luxtrace

@@ -7,6 +7,7 @@
 // cannot be written warns and keeps the result, and a bad .pts file writes nothing.
 #include "luxtrace/io/sensor_table.hpp"
 #include "luxtrace/io/result_file.hpp"
+#include "point_source.hpp"
 #include "test_support.hpp"
 #include "z_pool.hpp"
 
@@ -101,22 +102,10 @@ TEST(SensorTable, TextReadsBackInOrderPositionsExactValuesToTheirDigits) {
         EXPECT_NE(header.find(word), std::string::npos) << word << " not in\n" << header;
 }
 
-// Illuminance from an isotropic point source of intensity I at height h, averaged over a
-// disc of radius r centred (cx, cy) from its foot, by a midpoint sum over rings and sectors.
-double disc_average(double intensity, double h, double cx, double cy, double radius) {
-    constexpr int kRings = 100, kSectors = 128;
-    double sum = 0.0, area = 0.0;
-    for (int a = 0; a < kRings; ++a) {
-        const double rho = (a + 0.5) / kRings * radius;
-        for (int b = 0; b < kSectors; ++b) {
-            const double phi = (b + 0.5) / kSectors * 2.0 * kPi;
-            const double x = cx + rho * std::cos(phi), y = cy + rho * std::sin(phi);
-            const double r2 = x * x + y * y + h * h;
-            sum += rho * intensity * h / (r2 * std::sqrt(r2));
-            area += rho;
-        }
-    }
-    return sum / area;
+// A 1000 lm point light 1.5 m above the origin, `detector` (a [[detector]] table), 10k photons.
+std::string lamp_scene(const std::string& detector) {
+    return std::string(kBlackSpeck) + "\n[[light]]\ntype = \"point\"\nposition = [0, 0, 1.5]\nflux_lm = 1000\n\n" +
+           detector + "\n[run]\nphotons = 10000\n";
 }
 
 // 16 sensors 0.5 m apart in a scrambled order (k -> 7 k mod 16), three bands, under a
@@ -183,10 +172,8 @@ TEST(SensorTableRun, OneLinePerSensorInPtsOrderHoldingTheResultsNumbers) {
 
 TEST(SensorTableRun, NoTableWithoutAPointsDetector) {
     ScratchDir dir("sensor_table_none");
-    const std::string text = std::string(kBlackSpeck) +
-                             "\n[[light]]\ntype = \"point\"\nposition = [0, 0, 1.5]\nflux_lm = 1000\n"
-                             "\n[[detector]]\nname = \"cells\"\ncenter = [0, 0, 0]\nsize = [1, 1]\ncells = [2, 2]\n"
-                             "\n[run]\nphotons = 10000\n";
+    const std::string text = lamp_scene(
+        "[[detector]]\nname = \"cells\"\ncenter = [0, 0, 0]\nsize = [1, 1]\ncells = [2, 2]\n");
     CommandOutcome o;
     run_scene_text(dir, "s", text, &o);
     ASSERT_EQ(o.code, 0) << o.out;
@@ -201,10 +188,7 @@ TEST(SensorTableRun, ATableThatCannotBeWrittenWarnsAndTheResultStays) {
     ScratchDir dir("sensor_table_blocked");
     std::ofstream(dir.path() / "grid.pts") << "0 0 0 0 0 1\n0 0.5 0 0 0 1\n";
     fs::create_directories(dir.path() / "s.sensors.txt" / "inside");
-    const std::string text = std::string(kBlackSpeck) +
-                             "\n[[light]]\ntype = \"point\"\nposition = [0, 0, 1.5]\nflux_lm = 1000\n"
-                             "\n[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\n"
-                             "\n[run]\nphotons = 10000\n";
+    const std::string text = lamp_scene("[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\n");
     CommandOutcome o;
     run_scene_text(dir, "s", text, &o);
     EXPECT_EQ(o.code, 0) << o.out;
@@ -217,10 +201,8 @@ TEST(SensorTableRun, ATableThatCannotBeWrittenWarnsAndTheResultStays) {
 TEST(SensorTableRun, BadPtsFileWritesNothing) {
     ScratchDir dir("sensor_table_bad");
     std::ofstream(dir.path() / "grid.pts") << "0 0 0 0 0 1\n0 0.5 0 0 0\n";
-    const std::string text = std::string(kBlackSpeck) +
-                             "\n[[light]]\ntype = \"point\"\nposition = [0, 0, 1.5]\nflux_lm = 1000\n"
-                             "\n[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\n"
-                             "radius_m = 0.1\n\n[run]\nphotons = 10000\n";
+    const std::string text = lamp_scene(
+        "[[detector]]\nname = \"sensors\"\ntype = \"points\"\npoints = \"grid.pts\"\nradius_m = 0.1\n");
     CommandOutcome o;
     run_scene_text(dir, "s", text, &o);
     EXPECT_EQ(o.code, 2) << o.out;

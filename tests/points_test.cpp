@@ -8,6 +8,7 @@
 #include "luxtrace/detector/sensor_points.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/light/sky_model.hpp"
+#include "point_source.hpp"
 #include "scene_test_support.hpp"
 #include "z_pool.hpp"
 
@@ -256,34 +257,6 @@ TEST(PointsRun, SensorsUnderAUniformSkyReadItsIlluminance) {
                  lz * sky.vertical_illuminance_per_zenith_luminance_sr(0.0));
     pool.check("uniform sky");
     EXPECT_EQ(r.attr_f64("/detectors/sensors", "radius_m"), 0.5);  // half the 1 m spacing
-}
-
-// Illuminance from an isotropic point source of intensity I at height h over the plane,
-// at (x, y) from its foot: I h / r^3, averaged over a disc or a square by midpoint sums.
-double point_e(double intensity, double h, double x, double y) {
-    const double r2 = x * x + y * y + h * h;
-    return intensity * h / (r2 * std::sqrt(r2));
-}
-double disc_average(double intensity, double h, double cx, double cy, double radius) {
-    constexpr int kRings = 200, kSectors = 256;
-    double sum = 0.0, area = 0.0;
-    for (int a = 0; a < kRings; ++a) {
-        const double rho = (a + 0.5) / kRings * radius;
-        for (int b = 0; b < kSectors; ++b) {
-            const double phi = (b + 0.5) / kSectors * 2.0 * kPi;
-            sum += rho * point_e(intensity, h, cx + rho * std::cos(phi), cy + rho * std::sin(phi));
-            area += rho;
-        }
-    }
-    return sum / area;
-}
-double square_average(double intensity, double h, double cx, double cy, double side) {
-    constexpr int kSub = 200;
-    double sum = 0.0;
-    for (int a = 0; a < kSub; ++a)
-        for (int b = 0; b < kSub; ++b)
-            sum += point_e(intensity, h, cx + ((a + 0.5) / kSub - 0.5) * side, cy + ((b + 0.5) / kSub - 0.5) * side);
-    return sum / (kSub * kSub);
 }
 
 // A 5 x 5 sensor grid 0.5 m apart (default discs r = 0.25 m) under a point light, and an

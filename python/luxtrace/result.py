@@ -13,7 +13,7 @@ import zlib
 import h5py
 import numpy as np
 
-from . import statistics
+from . import sensor_table, statistics
 
 #: The newest result layout this package reads (SPEC §4 ``format_version``).
 NEWEST_FORMAT_VERSION = 2
@@ -362,6 +362,12 @@ class Detector(_AttrAccess):
         else:
             rel = statistics.cell_sigma_rel(self.count.sum(axis=2), self.sumsq.sum(axis=2), self.photons)
         return value, rel
+
+    def sensor_table(self):
+        """Points detectors: a ``luxtrace.SensorTable`` (positions [n,3] m, E_lx [n],
+        sigma_E_lx [n], bands summed), the numbers of the table ``luxtrace run`` writes beside
+        the result; ValueError for other detectors."""
+        return sensor_table.sensor_table(self)
 
     def to_csv(self, path, band_names=None):
         """Write one row per cell: i, j, the cell centre (u, v from the detector's centre and

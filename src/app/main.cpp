@@ -217,6 +217,8 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
         }
         if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
         std::cout << "result: " << fs::absolute(s.output).string() << '\n';
+        for (const std::string& table : s.sensor_tables)
+            std::cout << "sensor table: " << fs::absolute(table).string() << '\n';
         if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';
         if (s.exit_code == 3)
             std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run "

@@ -3,6 +3,7 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
+#include "luxtrace/io/sensor_table.hpp"
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
@@ -99,6 +100,8 @@ void RunLoop::check_writable() {
         try {
             luxtrace::check_writable(run_.output, "result file");
             luxtrace::check_writable(checkpoint_path_, "checkpoint");
+            for (const std::filesystem::path& table : sensor_table_paths(scene_, run_.output))
+                luxtrace::check_writable(table, "sensor table");
         } catch (const IoError& e) {
             not_writable = e.what();
             writable[0] = 0.0;
@@ -255,6 +258,18 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
             throw IoError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
                           " was not: " + e.what());
         }
+    }
+    // Each points detector's table beside the final result (not beside checkpoints). The
+    // tables repeat numbers the result holds: one that cannot be written only warns.
+    if (!as_checkpoint) {
+        std::vector<std::string> failures;
+        summary_.sensor_tables.clear();
+        for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n, failures))
+            summary_.sensor_tables.push_back(table.string());
+        for (const std::string& f : failures)
+            std::cerr << "luxtrace: warning: sensor table not written: " << f << "; the result " << path
+                      << " holds its numbers (Python: luxtrace.sensor_table)\n"
+                      << std::flush;
     }
     summary_.photons = n;
     summary_.global = est.global;

@@ -9,6 +9,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace luxtrace {
 
@@ -36,6 +37,7 @@ struct RunSummary {
     std::string stop_reason;
     std::string checkpoint;  // written checkpoint, if any
     std::string output;
+    std::vector<std::string> sensor_tables;  // the points detectors' tables beside the result (io/sensor_table.hpp)
     std::uint64_t photons = 0;
     double elapsed_s = 0.0;
     double tracing_s = 0.0;  // this run's tracing threads, from start to stop (max over ranks)

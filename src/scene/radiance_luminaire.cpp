@@ -376,6 +376,26 @@ LuminousOpening opening_of(const Pattern& p, const Emitters& e, const Placement&
     return o;
 }
 
+// What both readings share: the pattern, its surfaces and where they put the luminaire.
+struct Started {
+    Pattern pattern;
+    Emitters emitters;
+    Placement placement;
+    RadianceLuminaire luminaire;  // name, position, frame and surfaces filled in
+};
+
+Started start(const RadianceModel& model, std::size_t brightdata) {
+    if (brightdata >= model.modifiers.size()) throw std::out_of_range("radiance_luminaire: no such modifier");
+    const RadianceModifier& m = model.modifiers[brightdata];
+    Started s{parse_pattern(model, m), emitters_of(model, brightdata), {}, {}};
+    s.placement = place(s.pattern, s.emitters);
+    s.luminaire.name = m.name;
+    s.luminaire.position_m = s.placement.centre;
+    s.luminaire.frame = s.placement.frame;
+    s.luminaire.surfaces = s.emitters.surfaces;
+    return s;
+}
+
 }  // namespace
 
 std::vector<std::size_t> radiance_luminaire_modifiers(const RadianceModel& model) {
@@ -394,11 +414,11 @@ std::vector<std::size_t> radiance_luminaire_modifiers(const RadianceModel& model
 
 RadianceLuminaire radiance_luminaire(const RadianceModel& model, std::size_t brightdata,
                                      const RadianceLuminaireOptions& options) {
-    if (brightdata >= model.modifiers.size()) throw std::out_of_range("radiance_luminaire: no such modifier");
+    Started s = start(model, brightdata);
     const RadianceModifier& m = model.modifiers[brightdata];
-    const Pattern p = parse_pattern(model, m);
-    const Emitters e = emitters_of(model, brightdata);
-    const Placement pl = place(p, e);
+    const Pattern& p = s.pattern;
+    const Emitters& e = s.emitters;
+    const Placement& pl = s.placement;
     const fs::path file = find_data(model, m, p.data, options);
     DataTable d = read_data(file);
     const std::string where = model.where(m.at) + ": brightdata '" + m.name + "': ";
@@ -406,8 +426,7 @@ RadianceLuminaire radiance_luminaire(const RadianceModel& model, std::size_t bri
         throw InputError(where + "'" + file.string() + "' has " + std::to_string(d.axes.size()) +
                          " dimensions for the " + std::to_string(p.coords.size()) + " coordinates named");
 
-    RadianceLuminaire out;
-    out.name = m.name;
+    RadianceLuminaire& out = s.luminaire;
     out.data_file = file.string();
     Photometry& ph = out.photometry;
     ph.format = "Radiance ies2rad data";
@@ -440,7 +459,7 @@ RadianceLuminaire radiance_luminaire(const RadianceModel& model, std::size_t bri
                              std::to_string(c_deg.back()));
     }
     const double k = kRadianceEfficacy_lm_per_W * e.luminance_weight * p.a1;
-    const bool rows_below = gamma.front()<90.0 - 1e-9, rows_above = gamma.back()> 90.0 + 1e-9;
+    const bool rows_below = (gamma.front() < 90.0 - 1e-9), rows_above = (gamma.back() > 90.0 + 1e-9);
     ph.vertical_deg = gamma;
     ph.horizontal_deg = c_deg;
     ph.candela_cd.assign(nh, std::vector<double>(nv, 0.0));
@@ -461,9 +480,6 @@ RadianceLuminaire radiance_luminaire(const RadianceModel& model, std::size_t bri
                             "' is mirrored by its transform: its C-planes are mirrored about C0-C180");
     }
     ph.opening = opening_of(p, e, pl);
-    out.position_m = pl.centre;
-    out.frame = pl.frame;
-    out.surfaces = e.surfaces;
     if (const int tilt = m.modifier; tilt >= 0)
         out.notes.push_back(model.where(m.at) + ": luminaire '" + m.name + "': the lamp tilt pattern '" +
                             model.modifiers[tilt].name + "' is not applied (name the IES file to use its TILT table)");
@@ -475,18 +491,11 @@ RadianceLuminaire radiance_luminaire(const RadianceModel& model, std::size_t bri
 
 RadianceLuminaire radiance_luminaire_named(const RadianceModel& model, std::size_t brightdata,
                                            const Photometry& photometry) {
-    if (brightdata >= model.modifiers.size()) throw std::out_of_range("radiance_luminaire: no such modifier");
+    Started s = start(model, brightdata);
     const RadianceModifier& m = model.modifiers[brightdata];
-    const Pattern p = parse_pattern(model, m);
-    const Emitters e = emitters_of(model, brightdata);
-    const Placement pl = place(p, e);
-    RadianceLuminaire out;
-    out.name = m.name;
+    RadianceLuminaire& out = s.luminaire;
     out.photometry = photometry;
-    out.position_m = pl.centre;
-    out.frame = pl.frame;
-    out.surfaces = e.surfaces;
-    if (pl.mirrored)
+    if (s.placement.mirrored)
         out.notes.push_back(model.where(m.at) + ": luminaire '" + m.name +
                             "' is mirrored by its transform; the named photometry is placed unmirrored");
     return out;

@@ -322,7 +322,7 @@ private:
             surface(type.text, name, modifier, std::move(reals), ctx, at, cur);
             return;
         }
-        RadianceModifier m{name, type.text, "", modifier, -1, std::move(strings), std::move(reals), at};
+        RadianceModifier m{name, type.text, "", modifier, -1, std::move(strings), std::move(reals), at, ctx.matrix};
         if (const MaterialRule* r = material_rule(type.text)) {
             if (m.reals.size() < r->reals_min || m.reals.size() > r->reals_max)
                 throw bad_args("takes " + std::to_string(r->reals_min) +

@@ -42,6 +42,10 @@ struct RadianceModifier {
     std::vector<std::string> strings;
     std::vector<double> reals;
     RadianceLocation at;
+    // The !xform lines in force where it was defined (its file -> the top file's model
+    // units): a pattern's coordinates move with the surfaces around it, as xform would
+    // have appended the transform to the pattern's arguments.
+    glm::dmat4 transform{1.0};
 };
 
 // One surface primitive of the file (a polygon, ring, sphere, ...) and its triangles

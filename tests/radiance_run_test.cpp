@@ -184,6 +184,40 @@ window polygon opening 0 0 12 -0.5 -0.3 1  -0.5 0.3 1  0.5 0.3 1  0.5 -0.3 1
     EXPECT_NEAR(ResultReader(out).attr_f64("/", "total_flux_lm"), kPi * L * 0.6, 1e-6 * L);
 }
 
+// An ies2rad luminaire (Radiance's rect_fixture, tests/data/radiance) is a point light of
+// the photometry its .dat holds, placed and turned as the file says: far below it the
+// illuminance is I(direction) cos / d^2 (its 0.55 m x 0.12 m opening changes that by less
+// than 0.1 % at 5 m).
+TEST(RadianceRun, Ies2radLuminaireLightsAsItsPhotometryAtItsPlace) {
+    ScratchDir dir("radiance_luminaire");
+    const fs::path data = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance";
+    write(dir.path() / "floor.rad", R"(void plastic black 0 0 5 0 0 0 0 0
+black polygon floor 0 0 12 -30 -30 -2  30 -30 -2  30 30 -2  -30 30 -2
+)");
+    write(dir.path() / "scene.toml", "[[radiance]]\nfile = \"" + (data / "rect_fixture.rad").string() +
+                                         "\"\n[[radiance]]\nfile = \"floor.rad\"\n"
+                                         "[[detector]]\nname = \"floor\"\ntype = \"points\"\npoints = \"floor.pts\"\n"
+                                         "radius_m = 0.25\n");
+    const std::vector<Vec3> sensors = {Vec3(-4, 2.5, -1.99), Vec3(-1, 2.5, -1.99), Vec3(-4, 5.5, -1.99)};
+    write_pts(dir.path() / "floor.pts", sensors);
+    const Scene scene = load_scene(dir.path() / "scene.toml");
+    ASSERT_EQ(scene.lights.lights().size(), 1u);
+    const Light& lum = scene.lights.lights()[0];
+    ASSERT_TRUE(lum.photometry);
+    EXPECT_NEAR(lum.position.z, 2.999, 1e-3);  // the fixture's face, as its xform put it
+    const fs::path out = dir.path() / "lum.h5";
+    const auto o = run_luxtrace("run \"" + (dir.path() / "scene.toml").string() + "\" --photons 4M --output \"" +
+                                out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    std::vector<double> exact;
+    for (const Vec3& p : sensors) {
+        const Vec3 d = p - lum.position;
+        const double r = glm::length(d);
+        exact.push_back(lum.photometry->intensity_cd(lum.frame.to_local(d / r)) * (-d.z / r) / (r * r));
+    }
+    expect_within_errors(out, "floor", exact);
+}
+
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
     ScratchDir dir("radiance_scale");
     write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10

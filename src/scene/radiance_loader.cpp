@@ -5,6 +5,10 @@
 // sources into directional beams, a 180-degree glow source overhead into a uniform sky,
 // and the !gensky / !gendaylit lines into the daylight lights (radiance_sky.hpp).
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/light/luminaire_file.hpp"
+#include "luxtrace/light/orientation.hpp"
+#include "luxtrace/light/photometry_distribution.hpp"
+#include "luxtrace/scene/radiance_luminaire.hpp"
 #include "luxtrace/scene/radiance_materials.hpp"
 #include "luxtrace/scene/radiance_reader.hpp"
 #include "scene_loader.hpp"
@@ -12,11 +16,16 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numeric>
+#include <set>
+#include <stdexcept>
 
 namespace luxtrace::detail {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 // Distant sources up to this full angle are read as parallel beams (the sun subtends 0.53).
 constexpr double kMaxBeamSourceAngleDeg = 5.0;
@@ -69,6 +78,15 @@ struct RadianceModelReader : StepReader {
         if (!(options.scale > 0.0 && std::isfinite(options.scale)))
             r.fail("scale", "must be positive (metres per model unit: 1, 0.3048 for feet, 0.001 for mm), got " +
                                 fmt_number(options.scale));
+        // `photometry = { BRIGHTDATA = "file.ies" }`: an ies2rad luminaire from the IES file it
+        // came from instead of its .dat (radiance_luminaire.hpp).
+        std::map<std::string, std::pair<fs::path, int>> named;
+        if (const toml::table* ph = r.table("photometry"))
+            for (const auto& [key, node] : *ph) {
+                const auto f = node.value<std::string>();
+                if (!f) r.fail_nested("photometry." + std::string(key.str()), node, "expected a file name");
+                named[std::string(key.str())] = {load.resolve(*f), node.source().begin.line};
+            }
         r.finish();
         const RadianceModel m = read_radiance(load.resolve(*file), options);
         model = &m;
@@ -81,14 +99,92 @@ struct RadianceModelReader : StepReader {
         }
         material_of_modifier.assign(m.modifiers.size(), -1);
         const std::string context = fname + ":" + std::to_string(r.line("file")) + ": " + r.context();
-        const std::vector<std::int64_t> placed = add_mesh_triangles(
-            load, m.mesh, [&](std::size_t tri) { return material(static_cast<int>(m.triangle_modifier[tri])); },
+        // ies2rad luminaires are point lights with their photometry; their small emitting
+        // surfaces are left out of the geometry (a photon would start on them).
+        std::vector<bool> luminaire_triangle(m.mesh.triangles.size(), false);
+        for (const std::size_t b : radiance_luminaire_modifiers(m)) {
+            const std::string& bname = m.modifiers[b].name;
+            const auto it = named.find(bname);
+            RadianceLuminaire lum;
+            if (it != named.end()) {
+                lum = radiance_luminaire_named(m, b, load_named_photometry(it->second.first, it->second.second, bname));
+                named.erase(it);
+            } else {
+                // Library paths ("source/x/y.dat") also from the named file's folder, as
+                // Radiance run there finds them (RAYPATH's ".").
+                RadianceLuminaireOptions lo;
+                lo.search_path.push_back(load.resolve(*file).parent_path());
+                lum = radiance_luminaire(m, b, lo);
+            }
+            for (const std::size_t k : lum.surfaces) {
+                const RadianceSurface& surf = m.surfaces[k];
+                for (std::size_t t = surf.first_triangle; t < surf.first_triangle + surf.triangle_count; ++t)
+                    luminaire_triangle[t] = true;
+            }
+            add_luminaire(std::move(lum), m.modifiers[b]);
+        }
+        if (!named.empty())
+            throw InputError(fname + ":" + std::to_string(named.begin()->second.second) + ": " + r.context() +
+                             ": photometry: '" + named.begin()->first +
+                             "' is no brightdata luminaire of the model (check lists its modifiers)");
+        TriangleMesh kept;
+        kept.vertices = m.mesh.vertices;
+        std::vector<std::size_t> kept_from;
+        for (std::size_t t = 0; t < m.mesh.triangles.size(); ++t)
+            if (!luminaire_triangle[t]) {
+                kept.triangles.push_back(m.mesh.triangles[t]);
+                kept_from.push_back(t);
+            }
+        kept.material_names.assign(kept.triangles.size(), "");
+        const std::vector<std::int64_t> placed_kept = add_mesh_triangles(
+            load, kept, [&](std::size_t k) { return material(static_cast<int>(m.triangle_modifier[kept_from[k]])); },
             [&](const std::string& what) { throw InputError(context + ": " + what); });
+        std::vector<std::int64_t> placed(m.mesh.triangles.size(), -1);
+        for (std::size_t k = 0; k < kept_from.size(); ++k) placed[kept_from[k]] = placed_kept[k];
         add_surface_lights(placed);
         add_portals(placed);
         add_sources();
         add_skies();
         model = nullptr;
+    }
+
+    Photometry load_named_photometry(const fs::path& path, int line, const std::string& name) {
+        try {
+            return load_photometry(path, 1);
+        } catch (const InputError& e) {
+            throw InputError(fname + ":" + std::to_string(line) + ": [[radiance]] photometry." + name + ": " +
+                             e.what());
+        }
+    }
+
+    // A point light of the luminaire's photometry at its place, as a [[light]] with a file.
+    void add_luminaire(RadianceLuminaire lum, const RadianceModifier& brightdata) {
+        for (const std::string& n : lum.notes) scene.warnings.push_back(n);
+        for (const std::string& n : lum.photometry.notes) scene.warnings.push_back(n);
+        SceneLoad::RadianceLight out;
+        out.label = "radiance luminaire '" + lum.name + "'";
+        Light& l = out.light;
+        l.label = out.label;
+        l.type = LightType::point;
+        l.position = lum.position_m;
+        l.frame = lum.frame;
+        l.aim = l.frame.n;
+        auto photometry = std::make_shared<const Photometry>(std::move(lum.photometry));
+        try {
+            l.distribution = std::make_shared<const PhotometryDistribution>(*photometry);
+        } catch (const std::invalid_argument&) {
+            throw InputError(model->where(brightdata.at) + ": luminaire '" + lum.name +
+                             "': its light lies in too narrow a beam for the 0.5 degree sampling grid");
+        }
+        l.photometry = photometry;
+        l.opening = photometry->opening;
+        if (!photometry->tilt.empty()) l.tilt_factor = photometry->tilt.at(tilt_from_nadir_deg(l.frame));
+        l.flux_lm = photometry->flux_lm() * l.tilt_factor;
+        l.maintenance_factor = scene.maintenance_factor;
+        l.band_share.assign(scene.bands.size(), 1.0 / static_cast<double>(scene.bands.size()));
+        if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)))
+            throw InputError(model->where(brightdata.at) + ": luminaire '" + lum.name + "' carries no flux");
+        load.radiance_lights.push_back(std::move(out));
     }
 
     // One area light per light modifier, over every surface it modifies.
@@ -105,9 +201,7 @@ struct RadianceModelReader : StepReader {
                                          "!gendaylit command's)");
                 continue;
             }
-            if (from_brightdata(k))
-                throw InputError(modifier_where(k) +
-                                 ": a light modified by brightdata (an ies2rad luminaire) is not read yet");
+            if (from_brightdata(k)) continue;  // an ies2rad luminaire's surface, left out above
             const RadianceMapping& map = mappings[index];
             const double luminance = std::accumulate(map.luminance_cd_m2.begin(), map.luminance_cd_m2.end(), 0.0);
             if (!(luminance > 0.0)) {

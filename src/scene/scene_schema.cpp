@@ -17,7 +17,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
     static const std::vector<SceneTableSchema> schema = {
         {"", {"scene", "material", "mesh", "shape", "light", "light_scene", "detector", "camera", "run", "observer",
              "site", "portal", "annual", "radiance"}},
-        {"radiance", {"file", "scale"}},
+        {"radiance", {"file", "scale", "photometry"}},
         {"annual",
          {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year", "ladybug_folder"}},
         {"portal", {"shape", "flip"}},

@@ -35,6 +35,7 @@ struct RadianceModelReader : StepReader {
     const RadianceModel* model = nullptr;
     std::vector<RadianceMapping> mappings;
     std::vector<std::int64_t> material_of_modifier;  // scene material, -1 until used
+    std::size_t first_description = 0;               // of this model's modifiers in scene.radiance_modifiers
 
     // Whether modifier `index` is, or is modified by, the `skyfunc` of a sky command: the
     // glow of Radiance's sky description, which the command's sky replaces.
@@ -92,6 +93,7 @@ struct RadianceModelReader : StepReader {
         model = &m;
         for (const std::string& w : m.warnings) scene.warnings.push_back(w);
         mappings.clear();
+        first_description = scene.radiance_modifiers.size();
         for (std::size_t k = 0; k < m.modifiers.size(); ++k) {
             mappings.push_back(map_radiance_modifier(m, k, scene.bands));
             scene.radiance_modifiers.push_back(model->where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " +
@@ -108,7 +110,6 @@ struct RadianceModelReader : StepReader {
             RadianceLuminaire lum;
             if (it != named.end()) {
                 lum = radiance_luminaire_named(m, b, load_named_photometry(it->second.first, it->second.second, bname));
-                named.erase(it);
             } else {
                 // Library paths ("source/x/y.dat") also from the named file's folder, as
                 // Radiance run there finds them (RAYPATH's ".").
@@ -121,8 +122,10 @@ struct RadianceModelReader : StepReader {
                 for (std::size_t t = surf.first_triangle; t < surf.first_triangle + surf.triangle_count; ++t)
                     luminaire_triangle[t] = true;
             }
+            describe_luminaire(b, lum, it != named.end() ? it->second.first.filename().string() : "");
             add_luminaire(std::move(lum), m.modifiers[b]);
         }
+        for (const std::size_t b : radiance_luminaire_modifiers(m)) named.erase(m.modifiers[b].name);
         if (!named.empty())
             throw InputError(fname + ":" + std::to_string(named.begin()->second.second) + ": " + r.context() +
                              ": photometry: '" + named.begin()->first +
@@ -146,6 +149,25 @@ struct RadianceModelReader : StepReader {
         add_sources();
         add_skies();
         model = nullptr;
+    }
+
+    // check's lines for a luminaire's brightdata and the emitting modifiers it feeds.
+    void describe_luminaire(std::size_t brightdata, const RadianceLuminaire& lum, const std::string& ies) {
+        const RadianceModifier& b = model->modifiers[brightdata];
+        scene.radiance_modifiers[first_description + brightdata] =
+            model->where(b.at) + ": brightdata " + b.name + " -> ies2rad luminaire: a point light of " +
+            (ies.empty() ? "its .dat's photometry" : ies + "'s photometry (named in the scene)") + ", " +
+            fmt_number(std::round(lum.photometry.flux_lm() * 10.0) / 10.0) + " lm, at (" +
+            fmt_number(std::round(lum.position_m.x * 1e4) / 1e4) + ", " +
+            fmt_number(std::round(lum.position_m.y * 1e4) / 1e4) + ", " +
+            fmt_number(std::round(lum.position_m.z * 1e4) / 1e4) + ")";
+        for (std::size_t k = 0; k < model->modifiers.size(); ++k)
+            if (model->modifiers[k].modifier == static_cast<int>(brightdata))
+                scene.radiance_modifiers[first_description + k] = model->where(model->modifiers[k].at) + ": " +
+                                                                  model->modifiers[k].type + " " +
+                                                                  model->modifiers[k].name +
+                                                                  " -> the emitting surface of luminaire '" + b.name +
+                                                                  "' (left out: the light is the luminaire's)";
     }
 
     Photometry load_named_photometry(const fs::path& path, int line, const std::string& name) {

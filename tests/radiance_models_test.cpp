@@ -229,5 +229,31 @@ TEST(RadianceModels, Cie171RoofOpeningIsTheReportsRoom) {
     }
 }
 
+TEST(RadianceModels, Ward1990TestRoomIsThePublishedRoom) {
+    // tests/data/radiance/ward1990 (written here from the published description, SOURCES.md):
+    // a closed 10 x 6 x 3 room facing inward, a 0.5 x 0.5 fixture of 31.416 W/m^2 in the
+    // ceiling, reflectances 70/50/30 %.
+    const fs::path dir = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance" / "ward1990";
+    const RadianceModel m = read_radiance(dir / "room.rad");
+    const Enclosure e = enclosure(m, [](const std::string&) { return true; });
+    EXPECT_LT(glm::length(e.area_vector), 1e-12);
+    EXPECT_NEAR(e.volume_m3, -10.0 * 6.0 * 3.0, 1e-12);  // negative: the surfaces face inward
+    EXPECT_NEAR(area_of_modifier(m, "ceiling_70"), 60.0 - 0.25, 1e-12);
+    const std::map<std::string, RadianceMapping> maps = map_all(m);
+    // Emittance M = pi L: 31.416 W/m^2 is a radiance of 10 W sr^-1 m^-2, 1790 cd/m^2 at 179 lm/W.
+    const RadianceMapping& fixture = maps.at("fixture_10");
+    ASSERT_EQ(fixture.role, RadianceRole::light);
+    EXPECT_NEAR(kPi * fixture.luminance_cd_m2[0] / kRadianceEfficacy_lm_per_W, 31.416, 1e-3);
+    for (const auto& [name, refl] :
+         std::map<std::string, double>{{"ceiling_70", 0.7}, {"wall_50", 0.5}, {"floor_30", 0.3}})
+        EXPECT_NEAR(maps.at(name).material.diffuse_reflectance[0], refl, 1e-12) << name;
+    const SensorPointList pts = read_pts((dir / "ceiling.pts").string());
+    ASSERT_EQ(pts.positions.size(), 20u);
+    for (std::size_t i = 0; i < pts.positions.size(); ++i) {  // under the ceiling, facing down
+        EXPECT_NEAR(pts.positions[i].z, 2.999, 1e-12);
+        EXPECT_EQ(pts.directions[i], Vec3(0.0, 0.0, -1.0));
+    }
+}
+
 }  // namespace
 }  // namespace luxtrace

@@ -6,11 +6,12 @@
 # the same text form (each quad its own four vertices, as in the .rad), and times
 # read_radiance against load_mesh (assimp) on them with build/bench/radiance_load_bench.
 # Usage: bench/radiance_load.sh   (from the repository root, after building radiance_load_bench)
-# Environment: QUADS (1000000), REPEATS (3), KEEP=1 keeps the temporary directory.
+# Environment: QUADS (1000000), REPEATS (3), KEEP=1 keeps the temporary directory,
+# RADIANCE_LOAD_BENCH (the bench binary; build/bench/radiance_load_bench).
 set -euo pipefail
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bench="$repo/build/bench/radiance_load_bench"
+bench=${RADIANCE_LOAD_BENCH:-"$repo/build/bench/radiance_load_bench"}
 quads=${QUADS:-1000000}
 repeats=${REPEATS:-3}
 

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -21,10 +22,19 @@ using bench::Clock;
 
 struct Loader {
     std::string label;
-    std::function<std::size_t()> load;  // returns the triangle count
+    std::function<TriangleMesh()> load;
     std::vector<double> wall_s, cpu_s;
     std::size_t triangles = 0;
+    double area_m2 = 0.0;  // of the last load: the files must hold the same geometry
 };
+
+double total_area(const TriangleMesh& mesh) {
+    double a = 0.0;
+    for (const glm::uvec3& t : mesh.triangles)
+        a += 0.5 *
+             glm::length(glm::cross(mesh.vertices[t.y] - mesh.vertices[t.x], mesh.vertices[t.z] - mesh.vertices[t.x]));
+    return a;
+}
 
 }  // namespace
 
@@ -41,24 +51,29 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     std::vector<Loader> loaders;
-    loaders.push_back({"read_radiance " + rad, [&] { return read_radiance(rad).mesh.triangles.size(); }, {}, {}, 0});
+    loaders.push_back({"read_radiance " + rad, [&] { return read_radiance(rad).mesh; }, {}, {}, 0, 0.0});
     for (const std::string& m : meshes)
-        loaders.push_back(
-            {"load_mesh " + m, [m] { return load_mesh(m, Transform{}, "bench").triangles.size(); }, {}, {}, 0});
+        loaders.push_back({"load_mesh " + m, [m] { return load_mesh(m, Transform{}, "bench"); }, {}, {}, 0, 0.0});
 
     for (int r = 0; r < repeats; ++r) {
         for (Loader& l : loaders) {  // alternating, so that a busy spell of the machine hits both
             const auto t0 = Clock::now();
             const double c0 = bench::process_cpu_seconds();
-            l.triangles = l.load();
+            const TriangleMesh mesh = l.load();
             l.wall_s.push_back(bench::seconds_since(t0));
             l.cpu_s.push_back(bench::process_cpu_seconds() - c0);
+            l.triangles = mesh.triangles.size();
+            l.area_m2 = total_area(mesh);
         }
     }
     for (const Loader& l : loaders)
-        if (l.triangles != loaders[0].triangles) {
-            std::fprintf(stderr, "radiance_load_bench: %s gave %zu triangles, %s %zu: not the same geometry\n",
-                         l.label.c_str(), l.triangles, loaders[0].label.c_str(), loaders[0].triangles);
+        if (l.triangles != loaders[0].triangles ||
+            std::abs(l.area_m2 - loaders[0].area_m2) > 1e-6 * loaders[0].area_m2) {
+            std::fprintf(stderr,
+                         "radiance_load_bench: %s gave %zu triangles of %.9g m2, %s %zu of %.9g m2: not the same "
+                         "geometry\n",
+                         l.label.c_str(), l.triangles, l.area_m2, loaders[0].label.c_str(), loaders[0].triangles,
+                         loaders[0].area_m2);
             return 1;
         }
     const double per_rad = bench::median(loaders[0].wall_s) / (loaders[0].triangles * 1e-6);

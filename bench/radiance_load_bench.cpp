@@ -3,6 +3,7 @@
 // "Loading Radiance scenes"). bench/radiance_load.sh writes the files; this times each
 // loader on them, alternating, and prints seconds per million triangles and their ratio.
 // Usage: radiance_load_bench MODEL.rad MESH.obj [MESH.ply ...] [--repeats N]
+#include "luxtrace/core/error.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/radiance_reader.hpp"
 #include "timing.hpp"
@@ -59,7 +60,13 @@ int main(int argc, char** argv) {
         for (Loader& l : loaders) {  // alternating, so that a busy spell of the machine hits both
             const auto t0 = Clock::now();
             const double c0 = bench::process_cpu_seconds();
-            const TriangleMesh mesh = l.load();
+            TriangleMesh mesh;
+            try {
+                mesh = l.load();
+            } catch (const InputError& e) {
+                std::fprintf(stderr, "radiance_load_bench: %s\n", e.what());
+                return 2;
+            }
             l.wall_s.push_back(bench::seconds_since(t0));
             l.cpu_s.push_back(bench::process_cpu_seconds() - c0);
             l.triangles = mesh.triangles.size();

@@ -4,6 +4,7 @@
 // of a uniform rectangle (Radiance's 179 lm/W), a narrow distant `source` gives L times its
 // solid angle, and a model in millimetres with `scale` gives the same flux as in metres.
 // Bad input exits 2 naming the file and line, with nothing written.
+#include "cie171_cases.hpp"
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/scene/radiance_materials.hpp"
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -216,6 +218,43 @@ black polygon floor 0 0 12 -30 -30 -2  30 -30 -2  30 30 -2  -30 30 -2
         exact.push_back(lum.photometry->intensity_cd(lum.frame.to_local(d / r)) * (-d.z / r) / (r * r));
     }
     expect_within_errors(out, "floor", exact);
+}
+
+// CIE 171:2006 §5.9 written as Radiance files (tests/data/radiance/cie171: the black room,
+// its 1 m x 1 m roof opening and `!gensky -c -B 55.865922`, 10 000 lx) with the opening an
+// illum, as a Radiance user would mark it: every report point's sky component within the
+// run's error of the exact one (daylight_reference), averaged over its sensor disc.
+TEST(RadianceRun, Cie171RoofOpeningFromRadianceFilesGivesTheExactSkyComponents) {
+    ScratchDir dir("radiance_cie171");
+    const fs::path data = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance" / "cie171";
+    write(dir.path() / "opening.rad", R"(void illum roof_portal 0 0 3 1 1 1
+roof_portal polygon opening 0 0 12 1.5 1.5 3  1.5 2.5 3  2.5 2.5 3  2.5 1.5 3
+)");
+    const double radius = 0.1;
+    const fs::path out = dir.path() / "roof.h5";
+    const auto o = run_luxtrace("run \"" + (data / "overcast_10000lx.sky").string() + "\" \"" +
+                                (data / "room_roof_1x1.rad").string() + "\" \"" +
+                                (dir.path() / "opening.rad").string() + "\" --sensors \"" +
+                                (data / "points.pts").string() + "\" --sensor-radius " + std::to_string(radius) +
+                                " --photons 8M --output \"" + out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    const auto cases = cie171::report_cases();
+    const auto c = std::find_if(cases.begin(), cases.end(), [](const cie171::Case& k) { return k.id == "5.9 1x1"; });
+    ASSERT_NE(c, cases.end());
+    std::vector<double> exact;
+    for (const cie171::Point& p : c->points) {
+        // The disc mean by the 4-point rule exact for cubics (points at r / sqrt(2)).
+        const Frame f = Frame::around(p.normal);
+        double sum = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            const double a = 0.5 * kPi * k, s = radius / std::sqrt(2.0);
+            cie171::Point q = p;
+            q.position += s * (std::cos(a) * f.t + std::sin(a) * f.b);
+            sum += cie171::exact_sc_percent(*c, q, 16) / 100.0 * cie171::kDiffuseHorizontalLx;
+        }
+        exact.push_back(0.25 * sum);
+    }
+    expect_within_errors(out, "points", exact);
 }
 
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {

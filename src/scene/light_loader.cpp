@@ -32,6 +32,8 @@ struct LightReader : StepReader {
     // each sun light's own `ground_reflectance` (by label), applied once all are read.
     std::optional<double> sky_ground_reflectance;
     std::map<std::string, std::optional<double>> sun_ground_reflectance;
+    // A Radiance gendaylit sky's own day of the year (the next parse_light only).
+    std::optional<int> perez_day_of_year;
 
     struct SunAt {
         double altitude_deg = 0.0, azimuth_deg = 0.0;
@@ -186,7 +188,9 @@ struct LightReader : StepReader {
         in.dew_point_c = required("dew_point_c");
         if (!(in.dew_point_c >= -90.0 && in.dew_point_c <= 60.0))
             r.fail("dew_point_c", "must lie in [-90, 60], got " + fmt_number(in.dew_point_c));
-        if (scene.site.time) {
+        if (perez_day_of_year) {
+            in.day_of_year = *perez_day_of_year;
+        } else if (scene.site.time) {
             const LocalStandardTime& t = *scene.site.time;
             in.day_of_year = day_of_year(t.year, t.month, t.day);
         }
@@ -562,7 +566,9 @@ void read_lights(SceneLoad& load, TableReader& root) {
         for (Light& l : reader.parse_light(*tables[i], i)) lights.push_back(std::move(l));
     for (SceneLoad::RadianceLight& rl : load.radiance_lights) {
         if (!rl.table.empty()) {
+            reader.perez_day_of_year = rl.day_of_year;
             for (Light& l : reader.parse_light(rl.table, lights.size(), rl.label)) lights.push_back(std::move(l));
+            reader.perez_day_of_year.reset();
             continue;
         }
         rl.light.group = reader.group_named(Scene::kDefaultLightGroup);

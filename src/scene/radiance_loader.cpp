@@ -11,6 +11,7 @@
 #include "luxtrace/scene/radiance_luminaire.hpp"
 #include "luxtrace/scene/radiance_materials.hpp"
 #include "luxtrace/scene/radiance_reader.hpp"
+#include "luxtrace/scene/radiance_sky.hpp"
 #include "scene_loader.hpp"
 
 #include <algorithm>
@@ -72,8 +73,16 @@ struct RadianceModelReader : StepReader {
 
     void read(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("radiance", i, t), "radiance");
-        const auto file = r.string("file");
-        if (!file) r.fail_entry("needs a 'file' (a Radiance scene description, .rad)");
+        // `file`: one file, or several read in turn as one model (oconv's order: a .mat's
+        // modifiers are in force in the files after it).
+        std::vector<fs::path> files;
+        if (!r.has("file")) r.fail_entry("needs a 'file' (a Radiance scene description, .rad, or an array of them)");
+        if (t["file"].is_array()) {
+            for (const std::string& f : *r.strings("file")) files.push_back(load.resolve(f));
+            if (files.empty()) r.fail("file", "names no file");
+        } else {
+            files.push_back(load.resolve(*r.string("file")));
+        }
         RadianceOptions options;
         options.scale = r.number("scale").value_or(1.0);
         if (!(options.scale > 0.0 && std::isfinite(options.scale)))
@@ -89,7 +98,7 @@ struct RadianceModelReader : StepReader {
                 named[std::string(key.str())] = {load.resolve(*f), node.source().begin.line};
             }
         r.finish();
-        const RadianceModel m = read_radiance(load.resolve(*file), options);
+        const RadianceModel m = read_radiance(files, options);
         model = &m;
         for (const std::string& w : m.warnings) scene.warnings.push_back(w);
         mappings.clear();
@@ -114,7 +123,7 @@ struct RadianceModelReader : StepReader {
                 // Library paths ("source/x/y.dat") also from the named file's folder, as
                 // Radiance run there finds them (RAYPATH's ".").
                 RadianceLuminaireOptions lo;
-                lo.search_path.push_back(load.resolve(*file).parent_path());
+                for (const fs::path& f : files) lo.search_path.push_back(f.parent_path());
                 lum = radiance_luminaire(m, b, lo);
             }
             for (const std::size_t k : lum.surfaces) {
@@ -301,9 +310,44 @@ struct RadianceModelReader : StepReader {
         }
     }
 
+    // Each !gensky / !gendaylit line: a [[light]] sky table and, with a sun, a sun table
+    // (radiance_sky.hpp gives their keys), read by read_lights like the user's.
     void add_skies() {
-        for (const RadianceCommand& c : model->sky_commands)
-            throw InputError(model->where(c.at) + ": !" + c.program + " is read but not yet made a sky");
+        for (const RadianceCommand& c : model->sky_commands) {
+            const RadianceSky sky = map_radiance_sky(*model, c);
+            const std::string where = model->where(c.at);
+            scene.radiance_modifiers.push_back(where + ": " + sky.describe());
+            for (const std::string& n : sky.notes) scene.warnings.push_back(where + ": " + n);
+            const RadianceSkyLight& k = sky.sky;
+            SceneLoad::RadianceLight out;
+            out.label = "radiance sky (" + where + ")";
+            out.table.insert("type", "sky");
+            out.table.insert("sky", k.sky);
+            const bool sun_placed = k.sky == "perez" || (k.sky == "cie" && k.cie_type != 16);
+            if (k.sky == "cie") out.table.insert("cie_type", k.cie_type);
+            if (sun_placed) {
+                out.table.insert("sun_altitude_deg", k.sun_altitude_deg);
+                out.table.insert("sun_azimuth_deg", k.sun_azimuth_deg);
+            }
+            if (k.zenith_luminance_cd_m2) out.table.insert("zenith_luminance_cd_m2", *k.zenith_luminance_cd_m2);
+            if (k.diffuse_horizontal_lx) out.table.insert("diffuse_horizontal_lx", *k.diffuse_horizontal_lx);
+            if (k.sky == "perez") {
+                out.table.insert("diffuse_horizontal_w_m2", k.diffuse_horizontal_w_m2);
+                out.table.insert("direct_normal_w_m2", k.direct_normal_w_m2);
+                out.table.insert("dew_point_c", k.dew_point_c);
+                out.day_of_year = k.day_of_year;
+            }
+            out.table.insert("ground_reflectance", k.ground_reflectance);
+            load.radiance_lights.push_back(std::move(out));
+            if (!sky.sun) continue;
+            SceneLoad::RadianceLight sun;
+            sun.label = "radiance sun (" + where + ")";
+            sun.table.insert("type", "sun");
+            sun.table.insert("direct_normal_lx", sky.sun->direct_normal_lx);
+            sun.table.insert("sun_altitude_deg", sky.sun->sun_altitude_deg);
+            sun.table.insert("sun_azimuth_deg", sky.sun->sun_azimuth_deg);
+            load.radiance_lights.push_back(std::move(sun));
+        }
     }
 };
 

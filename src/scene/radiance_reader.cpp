@@ -461,13 +461,19 @@ std::string RadianceModel::where(const RadianceLocation& at) const {
 }
 
 RadianceModel read_radiance(const fs::path& path, const RadianceOptions& options) {
+    return read_radiance(std::vector<fs::path>{path}, options);
+}
+
+RadianceModel read_radiance(const std::vector<fs::path>& paths, const RadianceOptions& options) {
+    const std::string first = paths.empty() ? std::string() : paths.front().string();
+    if (paths.empty()) throw InputError("no Radiance file to read");
     if (!(options.scale > 0.0 && std::isfinite(options.scale)))
-        throw InputError("Radiance file '" + path.string() + "': scale must be a positive number");
+        throw InputError("Radiance file '" + first + "': scale must be a positive number");
     if (!(options.chord_tolerance >= 1e-6 && options.chord_tolerance <= 0.25))
-        throw InputError("Radiance file '" + path.string() + "': chord_tolerance must be in [1e-6, 0.25]");
+        throw InputError("Radiance file '" + first + "': chord_tolerance must be in [1e-6, 0.25]");
     RadianceModel model;
     Reader reader(options, model);
-    reader.read_file(path, Context{}, "");
+    for (const fs::path& p : paths) reader.read_file(p, Context{}, "");
     return model;
 }
 

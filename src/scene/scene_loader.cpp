@@ -144,18 +144,17 @@ Scene load_radiance_scene(const RadianceRun& run) {
         if (!fs::is_regular_file(m)) throw InputError(m.string() + ": no such file");
     // The scene a user would write: [[radiance]] per model, the sensors as a points detector.
     toml::table root;
-    toml::array models;
+    toml::array files;
     // Paths as given while they resolve the same from the last model's folder (messages
     // then name the files as the user typed them), else absolute.
     const fs::path& last = run.models.back();
     const auto as_given = [&](const fs::path& p) {
         return p.is_absolute() || last.parent_path().empty() ? p.string() : fs::absolute(p).string();
     };
-    for (const fs::path& m : run.models) models.push_back(toml::table{{"file", as_given(m)}});
-    root.insert("radiance", std::move(models));
-    if (run.scale != 1.0) {
-        for (toml::node& m : *root["radiance"].as_array()) m.as_table()->insert("scale", run.scale);
-    }
+    for (const fs::path& m : run.models) files.push_back(as_given(m));
+    toml::table model{{"file", std::move(files)}};
+    if (run.scale != 1.0) model.insert("scale", run.scale);
+    root.insert("radiance", toml::array{std::move(model)});
     if (run.sensors) {
         toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", as_given(*run.sensors)}};
         if (run.sensor_radius_m) d.insert("radius_m", *run.sensor_radius_m);

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,7 @@ struct SceneLoad {
         toml::table table;  // a [[light]] table (sky, sun), or empty when `light` is set
         Light light;
         std::string label;
+        std::optional<int> day_of_year;  // a Perez sky's day (gendaylit's), not the [site]'s
     };
     struct RadiancePortal {
         std::string name;

@@ -92,5 +92,8 @@ struct RadianceModel {
 // Reads the file and every file its `!xform` lines name. Throws InputError naming the file,
 // the line and what is wrong (exit 2).
 RadianceModel read_radiance(const std::filesystem::path& path, const RadianceOptions& options = {});
+// Several files read in turn as one model, as oconv reads its arguments: a modifier defined
+// in one (a .mat) is in force in the files after it.
+RadianceModel read_radiance(const std::vector<std::filesystem::path>& paths, const RadianceOptions& options = {});
 
 }  // namespace luxtrace

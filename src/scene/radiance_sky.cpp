@@ -463,9 +463,9 @@ RadianceSky map_gendaylit(ArgReader& a, const glm::dmat4& transform, RadianceSky
             a.fail("gendaylit -L (illuminances) is not read: luxtrace's Perez sky takes the irradiances and finds "
                    "the illuminances with the Perez efficacies; give -W direct-normal diffuse-horizontal (W/m2)");
         } else if (o == "-O") {
-            const std::string v = a.word("gendaylit -O");
-            if (v != "0")
-                a.fail("gendaylit -O " + v +
+            const double v = a.number("gendaylit -O");
+            if (v != 0.0)
+                a.fail("gendaylit -O " + fixed(v, 0) +
                        " is not read: only -O 0 (visible radiance, the default) gives the sky Radiance reads at "
                        "179 lm/W");
         } else if (o == "-d") {

@@ -253,6 +253,10 @@ TEST(RadianceSky, GendaylitGivesThePerezSkysInputs) {
     const double z = 50.0 * kDeg;
     EXPECT_NEAR(perez_sky_clearness(p.sky.diffuse_horizontal_w_m2, p.sky.direct_normal_w_m2, z), 3.5, 1e-9);
     EXPECT_NEAR(perez_sky_brightness(p.sky.diffuse_horizontal_w_m2, z, 365), 0.2, 1e-12);
+    // ... within gendaylit's range: epsilon in [1, 12.01), Delta in [0.01, 0.6].
+    const RadianceSky clamped = sky_of("gendaylit -ang 40 10 -P 0.5 0.9");
+    EXPECT_NEAR(clamped.sky.direct_normal_w_m2, 0.0, 1e-12);
+    EXPECT_NEAR(perez_sky_brightness(clamped.sky.diffuse_horizontal_w_m2, z, 365), 0.6, 1e-12);
     // -E: Erbs splits the global irradiance, which the parts add up to again.
     const RadianceSky e = sky_of("gendaylit -ang 50 0 -E 600");
     EXPECT_NEAR(e.sky.diffuse_horizontal_w_m2 + e.sky.direct_normal_w_m2 * std::sin(50.0 * kDeg), 600.0, 1e-9);

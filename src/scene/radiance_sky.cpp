@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 
 namespace luxtrace {
 namespace {
@@ -506,10 +505,14 @@ RadianceSky map_gendaylit(ArgReader& a, const glm::dmat4& transform, RadianceSky
     switch (input) {
     case 'W': direct_normal = first, diffuse = second; break;
     case 'G': direct_normal = first / sin_h, diffuse = second; break;
-    case 'P': {  // Perez 1990 eqs. 1 and 2 solved for the irradiances
+    case 'P': {  // Perez 1990 eqs. 1 and 2 solved for the irradiances, after gendaylit's clamps
+        const double epsilon = std::clamp(first, 1.0, 12.009), delta = std::clamp(second, 0.01, 0.6);
+        if (epsilon != first || delta != second)
+            out.notes.push_back("-P clamped to epsilon " + fixed(epsilon, 3) + ", delta " + fixed(delta, 3) +
+                                " (gendaylit's range)");
         const double z3 = zenith_rad * zenith_rad * zenith_rad;
-        diffuse = second / relative_air_mass(zenith_rad) * e0_w_m2;
-        direct_normal = diffuse * (first - 1.0) * (1.0 + 1.041 * z3);
+        diffuse = delta / relative_air_mass(zenith_rad) * e0_w_m2;
+        direct_normal = diffuse * (epsilon - 1.0) * (1.0 + 1.041 * z3);
         break;
     }
     case 'E': {  // Erbs, Klein & Duffie 1982: the diffuse fraction from the clearness index

@@ -160,7 +160,7 @@ struct LightReader : StepReader {
     }
 
     // sky = "perez": the hour's sky from its irradiances and dew point (perez_sky.hpp); the
-    // day of the year from the [site]'s time, or day 150 as gendaylit -ang assumes.
+    // day of the year from a Radiance gendaylit line, else the [site]'s time, else day 150.
     PerezSky read_perez(TableReader& r, Light& l) {
         const SunAt s = sun_at(r, "sky");
         if (!(s.altitude_deg > 0.0))

@@ -42,7 +42,7 @@ struct RadianceModelReader : StepReader {
     // glow of Radiance's sky description, which the command's sky replaces.
     bool from_sky(int index) const {
         for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
-            if (model->modifiers[k].type == "skyfunc") return true;
+            if (model->modifiers[k].sky_command >= 0) return true;
         return false;
     }
     bool from_brightdata(int index) const {
@@ -78,7 +78,8 @@ struct RadianceModelReader : StepReader {
         std::vector<fs::path> files;
         if (!r.has("file")) r.fail_entry("needs a 'file' (a Radiance scene description, .rad, or an array of them)");
         if (t["file"].is_array()) {
-            for (const std::string& f : *r.strings("file")) files.push_back(load.resolve(f));
+            const std::vector<std::string> names = *r.strings("file");
+            for (const std::string& f : names) files.push_back(load.resolve(f));
             if (files.empty()) r.fail("file", "names no file");
         } else {
             files.push_back(load.resolve(*r.string("file")));

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -255,6 +256,47 @@ roof_portal polygon opening 0 0 12 1.5 1.5 3  1.5 2.5 3  2.5 2.5 3  2.5 1.5 3
         exact.push_back(0.25 * sum);
     }
     expect_within_errors(out, "points", exact);
+}
+
+// Honeybee's sample model folder run as Honeybee wrote it (the files in oconv's order, the
+// grid as written): one table line per sensor in the .pts order at the .pts positions, and
+// no sensor brighter than the unobstructed sky's 10 000 lx by more than its error.
+TEST(RadianceRun, HoneybeeModelRunsAsWritten) {
+    ScratchDir dir("radiance_honeybee");
+    const fs::path hb = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance" / "honeybee";
+    std::string files = "\"" + (hb / "sky_10000lx.sky").string() + "\"";
+    for (const char* f : {"scene/envelope.mat", "scene/shades.mat", "scene/envelope.rad", "scene/shades.rad",
+                          "aperture/aperture.mat", "aperture/aperture.rad"})
+        files += " \"" + (hb / "model" / f).string() + "\"";
+    const fs::path out = dir.path() / "office.h5";
+    const auto o = run_luxtrace("run " + files + " --sensors \"" + (hb / "model/grid/office.pts").string() +
+                                "\" --photons 2M --output \"" + out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    std::ifstream table(dir.path() / "office.office.txt"), pts(hb / "model/grid/office.pts");
+    std::string line;
+    std::vector<std::vector<double>> rows;
+    while (std::getline(table, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream in(line);
+        std::vector<double> v(5);
+        for (double& x : v) in >> x;
+        rows.push_back(v);
+    }
+    std::size_t k = 0;
+    while (std::getline(pts, line)) {
+        std::istringstream in(line);
+        double x, y, z;
+        if (!(in >> x >> y >> z)) continue;
+        ASSERT_LT(k, rows.size());
+        EXPECT_EQ(rows[k][0], x);
+        EXPECT_EQ(rows[k][1], y);
+        EXPECT_EQ(rows[k][2], z);
+        EXPECT_GE(rows[k][3], 0.0);
+        if (rows[k][3] > 0.0) EXPECT_LT(rows[k][3] - 4.0 * rows[k][4], 10000.0) << "sensor " << k;
+        ++k;
+    }
+    EXPECT_EQ(k, 54u);
+    EXPECT_EQ(rows.size(), k);
 }
 
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {

@@ -63,3 +63,17 @@ mpirun -n 2 --bind-to none --oversubscribe "$lux" run "$root/examples/annual/ann
 echo "Annual:        $ann/annual_office.h5   (/annual/detectors/work_plane and /sensors: hourly values, metrics)"
 echo "               $ann/annual_office_ladybug/   (the Ladybug Tools results folder: honeybee-radiance-postprocess reads it)"
 echo "               $ann/*.png   (DA and ASE maps of each grid, a sensor's hours x days)"
+
+# A Radiance model as Honeybee wrote it (tests/data/radiance/honeybee: Honeybee's sample
+# model folder, MIT, with a 10 000 lx overcast sky in Honeybee's format), run as it is with
+# its office sensor grid: the Radiance files in oconv's order, --sensors for the .pts. Each
+# sensor's illuminance and its error go to a plain table beside the result (docs/RADIANCE_USERS.md).
+rad="$root/out/radiance"
+hb="$root/tests/data/radiance/honeybee"
+mkdir -p "$rad"
+echo
+(cd "$hb/model" && mpirun -n 2 --bind-to none --oversubscribe "$lux" run ../sky_10000lx.sky \
+  scene/envelope.mat scene/shades.mat scene/envelope.rad scene/shades.rad aperture/aperture.mat aperture/aperture.rad \
+  --sensors grid/office.pts --photons 100M --threads 1 --output "$rad/office.h5" --quiet)
+echo "Radiance:      $rad/office.h5   (Honeybee's sample office, its 54-sensor grid)"
+echo "               $rad/office.office.txt   (x y z E sigma_E per sensor, in the .pts order; E / 100 is the daylight factor in %)"

@@ -423,6 +423,42 @@ TEST(RenderSpecular, MirrorAndGlassScaleWhatIsBehind) {
     EXPECT_NEAR(through, (1 - r) / (1 + r) * under, 1e-5 * under);
 }
 
+// A glossy floor (Ward lobe, roughness 0.3) under a uniform sky: every view ray it reflects
+// reaches the sky, so over many samples the pixel shows rho_s a(cos_i) L, the lobe's albedo
+// times the sky (a mirror would show rho_s L): each sample is rho_s L or 0 (absorbed).
+TEST(RenderSpecular, GlossyReflectionShowsTheLobesAlbedoOfTheSky) {
+    const fs::path dir = temp_dir();
+    std::ofstream(dir / "glossy.toml") << R"([[material]]
+name = "satin"
+type = "general"
+specular_reflectance = 0.8
+roughness = 0.3
+
+[[shape]]
+type = "rectangle"
+size = [40, 40]
+material = "satin"
+
+[[light]]
+type = "sky"
+sky = "uniform"
+zenith_luminance_cd_m2 = 1000
+)";
+    const Fixture f(load_scene(dir / "glossy.toml"));
+    const Material& m = f.scene.materials[0];
+    ASSERT_TRUE(m.lobe);
+    const double cos_i = std::cos(70.0 * kPi / 180.0);  // grazing: the lobe loses most there
+    const Vec3 d(std::sqrt(1.0 - cos_i * cos_i), 0.0, -cos_i);
+    const int n = 20000;
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) sum += f.renderer->trace(Vec3(0, 0, 1), d, static_cast<std::uint64_t>(k) + 1)[0];
+    const double a = m.lobe->albedo(cos_i), expected = 0.8 * a * 1000.0;
+    const double sigma = 800.0 * std::sqrt(a * (1.0 - a) / n);
+    EXPECT_LT(a, 0.97);  // the test tells a lobe from a mirror
+    EXPECT_NEAR(sum / n, expected, 4.0 * sigma + 1e-9) << "albedo " << a;
+    fs::remove_all(dir);
+}
+
 TEST(RenderColour, BandsFollowReflectanceAndLightColour) {
     const Fixture f(load_scene(kData / "rgb_plane.toml"));
     const std::vector<double> l = f.renderer->trace(Vec3(0.3, 0.2, 1), Vec3(0, 0, -1), 1);

@@ -338,6 +338,17 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         shade(leave(p, n, dir, eps_), dir, w, depth + 1, rng, opt, out);
     };
 
+    // The specular reflection: a mirror's direction, or with a roughness one drawn from the
+    // Ward lobe as the photons draw it (absorbed with probability 1 - albedo), so the
+    // pixel's samples average the glossy reflection.
+    auto glossy = [&]() {
+        if (!m.lobe) {
+            follow(&m.specular_reflectance, 1.0, reflect(d, n));
+            return;
+        }
+        const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+        if (const auto dir = m.lobe->reflect(d, n, u0, u1, u2)) follow(&m.specular_reflectance, 1.0, *dir);
+    };
     switch (m.type) {
     case MaterialType::black: break;
     case MaterialType::diffuse: lambertian(m.diffuse_reflectance, n, viewer_side); break;
@@ -345,10 +356,10 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         lambertian(m.diffuse_reflectance, n, viewer_side);
         // Light through a thin diffuser: what arrives on the far side.
         lambertian(m.diffuse_transmittance, -n, 1 - viewer_side);
-        if (any_positive(m.specular_reflectance)) follow(&m.specular_reflectance, 1.0, reflect(d, n));
+        if (any_positive(m.specular_reflectance)) glossy();
         if (any_positive(m.specular_transmittance)) follow(&m.specular_transmittance, 1.0, d);
         break;
-    case MaterialType::mirror: follow(&m.specular_reflectance, 1.0, reflect(d, n)); break;
+    case MaterialType::mirror: glossy(); break;
     case MaterialType::glass: {
         const double eta = front ? 1.0 / m.ior : m.ior;  // entering through the front side
         const double cos_i = -glm::dot(d, n);

@@ -299,6 +299,40 @@ TEST(RadianceRun, HoneybeeModelRunsAsWritten) {
     EXPECT_EQ(rows.size(), k);
 }
 
+// `!gensky 3 21 12 -a 40 -o 105 -m 105 +s` becomes its sky (CIE clear, type 12) and its sun
+// (radiance_sky.hpp gives their keys): on sensors facing up over a black ground, nothing in
+// the way, the run gives the two lights' unobstructed horizontal illuminance (the ground
+// glow lies below the horizon, behind the sensors).
+TEST(RadianceRun, GenskyLineBecomesItsSkyAndSun) {
+    ScratchDir dir("radiance_gensky");
+    write(dir.path() / "site.rad", R"(!gensky 3 21 12 -a 40 -o 105 -m 105 +s
+skyfunc glow sky_mat 0 0 4 1 1 1 0
+sky_mat source sky 0 0 4 0 0 1 180
+void plastic black 0 0 5 0 0 0 0 0
+black polygon ground 0 0 12 -5 -5 0  5 -5 0  5 5 0  -5 5 0
+)");
+    write_pts(dir.path() / "roof.pts", {Vec3(-2, 0, 0.01), Vec3(2, 0, 0.01), Vec3(0, 2, 0.01)});
+    RadianceRun run;
+    run.models = {dir.path() / "site.rad"};
+    run.sensors = dir.path() / "roof.pts";
+    const Scene scene = load_radiance_scene(run);
+    double horizontal = 0.0;
+    int skies = 0, suns = 0;
+    for (const Light& l : scene.lights.lights()) {
+        horizontal += l.unobstructed_horizontal_lx;
+        skies += l.type == LightType::sky && l.unobstructed_horizontal_lx > 0.0;
+        suns += l.type == LightType::sun;
+    }
+    EXPECT_EQ(skies, 1);
+    EXPECT_EQ(suns, 1);
+    const fs::path out = dir.path() / "site.h5";
+    const auto o = run_luxtrace("run \"" + (dir.path() / "site.rad").string() + "\" --sensors \"" +
+                                (dir.path() / "roof.pts").string() + "\" --sensor-radius 0.5 --photons 2M --output \"" +
+                                out.string() + "\" --quiet --threads 2");
+    ASSERT_EQ(o.code, 0) << o.out;
+    expect_within_errors(out, "roof", std::vector<double>(3, horizontal));
+}
+
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
     ScratchDir dir("radiance_scale");
     write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10

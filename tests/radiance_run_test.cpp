@@ -89,6 +89,27 @@ void write_pts(const fs::path& p, const std::vector<Vec3>& sensors) {
     for (const Vec3& s : sensors) f << s.x << ' ' << s.y << ' ' << s.z << " 0 0 1\n";
 }
 
+// `luxtrace run FILES --sensors PTS OPTIONS` into DIR/NAME.h5 (quiet, 2 threads); fails the
+// test unless it exits 0. Returns the result's path.
+fs::path run_model(const ScratchDir& dir, const std::string& name, const std::vector<fs::path>& files,
+                   const fs::path& pts, const std::string& options) {
+    std::string args = "run";
+    for (const fs::path& f : files) args += " \"" + f.string() + "\"";
+    const fs::path out = dir.path() / (name + ".h5");
+    args += " --sensors \"" + pts.string() + "\" " + options + " --output \"" + out.string() + "\" --quiet --threads 2";
+    const auto o = run_luxtrace(args);
+    EXPECT_EQ(o.code, 0) << o.out;
+    return out;
+}
+
+// The panel's (or the opening's) exact illuminance, averaged over each sensor's disc.
+std::vector<double> panel_exact(const std::vector<Vec3>& sensors, double L, double radius) {
+    std::vector<double> exact;
+    for (const Vec3& s : sensors)
+        exact.push_back(disc_mean(L, kPanelX0, kPanelX1, kPanelY0, kPanelY1, s.x, s.y, kHeight, radius));
+    return exact;
+}
+
 // Each sensor within 4.5 of its own sigma, and the mean z^2 within chi-square bounds.
 void expect_within_errors(const fs::path& result, const std::string& detector, const std::vector<double>& exact) {
     const ResultReader r(result);
@@ -111,17 +132,11 @@ TEST(RadianceRun, LightPanelGivesTheRectanglesIlluminanceAt179LumensPerWatt) {
     write(dir.path() / "panel.rad", kPanelRad);
     const std::vector<Vec3> sensors = panel_sensors();
     write_pts(dir.path() / "floor.pts", sensors);
-    const fs::path out = dir.path() / "panel.h5";
-    const auto o = run_luxtrace(
-        "run \"" + (dir.path() / "panel.rad").string() + "\" --sensors \"" + (dir.path() / "floor.pts").string() +
-        "\" --sensor-radius 0.1 --photons 8M --output \"" + out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+    const fs::path out = run_model(dir, "panel", {dir.path() / "panel.rad"}, dir.path() / "floor.pts",
+                                   "--sensor-radius 0.1 --photons 8M");
     // Radiance's luminance of radiance 10 in each channel: 179 x 10 (the weights sum to 1).
     const double L = kRadianceEfficacy_lm_per_W * 10.0;
-    std::vector<double> exact;
-    for (const Vec3& s : sensors)
-        exact.push_back(disc_mean(L, kPanelX0, kPanelX1, kPanelY0, kPanelY1, s.x, s.y, kHeight, 0.1));
-    expect_within_errors(out, "floor", exact);
+    expect_within_errors(out, "floor", panel_exact(sensors, L, 0.1));
     const ResultReader r(out);
     EXPECT_NEAR(r.attr_f64("/", "total_flux_lm"), kPi * L * 0.6, 1e-9 * L);
 }
@@ -136,11 +151,8 @@ void plastic ground 0 0 5 0 0 0 0 0
 ground polygon g 0 0 12 -2 -2 0  2 -2 0  2 2 0  -2 2 0
 )");
     write_pts(dir.path() / "grid.pts", {Vec3(-0.5, 0, 0.01), Vec3(0.5, 0, 0.01), Vec3(0, 0.5, 0.01)});
-    const fs::path out = dir.path() / "sun.h5";
-    const auto o = run_luxtrace("run \"" + (dir.path() / "sun.rad").string() + "\" --sensors \"" +
-                                (dir.path() / "grid.pts").string() + "\" --sensor-radius 0.2 --photons 2M --output \"" +
-                                out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+    const fs::path out = run_model(dir, "sun", {dir.path() / "sun.rad"}, dir.path() / "grid.pts",
+                                   "--sensor-radius 0.2 --photons 2M");
     const double omega = 2.0 * kPi * (1.0 - std::cos(0.5 * angle_deg * kPi / 180.0));
     // On a horizontal sensor: E_n cos(30 degrees).
     const double exact = kRadianceEfficacy_lm_per_W * radiance * omega * std::cos(kPi / 6.0);
@@ -172,17 +184,10 @@ window polygon opening 0 0 12 -0.5 -0.3 1  -0.5 0.3 1  0.5 0.3 1  0.5 -0.3 1
 )");
     const std::vector<Vec3> sensors = panel_sensors();
     write_pts(dir.path() / "floor.pts", sensors);
-    const fs::path out = dir.path() / "room.h5";
-    const auto o = run_luxtrace(
-        "run \"" + (dir.path() / "sky.rad").string() + "\" \"" + (dir.path() / "room.rad").string() +
-        "\" --sensors \"" + (dir.path() / "floor.pts").string() + "\" --sensor-radius 0.1 --photons 4M --output \"" +
-        out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+    const fs::path out = run_model(dir, "room", {dir.path() / "sky.rad", dir.path() / "room.rad"},
+                                   dir.path() / "floor.pts", "--sensor-radius 0.1 --photons 4M");
     const double L = kRadianceEfficacy_lm_per_W * 2.0;
-    std::vector<double> exact;
-    for (const Vec3& s : sensors)
-        exact.push_back(disc_mean(L, kPanelX0, kPanelX1, kPanelY0, kPanelY1, s.x, s.y, kHeight, 0.1));
-    expect_within_errors(out, "floor", exact);
+    expect_within_errors(out, "floor", panel_exact(sensors, L, 0.1));
     // Every photon starts at the opening: the flux is the sky's through it, L pi A.
     EXPECT_NEAR(ResultReader(out).attr_f64("/", "total_flux_lm"), kPi * L * 0.6, 1e-6 * L);
 }
@@ -232,13 +237,9 @@ TEST(RadianceRun, Cie171RoofOpeningFromRadianceFilesGivesTheExactSkyComponents) 
 roof_portal polygon opening 0 0 12 1.5 1.5 3  1.5 2.5 3  2.5 2.5 3  2.5 1.5 3
 )");
     const double radius = 0.1;
-    const fs::path out = dir.path() / "roof.h5";
-    const auto o = run_luxtrace("run \"" + (data / "overcast_10000lx.sky").string() + "\" \"" +
-                                (data / "room_roof_1x1.rad").string() + "\" \"" +
-                                (dir.path() / "opening.rad").string() + "\" --sensors \"" +
-                                (data / "points.pts").string() + "\" --sensor-radius " + std::to_string(radius) +
-                                " --photons 8M --output \"" + out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+    const fs::path out =
+        run_model(dir, "roof", {data / "overcast_10000lx.sky", data / "room_roof_1x1.rad", dir.path() / "opening.rad"},
+                  data / "points.pts", "--sensor-radius " + std::to_string(radius) + " --photons 8M");
     const auto cases = cie171::report_cases();
     const auto c = std::find_if(cases.begin(), cases.end(), [](const cie171::Case& k) { return k.id == "5.9 1x1"; });
     ASSERT_NE(c, cases.end());
@@ -264,14 +265,11 @@ roof_portal polygon opening 0 0 12 1.5 1.5 3  1.5 2.5 3  2.5 2.5 3  2.5 1.5 3
 TEST(RadianceRun, HoneybeeModelRunsAsWritten) {
     ScratchDir dir("radiance_honeybee");
     const fs::path hb = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance" / "honeybee";
-    std::string files = "\"" + (hb / "sky_10000lx.sky").string() + "\"";
+    std::vector<fs::path> files{hb / "sky_10000lx.sky"};
     for (const char* f : {"scene/envelope.mat", "scene/shades.mat", "scene/envelope.rad", "scene/shades.rad",
                           "aperture/aperture.mat", "aperture/aperture.rad"})
-        files += " \"" + (hb / "model" / f).string() + "\"";
-    const fs::path out = dir.path() / "office.h5";
-    const auto o = run_luxtrace("run " + files + " --sensors \"" + (hb / "model/grid/office.pts").string() +
-                                "\" --photons 2M --output \"" + out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+        files.push_back(hb / "model" / f);
+    run_model(dir, "office", files, hb / "model/grid/office.pts", "--photons 2M");
     std::ifstream table(dir.path() / "office.office.txt"), pts(hb / "model/grid/office.pts");
     std::string line;
     std::vector<std::vector<double>> rows;
@@ -325,11 +323,8 @@ black polygon ground 0 0 12 -5 -5 0  5 -5 0  5 5 0  -5 5 0
     }
     EXPECT_EQ(skies, 1);
     EXPECT_EQ(suns, 1);
-    const fs::path out = dir.path() / "site.h5";
-    const auto o = run_luxtrace("run \"" + (dir.path() / "site.rad").string() + "\" --sensors \"" +
-                                (dir.path() / "roof.pts").string() + "\" --sensor-radius 0.5 --photons 2M --output \"" +
-                                out.string() + "\" --quiet --threads 2");
-    ASSERT_EQ(o.code, 0) << o.out;
+    const fs::path out = run_model(dir, "site", {dir.path() / "site.rad"}, dir.path() / "roof.pts",
+                                   "--sensor-radius 0.5 --photons 2M");
     expect_within_errors(out, "roof", std::vector<double>(3, horizontal));
 }
 

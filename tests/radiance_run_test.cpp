@@ -328,6 +328,21 @@ black polygon ground 0 0 12 -5 -5 0  5 -5 0  5 5 0  -5 5 0
     expect_within_errors(out, "roof", std::vector<double>(3, horizontal));
 }
 
+// `--target` with sensors is a target on the sensors: a run given far more photons than it
+// needs stops when their pooled error reaches the goal, and reports it met.
+TEST(RadianceRun, TargetWithSensorsStopsOnTheSensorsError) {
+    ScratchDir dir("radiance_target");
+    const fs::path ward = fs::path(LUXTRACE_TEST_DATA_DIR) / "radiance" / "ward1990";
+    const fs::path out = run_model(dir, "room", {ward / "room.rad"}, ward / "ceiling.pts",
+                                   "--photons 100G --target 0.03");
+    const ResultReader r(out);
+    EXPECT_EQ(r.attr_str("/", "stop_reason").rfind("target detector:ceiling", 0), 0u) << r.attr_str("/", "stop_reason");
+    const std::vector<double> sigma_rel = r.f64("/detectors/ceiling/sigma_rel");
+    double q = 0.0;
+    for (const double s : sigma_rel) q += s * s;
+    EXPECT_LE(std::sqrt(q / static_cast<double>(sigma_rel.size())), 0.03);
+}
+
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
     ScratchDir dir("radiance_scale");
     write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10

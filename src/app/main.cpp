@@ -37,6 +37,7 @@ struct SceneArgs {
     std::vector<std::string> files;
     std::string sensors;
     std::optional<double> sensor_radius_m, scale;
+    std::optional<double> sensors_target;  // run's --target with --sensors: on the sensors
 
     bool radiance() const { return !files.empty() && is_radiance_file(files.front()); }
     // As the user would type them again (for "continue with").
@@ -73,6 +74,10 @@ Scene load_scene_args(const SceneArgs& a) {
     if (a.scale) {
         if (!(*a.scale > 0.0 && std::isfinite(*a.scale))) throw InputError("--scale: must be positive");
         run.scale = *a.scale;
+    }
+    if (a.sensors_target && !a.sensors.empty()) {
+        if (!(*a.sensors_target > 0.0)) throw InputError("--target: must be positive");
+        run.sensors_relative_error = a.sensors_target;
     }
     return load_radiance_scene(run);
 }
@@ -171,7 +176,9 @@ std::atomic<int> g_stop_signal{0};
 extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
 
 int cmd_run(const Communicator& comm, const RunArgs& a) {
-    Scene scene = load_scene_args(a.scene);
+    SceneArgs scene_args = a.scene;
+    scene_args.sensors_target = a.target;  // a Radiance model's sensors are what --target is about
+    Scene scene = load_scene_args(scene_args);
     apply_overrides(scene, a);
     if (a.threads && *a.threads < 1) throw InputError("--threads: must be at least 1");
     RunOptions opt;
@@ -261,7 +268,8 @@ int main(int argc, char** argv) {
                     "checkpoint's photons");
     run->add_option("--time-limit", ra.time_limit, "wall-time limit in seconds");
     run->add_option("--target", ra.target,
-                    "relative error goal of the first [[run.target]] (a global target if the scene has none)");
+                    "relative error goal of the first [[run.target]] (a global target if the scene has none; with "
+                    "Radiance models and --sensors, the sensors' error pooled by eq. 9)");
     run->add_option("--seed", ra.seed, "random seed (a restart keeps the checkpoint's)");
     run->add_option("--threads", ra.threads, "threads per rank (default: all cores given to the rank)");
     run->add_option("--output", ra.output, "result file (.h5), relative to the working directory");

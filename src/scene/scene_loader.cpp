@@ -159,6 +159,11 @@ Scene load_radiance_scene(const RadianceRun& run) {
         toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", as_given(*run.sensors)}};
         if (run.sensor_radius_m) d.insert("radius_m", *run.sensor_radius_m);
         root.insert("detector", toml::array{std::move(d)});
+        if (run.sensors_relative_error) {
+            toml::table target{{"on", "detector:" + detector_name_of(*run.sensors)},
+                               {"relative_error", *run.sensors_relative_error}};
+            root.insert("run", toml::table{{"target", toml::array{std::move(target)}}});
+        }
     }
     // Named after the last model (Radiance's order puts the sky first, the model last).
     Scene scene = load_from_table(root, last, last.string());

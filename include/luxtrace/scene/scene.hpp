@@ -43,6 +43,9 @@ struct RadianceRun {
     std::optional<std::filesystem::path> sensors;
     std::optional<double> sensor_radius_m;
     double scale = 1.0;  // metres per model unit
+    // `--target` of a run with sensors: a [[run.target]] on the sensors' relative error
+    // (pooled quadratically over them, eq. 9) instead of the global map's.
+    std::optional<double> sensors_relative_error;
 };
 struct Scene {
     std::filesystem::path file;

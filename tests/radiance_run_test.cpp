@@ -343,6 +343,30 @@ TEST(RadianceRun, TargetWithSensorsStopsOnTheSensorsError) {
     EXPECT_LE(std::sqrt(q / static_cast<double>(sigma_rel.size())), 0.03);
 }
 
+// A `trans` sheet (Radiance's diffuse and specular transmission) under a uniform sky, nothing
+// else: lit by pi L on top, it passes T = Td + Ts of it downward, diffusely (a Lambertian
+// underside of luminance Td L) and straight (the sky seen through it, Ts L), so a sensor
+// below sees pi L from the open sky around the sheet and T L through the sheet's solid
+// angle: E = pi L - (1 - T) E_sheet, E_sheet the sheet's configuration factor times pi L.
+TEST(RadianceRun, TransSheetPassesItsDiffuseAndSpecularTransmission) {
+    ScratchDir dir("radiance_trans");
+    // c 0.8, no specular reflection, transmissivity 0.5 of which 0.3 specular:
+    // Rd = 0.4, Td = 0.8 x 0.5 x 0.7 = 0.28, Ts = 0.8 x 0.5 x 0.3 = 0.12.
+    write(dir.path() / "sheet.rad", R"(void glow skyglow 0 0 4 1 1 1 0
+skyglow source sky 0 0 4 0 0 1 180
+void trans diffuser 0 0 7 0.8 0.8 0.8 0 0 0.5 0.3
+diffuser polygon sheet 0 0 12 -0.5 -0.3 1  -0.5 0.3 1  0.5 0.3 1  0.5 -0.3 1
+)");
+    const std::vector<Vec3> sensors = panel_sensors();
+    write_pts(dir.path() / "below.pts", sensors);
+    const fs::path out = run_model(dir, "sheet", {dir.path() / "sheet.rad"}, dir.path() / "below.pts",
+                                   "--sensor-radius 0.1 --photons 8M");
+    const double L = kRadianceEfficacy_lm_per_W, T = 0.28 + 0.12;
+    std::vector<double> exact = panel_exact(sensors, L, 0.1);
+    for (double& e : exact) e = kPi * L - (1.0 - T) * e;
+    expect_within_errors(out, "below", exact);
+}
+
 TEST(RadianceRun, ScaleMakesMetresOfAModelInMillimetres) {
     ScratchDir dir("radiance_scale");
     write(dir.path() / "panel_mm.rad", R"(void light panel_light 0 0 3 10 10 10

@@ -75,6 +75,13 @@ void PendingReduce::wait() {
     impl_->requests.clear();
 }
 
+std::vector<std::pair<std::size_t, int>> Communicator::pieces(std::size_t n, std::size_t max_per_call) {
+    const std::size_t step = std::clamp<std::size_t>(max_per_call, 1, static_cast<std::size_t>(INT_MAX));
+    std::vector<std::pair<std::size_t, int>> out;
+    for (std::size_t off = 0; off < n; off += step) out.emplace_back(off, static_cast<int>(std::min(step, n - off)));
+    return out;
+}
+
 PendingReduce Communicator::ireduce_sum_to_root(const std::vector<std::uint64_t>& send,
                                                 std::vector<std::uint64_t>& recv) const {
     auto impl = std::make_unique<PendingReduce::Impl>();
@@ -83,9 +90,7 @@ PendingReduce Communicator::ireduce_sum_to_root(const std::vector<std::uint64_t>
         recv = send;
         return PendingReduce(std::move(impl));
     }
-    constexpr std::size_t kPiece = std::size_t{1} << 28;
-    for (std::size_t off = 0; off < send.size(); off += kPiece) {
-        const int n = static_cast<int>(std::min(kPiece, send.size() - off));
+    for (const auto& [off, n] : pieces(send.size(), max_per_call_)) {
         MPI_Request r;
         MPI_Ireduce(send.data() + off, rank_ == 0 ? recv.data() + off : nullptr, n, MPI_UINT64_T, MPI_SUM, 0,
                     MPI_COMM_WORLD, &r);
@@ -96,7 +101,8 @@ PendingReduce Communicator::ireduce_sum_to_root(const std::vector<std::uint64_t>
 
 void Communicator::broadcast(std::vector<double>& values) const {
     if (size_ == 1) return;
-    MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    for (const auto& [off, n] : pieces(values.size(), max_per_call_))
+        MPI_Bcast(values.data() + off, n, MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
 
 std::uint64_t Communicator::allreduce_max(std::uint64_t v) const {
@@ -107,7 +113,8 @@ std::uint64_t Communicator::allreduce_max(std::uint64_t v) const {
 
 void Communicator::allreduce_or(std::vector<std::uint64_t>& bits) const {
     if (size_ == 1 || bits.empty()) return;
-    MPI_Allreduce(MPI_IN_PLACE, bits.data(), static_cast<int>(bits.size()), MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD);
+    for (const auto& [off, n] : pieces(bits.size(), max_per_call_))
+        MPI_Allreduce(MPI_IN_PLACE, bits.data() + off, n, MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD);
 }
 
 double Communicator::allreduce_max(double v) const {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace luxtrace {
@@ -27,6 +28,12 @@ private:
 
 class Communicator {
 public:
+    // Elements per MPI call: Open MPI 4.1 takes counts as int (no large-count collectives),
+    // so longer arrays travel in pieces of at most this many elements.
+    static constexpr std::size_t kMaxElementsPerCall = std::size_t{1} << 28;
+    // The pieces [offset, offset + count) an array of n elements travels in.
+    static std::vector<std::pair<std::size_t, int>> pieces(std::size_t n, std::size_t max_per_call);
+
     // Initialises MPI (a plain process without mpirun is a 1-rank world).
     Communicator(int* argc, char*** argv);
     ~Communicator();
@@ -49,10 +56,13 @@ public:
     double wtime() const;
     // Ends every rank at once (after an error that only this rank saw).
     [[noreturn]] void abort(int code) const;
+    // Tests: a smaller piece size, so that the pieces' bookkeeping is exercised on small arrays.
+    void set_max_elements_per_call(std::size_t n) { max_per_call_ = n; }
 
 private:
     int rank_ = 0;
     int size_ = 1;
+    std::size_t max_per_call_ = kMaxElementsPerCall;
 };
 
 }  // namespace luxtrace

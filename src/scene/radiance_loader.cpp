@@ -45,6 +45,13 @@ struct RadianceModelReader : StepReader {
             if (model->modifiers[k].sky_command >= 0) return true;
         return false;
     }
+    // The skyfunc modifier that modifier `index` descends from (from_sky is true).
+    int sky_command_of(int index) const {
+        int k = index;
+        for (int depth = 0; k >= 0 && depth < 64 && model->modifiers[k].sky_command < 0; ++depth)
+            k = model->modifiers[k].modifier;
+        return k;
+    }
     bool from_brightdata(int index) const {
         for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
             if (model->modifiers[k].type == "brightdata") return true;
@@ -109,6 +116,22 @@ struct RadianceModelReader : StepReader {
             scene.radiance_modifiers.push_back(model->where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " +
                                                mappings.back().describe());
         }
+        // The sky's glows are the sky command's sky (add_skies), not lights of their own.
+        for (std::size_t k = 0; k < m.modifiers.size(); ++k)
+            if (m.modifiers[k].sky_command >= 0)
+                scene.radiance_modifiers[first_description + k] =
+                    m.where(m.modifiers[k].at) + ": " + m.modifiers[k].name + " -> the sky pattern of the !" +
+                    m.sky_commands[static_cast<std::size_t>(m.modifiers[k].sky_command)].program + " line (below)";
+            else if (from_sky(static_cast<int>(k)))
+                scene.radiance_modifiers[first_description + k] =
+                    m.where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " + m.modifiers[k].name +
+                    " -> the sky's glow: its light is the sky of the " +
+                    m.where(
+                        m
+                            .sky_commands[static_cast<std::size_t>(
+                                m.modifiers[static_cast<std::size_t>(sky_command_of(static_cast<int>(k)))].sky_command)]
+                            .at) +
+                    " line (below)";
         material_of_modifier.assign(m.modifiers.size(), -1);
         const std::string context = fname + ":" + std::to_string(r.line("file")) + ": " + r.context();
         // ies2rad luminaires are point lights with their photometry; their small emitting
@@ -318,7 +341,6 @@ struct RadianceModelReader : StepReader {
             const RadianceSky sky = map_radiance_sky(*model, c);
             const std::string where = model->where(c.at);
             scene.radiance_modifiers.push_back(where + ": " + sky.describe());
-            for (const std::string& n : sky.notes) scene.warnings.push_back(where + ": " + n);
             const RadianceSkyLight& k = sky.sky;
             SceneLoad::RadianceLight out;
             out.label = "radiance sky (" + where + ")";

@@ -17,7 +17,7 @@ namespace detail {
 
 fs::path SceneLoad::resolve(const std::string& path) const {
     const fs::path p(path);
-    return p.is_absolute() ? p : file.parent_path() / p;
+    return p.is_absolute() || folder.empty() ? p : folder / p;
 }
 
 std::vector<const toml::table*> tables_of(TableReader& root, const std::string& key) {
@@ -93,9 +93,11 @@ void refuse_unknown_tables(const toml::table& root, const std::string& fname) {
 
 namespace {
 
-Scene load_from_table(const toml::table& root_table, const fs::path& file, const std::string& fname) {
+Scene load_from_table(const toml::table& root_table, const fs::path& file, const std::string& fname,
+                      const fs::path& folder) {
     detail::SceneLoad load;
     load.file = file;
+    load.folder = folder;
     load.fname = fname;
     load.scene.file = file;
     refuse_unknown_tables(root_table, load.fname);
@@ -130,7 +132,7 @@ Scene load_scene(const fs::path& file) {
         throw InputError(file.string() + ": a Radiance model, not a scene file: run it with `luxtrace run " +
                          file.filename().string() +
                          " --sensors GRID.pts`, or name it in a scene's [[radiance]] table (docs/RADIANCE.md)");
-    return load_from_table(parse_toml(file, file.string()), file, file.string());
+    return load_from_table(parse_toml(file, file.string()), file, file.string(), file.parent_path());
 }
 
 bool is_radiance_file(const fs::path& file) {
@@ -145,18 +147,14 @@ Scene load_radiance_scene(const RadianceRun& run) {
     // The scene a user would write: [[radiance]] per model, the sensors as a points detector.
     toml::table root;
     toml::array files;
-    // Paths as given while they resolve the same from the last model's folder (messages
-    // then name the files as the user typed them), else absolute.
+    // Paths as given, from the working directory (messages name the files as typed).
     const fs::path& last = run.models.back();
-    const auto as_given = [&](const fs::path& p) {
-        return p.is_absolute() || last.parent_path().empty() ? p.string() : fs::absolute(p).string();
-    };
-    for (const fs::path& m : run.models) files.push_back(as_given(m));
+    for (const fs::path& m : run.models) files.push_back(m.string());
     toml::table model{{"file", std::move(files)}};
     if (run.scale != 1.0) model.insert("scale", run.scale);
     root.insert("radiance", toml::array{std::move(model)});
     if (run.sensors) {
-        toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", as_given(*run.sensors)}};
+        toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", run.sensors->string()}};
         if (run.sensor_radius_m) d.insert("radius_m", *run.sensor_radius_m);
         root.insert("detector", toml::array{std::move(d)});
         if (run.sensors_relative_error) {
@@ -166,7 +164,7 @@ Scene load_radiance_scene(const RadianceRun& run) {
         }
     }
     // Named after the last model (Radiance's order puts the sky first, the model last).
-    Scene scene = load_from_table(root, last, last.string());
+    Scene scene = load_from_table(root, last, last.string(), fs::path());
     RadianceRun made = run;
     for (fs::path& m : made.models) m = fs::absolute(m);
     if (made.sensors) made.sensors = fs::absolute(*made.sensors);

@@ -43,7 +43,10 @@ struct SceneLoad {
     std::vector<RadianceLight> radiance_lights;
     std::vector<RadiancePortal> radiance_portals;
 
-    // A path in the scene file, relative to the scene file's folder unless absolute.
+    // The folder relative paths start from: the scene file's, or for a bare Radiance run
+    // (load_radiance_scene) the working directory ("").
+    std::filesystem::path folder;
+    // A path in the scene file, relative to `folder` unless absolute.
     std::filesystem::path resolve(const std::string& path) const;
 };
 

@@ -560,6 +560,8 @@ int fuzz_pts(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+namespace {
+
 // What map_radiance_modifier promises of a mapping for `nb` bands: probabilities per band
 // in [0, 1] that sum to at most 1, a roughness WardLobe takes (with its lobe), finite
 // non-negative luminances, and a glazing whose curve reflects and transmits in [0, 1].
@@ -661,6 +663,8 @@ void check_radiance_luminaire(const RadianceModel& m, std::size_t brightdata, co
         if (!(i >= 0.0 && std::isfinite(i))) broken(who + "intensity " + std::to_string(i));
     }
 }
+
+}  // namespace
 
 int fuzz_radiance(const std::uint8_t* data, std::size_t size) {
     const fs::path file = write_input("input.rad", data, size);

@@ -75,6 +75,34 @@ TEST(RadianceMaterials, GlassTransmissivityIsTheRadianceManualsPane) {
                 g.material.transmittance[0], 1e-9);
 }
 
+TEST(RadianceMaterials, RefractiveIndicesNoGlassCanHaveAreRefusedAndTheGlazingsRangeKept) {
+    // A glass (pane) of index n <= 1 has no Fresnel reflectance at grazing incidence
+    // (0 / 0): it is taken into the glazing's range [1.2, 3] with a note; an index that is
+    // not positive belongs to no material, glass or dielectric, and is refused with its line.
+    const RadianceModel m = model_of("void glass plain 0 0 4 0.9 0.9 0.9 1\nvoid glass dense 0 0 4 0.9 0.9 0.9 7\n"
+                                     "void glass zero 0 0 4 0.9 0.9 0.9 0\nvoid dielectric neg 0 0 5 1 1 1 -1.5 0\n"
+                                     "void dielectric bubble 0 0 5 1 1 1 0.75 0\n");
+    const RadianceMapping plain = map_radiance_modifier(m, 0, kY);
+    EXPECT_EQ(plain.material.ior, 1.2);
+    ASSERT_FALSE(plain.notes.empty());
+    for (const double cos_i : {0.0, 0.5, 1.0}) {
+        const PaneOptics o = plain.material.glazing->front().at(cos_i);
+        EXPECT_TRUE(o.reflectance >= 0.0 && o.transmittance >= 0.0 && o.reflectance + o.transmittance <= 1.0)
+            << "cos " << cos_i << ": R " << o.reflectance << " T " << o.transmittance;
+    }
+    EXPECT_EQ(map_radiance_modifier(m, 1, kY).material.ior, 3.0);
+    for (const std::size_t k : {2, 3}) {
+        try {
+            map_radiance_modifier(m, k, kY);
+            ADD_FAILURE() << "modifier " << k << ": an index that is not positive must be refused";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(":" + std::to_string(k + 1) + ":"), std::string::npos) << e.what();
+        }
+    }
+    // A dielectric below 1 is an interface into a thinner medium (an air bubble in water).
+    EXPECT_EQ(map_radiance_modifier(m, 4, kY).material.ior, 0.75);
+}
+
 TEST(RadianceMaterials, LightsAreLuminanceAt179LumensPerWatt) {
     const RadianceModel m = model_of("void light lamp 0 0 3 10 10 10\nvoid glow dim 0 0 4 1 2 3 0\n"
                                      "void illum window 0 0 3 1 1 1\n");

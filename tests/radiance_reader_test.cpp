@@ -4,6 +4,7 @@
 #include "luxtrace/scene/radiance_reader.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/scene/radiance_shapes.hpp"
+#include "luxtrace/scene/radiance_xform.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -276,6 +277,19 @@ TEST(RadianceXform, ArraysIterationsPrefixesAndNestingCompose) {
     EXPECT_NEAR(glm::length(first(6) - Vec3(2, 0, 7)), 0.0, 1e-12);  // -i 2 repeats the move twice
     EXPECT_EQ(m.surfaces[9].name, "outer.r.2.t");
     EXPECT_NEAR(glm::length(first(9) - Vec3(104, 0, 0)), 0.0, 1e-12);  // inner then outer
+}
+
+TEST(RadianceXform, ALongArrayStepsEachCopyOnceFromTheLast) {
+    // -a 200000 -rz 0.001: copy k is turned by k / 1000 degrees. Each copy's matrix is one
+    // product from the one before (built anew per copy, this array took 2e10 products).
+    const radiance::XformCommand x = radiance::parse_xform({"-a", "200000", "-rz", "0.001", "part.rad"}, "t.rad:1");
+    ASSERT_EQ(x.copies.size(), 200000u);
+    EXPECT_EQ(x.copies.back().name_prefix, "a199999");
+    const double a = 199.999 * kPi / 180.0;
+    const glm::dvec4 moved = x.copies.back().matrix * glm::dvec4(1, 0, 0, 1);
+    EXPECT_NEAR(moved.x, std::cos(a), 1e-9);
+    EXPECT_NEAR(moved.y, std::sin(a), 1e-9);
+    EXPECT_NEAR(moved.z, 0.0, 1e-15);
 }
 
 TEST(RadianceXform, NewModifierReplacesTheSurfacesModifier) {

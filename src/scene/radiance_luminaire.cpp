@@ -330,7 +330,9 @@ double geometry_at(const Pattern& p, const Emitters& e, const Placement& pl, dou
                       -std::cos(g * kDeg));
         return std::pair{dp.x * pl.x + dp.y * pl.y + dp.z * pl.z, dp};
     };
-    const auto [d, dp] = direction(g_deg);
+    // Not a structured binding: clang 14 (the fuzz build's) cannot capture one in a lambda.
+    const auto at = direction(g_deg);
+    const Vec3 d = at.first, dp = at.second;
     const bool edge_on = std::any_of(e.facets.begin(), e.facets.end(),
                                      [&](const Facet& f) { return std::abs(glm::dot(f.normal, d)) < 1e-9; });
     if (!edge_on) return geometry(p, e, d, dp);

@@ -135,7 +135,17 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
         // glazing takes the pane's normal transmittance, that of a pane of transmissivity tn
         // (glazing.hpp: T = (1 - r0)^2 tn / (1 - r0^2 tn^2)).
         const std::vector<double> tn = colour(0);
-        const double ior = m.reals.size() > 3 ? m.reals[3] : 1.52;
+        double ior = m.reals.size() > 3 ? m.reals[3] : 1.52;
+        if (!(ior > 0.0))
+            throw InputError(where + ": the refractive index must be positive, not " + detail::fmt_number(ior));
+        // The pane's curve is exact for indices in [1.2, 3] (glazing.hpp), as a TOML
+        // glazing's refractive_index; at 1 and below it has no value at grazing incidence.
+        if (ior < 1.2 || ior > 3.0) {
+            const double taken = std::clamp(ior, 1.2, 3.0);
+            out.notes.push_back("refractive index " + detail::fmt_number(ior) + " outside [1.2, 3] taken as " +
+                                detail::fmt_number(taken));
+            ior = taken;
+        }
         out.material.type = MaterialType::glazing;
         out.material.ior = ior;
         auto curves = std::make_shared<std::vector<GlazingCurve>>();
@@ -146,6 +156,8 @@ RadianceMapping map_radiance_modifier(const RadianceModel& model, std::size_t in
         }
         out.material.glazing = std::move(curves);
     } else if (t == "dielectric") {
+        if (!(m.reals[3] > 0.0))
+            throw InputError(where + ": the refractive index must be positive, not " + detail::fmt_number(m.reals[3]));
         out.material.type = MaterialType::glass;
         out.material.ior = m.reals[3];
         out.material.transmittance.assign(nb, 1.0);

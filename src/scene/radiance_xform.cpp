@@ -154,6 +154,12 @@ XformCommand parse_xform(const std::vector<std::string>& w, const std::string& w
         const int copies = r.array ? r.count : 1;
         if (partial.size() * static_cast<std::size_t>(copies) > 1000000)
             throw InputError(where + ": xform -a makes more than a million copies");
+        // Copy k's matrix is the run applied k times, built once per run and in the order
+        // power() multiplies: one product per copy, however many -a makes.
+        std::vector<glm::dmat4> steps{glm::dmat4(1.0)};
+        if (r.array)
+            for (int k = 1; k < copies; ++k) steps.push_back(r.matrix * steps.back());
+        else steps.front() = power(r.matrix, r.count);
         for (const auto& [m, name] : partial)
             for (int k = 0; k < copies; ++k) {
                 std::string id = name;
@@ -161,7 +167,7 @@ XformCommand parse_xform(const std::vector<std::string>& w, const std::string& w
                     id = name.empty() ? std::string("a") : name + ".";
                     id += std::to_string(k);
                 }
-                next.emplace_back(power(r.matrix, r.array ? k : r.count) * m, id);
+                next.emplace_back(steps[static_cast<std::size_t>(k)] * m, id);
             }
         partial = std::move(next);
     }

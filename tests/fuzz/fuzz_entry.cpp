@@ -13,7 +13,10 @@
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/renderer.hpp"
 #include "luxtrace/render/tone_map.hpp"
+#include "luxtrace/scene/radiance_luminaire.hpp"
+#include "luxtrace/scene/radiance_materials.hpp"
 #include "luxtrace/scene/radiance_reader.hpp"
+#include "luxtrace/scene/radiance_sky.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/weather/weather_file.hpp"
@@ -21,6 +24,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -98,6 +102,16 @@ grey sphere ball
 0
 0
 4 .5 .5 .5 .2
+)";
+
+// An ies2rad data file (candela / 179; src_phi4 by src_theta) that fuzzed brightdata
+// patterns may name; the folder of input.rad is searched first.
+constexpr std::string_view kPartDat = R"(2
+0 90 3
+0 180 5
+1.2 1.0 0.6 0.2 0
+1.2 0.9 0.5 0.1 0
+1.2 0.8 0.4 0.05 0
 )";
 
 // The scene of the result target's seeds (tests/fuzz/make_result_seeds.sh writes results
@@ -248,6 +262,7 @@ const fs::path& private_dir() {
         write_file(d / "tri.ply", kTriPly);
         write_file(d / "light.ies", kLightIes);
         write_file(d / "part.rad", kPartRad);
+        write_file(d / "part.dat", kPartDat);
         std::atexit([] {
             std::error_code ec;
             fs::remove_all(private_dir(), ec);
@@ -545,6 +560,112 @@ int fuzz_pts(const std::uint8_t* data, std::size_t size) {
     return 0;
 }
 
+namespace {
+
+// What map_radiance_modifier promises of a mapping for `nb` bands: probabilities per band
+// in [0, 1] that sum to at most 1, a roughness WardLobe takes (with its lobe), finite
+// non-negative luminances, and a glazing whose curve reflects and transmits in [0, 1].
+void check_radiance_mapping(const RadianceMapping& r, std::size_t nb) {
+    const Material& mat = r.material;
+    const std::string who = "modifier " + mat.name + ": ";
+    (void)r.describe();
+    if (r.role == RadianceRole::light) {
+        if (r.luminance_cd_m2.size() != nb) broken(who + "luminances per band");
+        for (const double L : r.luminance_cd_m2)
+            if (!(L >= 0.0 && std::isfinite(L))) broken(who + "luminance " + std::to_string(L));
+    }
+    if (r.role == RadianceRole::ignored) return;
+    const std::vector<double>* probabilities[] = {&mat.diffuse_reflectance, &mat.specular_reflectance,
+                                                  &mat.diffuse_transmittance, &mat.specular_transmittance,
+                                                  &mat.transmittance};
+    for (const std::vector<double>* v : probabilities) {
+        if (!v->empty() && v->size() != nb) broken(who + "a per-band list of " + std::to_string(v->size()));
+        for (const double x : *v)
+            if (!(x >= 0.0 && x <= 1.0)) broken(who + "reflectance or transmittance " + std::to_string(x));
+    }
+    for (std::size_t b = 0; b < nb; ++b) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k < 4; ++k)
+            if (!probabilities[k]->empty()) sum += (*probabilities[k])[b];
+        if (!(sum <= 1.0 + 1e-9)) broken(who + "reflectances and transmittances sum to " + std::to_string(sum));
+    }
+    if (!(mat.roughness >= 0.0 && mat.roughness <= WardLobe::kMaxRoughness))
+        broken(who + "roughness " + std::to_string(mat.roughness));
+    if ((mat.roughness > 0.0) != (mat.lobe != nullptr)) broken(who + "roughness without its lobe");
+    if (mat.type == MaterialType::glass || mat.type == MaterialType::glazing) {
+        if (!(mat.ior > 0.0 && std::isfinite(mat.ior))) broken(who + "refractive index " + std::to_string(mat.ior));
+        if (mat.transmittance.size() != nb) broken(who + "transmittance per band");
+    }
+    if (mat.type == MaterialType::glazing) {
+        if (!mat.glazing || mat.glazing->size() != nb) broken(who + "glazing curves per band");
+        for (const GlazingCurve& c : *mat.glazing)
+            for (const double cos_i : {0.0, 0.01, 0.3, 0.7, 1.0}) {
+                const PaneOptics o = c.at(cos_i);
+                if (!(o.reflectance >= 0.0 && o.transmittance >= 0.0 && o.reflectance + o.transmittance <= 1.0 + 1e-9))
+                    broken(who + "glazing R " + std::to_string(o.reflectance) + " T " +
+                           std::to_string(o.transmittance) + " at cos " + std::to_string(cos_i));
+            }
+    }
+}
+
+// What map_radiance_sky promises: the `[[light]]` keys of a sky and a sun.
+void check_radiance_sky(const RadianceSky& s) {
+    const RadianceSkyLight& k = s.sky;
+    const std::string who = "sky '" + s.command + "': ";
+    (void)s.describe();
+    auto angles = [&](double altitude, double azimuth) {
+        if (!(altitude >= -90.0 && altitude <= 90.0)) broken(who + "sun altitude " + std::to_string(altitude));
+        if (!(azimuth >= 0.0 && azimuth <= 360.0)) broken(who + "sun azimuth " + std::to_string(azimuth));
+    };
+    auto non_negative = [&](double x, const char* what) {
+        if (!(x >= 0.0 && std::isfinite(x))) broken(who + what + " " + std::to_string(x));
+    };
+    if (k.sky != "cie" && k.sky != "perez" && k.sky != "uniform") broken(who + "kind '" + k.sky + "'");
+    if (k.sky == "cie" && k.cie_type != 12 && k.cie_type != 7 && k.cie_type != 16)
+        broken(who + "CIE type " + std::to_string(k.cie_type));
+    const bool perez = k.sky == "perez";
+    if (perez ? (k.zenith_luminance_cd_m2 || k.diffuse_horizontal_lx)
+              : (k.zenith_luminance_cd_m2.has_value() == k.diffuse_horizontal_lx.has_value()))
+        broken(who + "brightness keys");
+    if (k.zenith_luminance_cd_m2) non_negative(*k.zenith_luminance_cd_m2, "zenith luminance");
+    if (k.diffuse_horizontal_lx) non_negative(*k.diffuse_horizontal_lx, "diffuse horizontal illuminance");
+    non_negative(k.diffuse_horizontal_w_m2, "diffuse horizontal irradiance");
+    non_negative(k.direct_normal_w_m2, "direct normal irradiance");
+    if (!std::isfinite(k.dew_point_c)) broken(who + "dew point");
+    angles(k.sun_altitude_deg, k.sun_azimuth_deg);
+    if (!(k.ground_reflectance >= 0.0 && k.ground_reflectance <= 1.0))
+        broken(who + "ground reflectance " + std::to_string(k.ground_reflectance));
+    if (s.sun) {
+        non_negative(s.sun->direct_normal_lx, "sun's direct normal illuminance");
+        angles(s.sun->sun_altitude_deg, s.sun->sun_azimuth_deg);
+    }
+}
+
+// What radiance_luminaire promises: a positive finite flux, placed at a finite position
+// in an orthonormal frame (b = t x n), emitted by existing surfaces.
+void check_radiance_luminaire(const RadianceModel& m, std::size_t brightdata, const RadianceLuminaire& l) {
+    const std::string who = "luminaire " + l.name + ": ";
+    if (l.name != m.modifiers[brightdata].name) broken(who + "named after another modifier");
+    const double flux = l.photometry.flux_lm();
+    if (!(flux > 0.0 && std::isfinite(flux))) broken(who + "flux " + std::to_string(flux));
+    if (!finite(l.position_m)) broken(who + "position not finite");
+    const Frame& f = l.frame;
+    for (const Vec3& v : {f.t, f.b, f.n})
+        if (!(std::abs(glm::length(v) - 1.0) < 1e-9)) broken(who + "frame axis not of unit length");
+    if (!(std::abs(glm::dot(f.t, f.n)) < 1e-9) || !(glm::length(f.b - glm::cross(f.t, f.n)) < 1e-9))
+        broken(who + "frame not orthonormal");
+    if (l.surfaces.empty()) broken(who + "no emitting surface");
+    for (const std::size_t s : l.surfaces)
+        if (s >= m.surfaces.size()) broken(who + "surface index out of range");
+    (void)l.photometry.symmetry();  // std::logic_error for a table that fits no rule
+    for (const Vec3& d : {Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0.6, 0.48, -0.64), Vec3(-0.6, -0.8, 0)}) {
+        const double i = l.photometry.intensity_cd(d);
+        if (!(i >= 0.0 && std::isfinite(i))) broken(who + "intensity " + std::to_string(i));
+    }
+}
+
+}  // namespace
+
 int fuzz_radiance(const std::uint8_t* data, std::size_t size) {
     const fs::path file = write_input("input.rad", data, size);
     RadianceModel m;
@@ -576,6 +697,16 @@ int fuzz_radiance(const std::uint8_t* data, std::size_t size) {
     for (const RadianceSource& src : m.sources)
         if (!(std::abs(glm::length(src.direction) - 1.0) < 1e-9) || !(src.angle_deg > 0.0))
             broken("source direction or angle");
+    for (std::size_t k = 0; k < m.modifiers.size(); ++k) {
+        expect_input_error_only([&] { check_radiance_mapping(map_radiance_modifier(m, k, {"Y"}), 1); });
+        expect_input_error_only([&] { check_radiance_mapping(map_radiance_modifier(m, k, {"R", "G", "B"}), 3); });
+    }
+    for (const RadianceCommand& cmd : m.sky_commands)
+        expect_input_error_only([&] { check_radiance_sky(map_radiance_sky(m, cmd)); });
+    for (const std::size_t b : radiance_luminaire_modifiers(m)) {
+        if (b >= m.modifiers.size() || m.modifiers[b].type != "brightdata") broken("luminaire modifier");
+        expect_input_error_only([&] { check_radiance_luminaire(m, b, radiance_luminaire(m, b)); });
+    }
     return 0;
 }
 

@@ -134,6 +134,9 @@ TEST(RadianceMaterials, ApproximationsAreSaidAndBadValuesNamed) {
         EXPECT_NE(w.find("'neg'"), std::string::npos) << w;
     }
     EXPECT_THROW(map_radiance_modifier(m, 0, std::vector<std::string>{"A", "B"}), InputError);
+    // check's line for a mirror names what it is.
+    const RadianceMapping mirror = map_radiance_modifier(model_of("void mirror shiny 0 0 3 .9 .9 .9\n"), 0, kY);
+    EXPECT_EQ(mirror.describe(), "shiny -> mirror, specular reflectance 0.9");
 }
 
 TEST(RadianceMaterials, EveryModifierOfRealScenesMaps) {

@@ -40,6 +40,7 @@ std::string RadianceMapping::describe() const {
                  detail::fmt_number(material.ior);
             break;
         case MaterialType::glass: s += "glass, index " + detail::fmt_number(material.ior); break;
+        case MaterialType::mirror: s += "mirror, specular reflectance " + list(material.specular_reflectance); break;
         default:
             s += "diffuse reflectance " + list(material.diffuse_reflectance) + ", specular " +
                  list(material.specular_reflectance) +

@@ -41,6 +41,14 @@ void expect_header_agrees(const ResultFile& f, const ResultReader& r) {
     EXPECT_EQ(i.scene_file, r.attr_str("/", "scene_file"));
     EXPECT_EQ(static_cast<std::uint64_t>(i.ranks), r.attr_u64("/", "ranks"));
     EXPECT_EQ(i.reductions, r.attr_u64("/", "reductions"));
+    // Setup times (files from before they were written have none): the BVH is built within
+    // the run's time, the scene loaded before it.
+    if (r.has_attr("/", "bvh_build_s")) {
+        EXPECT_EQ(i.load_s, r.attr_f64("/", "load_s"));
+        EXPECT_EQ(i.bvh_build_s, r.attr_f64("/", "bvh_build_s"));
+        EXPECT_GT(i.bvh_build_s, 0.0);
+        EXPECT_LE(i.bvh_build_s, i.elapsed_s);
+    }
     EXPECT_EQ(f.scene_name(), r.attr_str("/", "scene_name"));
     EXPECT_EQ(f.bands(), r.attr_strs("/", "bands"));
     std::vector<std::size_t> vshape, tshape;

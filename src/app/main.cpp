@@ -178,12 +178,15 @@ extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
 int cmd_run(const Communicator& comm, const RunArgs& a) {
     SceneArgs scene_args = a.scene;
     scene_args.sensors_target = a.target;  // a Radiance model's sensors are what --target is about
+    const double load0 = comm.wtime();
     Scene scene = load_scene_args(scene_args);
+    const double load_s = comm.wtime() - load0;
     apply_overrides(scene, a);
     if (a.threads && *a.threads < 1) throw InputError("--threads: must be at least 1");
     RunOptions opt;
     opt.threads = a.threads.value_or(0);
     opt.quiet = a.quiet;
+    opt.load_s = load_s;
     opt.restart = a.restart;
     opt.signal = &g_stop_signal;
     std::signal(SIGTERM, on_stop_signal);

@@ -114,6 +114,9 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
         << " thread(s), stopped by: " << r.attr_str("/", "stop_reason") << '\n'
         << "photons        " << photons << " in " << std::fixed << std::setprecision(2) << elapsed << " s ("
         << std::scientific << std::setprecision(3) << (elapsed > 0 ? photons / elapsed : 0.0) << " photons/s)\n";
+    if (r.has_attr("/", "bvh_build_s"))
+        out << "setup          scene loaded in " << std::fixed << std::setprecision(2) << r.attr_f64("/", "load_s")
+            << " s (before the run's time), BVH built in " << r.attr_f64("/", "bvh_build_s") << " s (within it)\n";
     if (r.has_attr("/", "reductions"))
         out << "reductions     " << r.attr_u64("/", "reductions") << ", tracing stalled " << std::fixed
             << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s (" << std::setprecision(2)

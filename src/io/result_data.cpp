@@ -38,6 +38,8 @@ ResultFile::ResultFile(const std::filesystem::path& path) : reader_(path) {
     optional_attr(r, "photons", i.photons, u64);
     optional_attr(r, "flux_per_photon_lm", i.flux_per_photon_lm, f64);
     optional_attr(r, "elapsed_s", i.elapsed_s, f64);
+    optional_attr(r, "load_s", i.load_s, f64);
+    optional_attr(r, "bvh_build_s", i.bvh_build_s, f64);
     optional_attr(r, "stop_reason", i.stop_reason, str);
     optional_attr(r, "sampler", i.sampler, str);
     optional_attr(r, "photon_layout", i.photon_layout, u64);

@@ -36,6 +36,8 @@ void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
     attr(file, "maintenance_factor", scene.lights.maintenance_factor());
     attr(file, "maintenance_factor_uniform", std::uint64_t{scene.lights.maintenance_factor_uniform() ? 1u : 0u});
     attr(file, "elapsed_s", info.elapsed_s);
+    attr(file, "load_s", info.load_s);
+    attr(file, "bvh_build_s", info.bvh_build_s);
     attr(file, "stop_reason", info.stop_reason);
     attr_strings(file, "bands", scene.bands, false);
     attr(file, "sampler", info.sampler);

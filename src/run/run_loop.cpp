@@ -91,6 +91,8 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
     info_.threads_per_rank = threads_;
     info_.sampler = run_.sampler;
     info_.photon_layout = kPhotonLayout;
+    info_.load_s = opt.load_s;  // this rank's; the result takes the slowest rank's (write)
+    info_.bvh_build_s = embree_.build_s();
 }
 
 void RunLoop::check_writable() {
@@ -333,6 +335,8 @@ RunSummary RunLoop::write(const Decision& decision) {
         finish_reduce();
     }
     const double elapsed = comm_.allreduce_max(comm_.wtime() - t0_);
+    info_.load_s = comm_.allreduce_max(opt_.load_s);
+    info_.bvh_build_s = comm_.allreduce_max(embree_.build_s());
     info_.reductions = reductions_;
     info_.reduction_stall_s = comm_.allreduce_max(stall_total_s_);
     info_.reduction_wait_s = comm_.allreduce_max(reduce_total_s_);

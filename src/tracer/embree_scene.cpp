@@ -3,12 +3,14 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
 namespace luxtrace {
 
 EmbreeScene::EmbreeScene(const Scene& scene) : origin_(0.5 * (scene.bounds_min + scene.bounds_max)) {
+    const auto start = std::chrono::steady_clock::now();
     device_ = rtcNewDevice(nullptr);
     if (device_ == nullptr) throw std::runtime_error("Embree: cannot create a device");
     scene_ = rtcNewScene(device_);
@@ -35,6 +37,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : origin_(0.5 * (scene.bounds_min +
     rtcReleaseGeometry(geom);  // the scene keeps it, and with it the vertex buffer
     rtcCommitScene(scene_);
     if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
+    build_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 EmbreeScene::~EmbreeScene() {

@@ -43,6 +43,8 @@ struct RunInfo {
     std::uint64_t photons = 0;
     double flux_per_photon_lm = 0.0;
     double elapsed_s = 0.0;
+    // Before tracing: loading the scene and building its BVH (the slowest rank's, s).
+    double load_s = 0.0, bvh_build_s = 0.0;
     std::string stop_reason;
     std::string sampler;
     std::uint64_t photon_layout = 0;  // which random numbers a photon draws (tracer.hpp)

@@ -26,6 +26,8 @@ struct RunOptions {
     // A BVH of this scene built already (benchmarks trace with the one they measure on);
     // null: the run builds its own.
     const EmbreeScene* embree = nullptr;
+    // Wall time the caller spent loading the scene (s), for the result's report.
+    double load_s = 0.0;
 };
 
 struct RunSummary {

@@ -28,6 +28,8 @@ class EmbreeScene {
 public:
     explicit EmbreeScene(const Scene& scene);
     ~EmbreeScene();
+    // Wall time the construction took (buffers and BVH build), for the result's report.
+    double build_s() const { return build_s_; }
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
@@ -106,6 +108,7 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     Vec3 origin_{0.0};
+    double build_s_ = 0.0;
     const Vec3f* vertices_ = nullptr;
     std::vector<float> margin_;
 };

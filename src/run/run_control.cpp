@@ -40,6 +40,10 @@ Decision RunController::decide(const ReductionInput& in) {
     global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0, in.photons);
     status_.clear();
     forecast_.clear();
+    // The photon rate is the tracing's: its first point is where tracing began, not where
+    // the run's clock started (the BVH of a large scene takes seconds to build).
+    if (rate_points_.empty() && in.tracing_start_s > 0.0 && in.tracing_start_s < in.elapsed_s)
+        rate_points_.push_back({in.tracing_start_s, 0.0, 0.0});
     rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
     rate_ = photon_rate(rate_points_);
     HistoryRow

@@ -199,6 +199,7 @@ Decision RunLoop::decide() {
     in.tallies = m.tallies;
     in.photons = count_photons(plan_.done_ranges(m.progress));
     in.elapsed_s = comm_.wtime() - t0_;
+    in.tracing_start_s = trace0_ - t0_;
     in.all_ranks_idle = m.flags.idle == static_cast<std::uint64_t>(ranks_);
     in.signalled = m.flags.signalled > 0;
     in.stall_s = stall_s_;

@@ -19,12 +19,13 @@ struct RunConfig;
 
 struct ReductionInput {
     std::span<const std::uint64_t> tallies;
-    std::uint64_t photons = 0;    // photons traced in all, including earlier runs
-    double elapsed_s = 0.0;       // wall time of this run so far
-    bool all_ranks_idle = false;  // the photon budget is spent
-    bool signalled = false;       // SIGTERM / SIGUSR1 seen by some rank
-    double stall_s = 0.0;         // tracing time lost per reduction (pause + copy)
-    double write_s = 0.0;         // time of the latest checkpoint write
+    std::uint64_t photons = 0;     // photons traced in all, including earlier runs
+    double elapsed_s = 0.0;        // wall time of this run so far
+    double tracing_start_s = 0.0;  // elapsed_s when tracing began (after the BVH build)
+    bool all_ranks_idle = false;   // the photon budget is spent
+    bool signalled = false;        // SIGTERM / SIGUSR1 seen by some rank
+    double stall_s = 0.0;          // tracing time lost per reduction (pause + copy)
+    double write_s = 0.0;          // time of the latest checkpoint write
 };
 
 class RunController {

@@ -290,6 +290,7 @@ std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh
     std::vector<std::int64_t> placed(mesh.triangles.size(), -1);
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const std::uint32_t mat = material_of(t);
+        if (mat == kLeaveOutTriangle) continue;
         const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
         const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
         const Vec3 cr = glm::cross(b - a, c - a);

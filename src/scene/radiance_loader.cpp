@@ -19,7 +19,6 @@
 #include <map>
 #include <memory>
 #include <numeric>
-#include <set>
 #include <stdexcept>
 
 namespace luxtrace::detail {
@@ -38,24 +37,36 @@ struct RadianceModelReader : StepReader {
     std::vector<std::int64_t> material_of_modifier;  // scene material, -1 until used
     std::size_t first_description = 0;               // of this model's modifiers in scene.radiance_modifiers
 
-    // Whether modifier `index` is, or is modified by, the `skyfunc` of a sky command: the
-    // glow of Radiance's sky description, which the command's sky replaces.
-    bool from_sky(int index) const {
+    // The first modifier along `index`'s chain of modifiers (itself, its modifier, ...) for
+    // which `is` holds, or -1.
+    template <class Pred>
+    int along_chain(int index, Pred is) const {
         for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
-            if (model->modifiers[k].sky_command >= 0) return true;
-        return false;
+            if (is(model->modifiers[k])) return k;
+        return -1;
     }
-    // The skyfunc modifier that modifier `index` descends from (from_sky is true).
-    int sky_command_of(int index) const {
-        int k = index;
-        for (int depth = 0; k >= 0 && depth < 64 && model->modifiers[k].sky_command < 0; ++depth)
-            k = model->modifiers[k].modifier;
-        return k;
+    // The `skyfunc` of a sky command that modifier `index` is or descends from (the glow of
+    // Radiance's sky description, which the command's sky replaces), or -1.
+    int sky_pattern_of(int index) const {
+        return along_chain(index, [](const RadianceModifier& m) { return m.sky_command >= 0; });
     }
+    bool from_sky(int index) const { return sky_pattern_of(index) >= 0; }
     bool from_brightdata(int index) const {
-        for (int k = index, depth = 0; k >= 0 && depth < 64; k = model->modifiers[k].modifier, ++depth)
-            if (model->modifiers[k].type == "brightdata") return true;
-        return false;
+        return along_chain(index, [](const RadianceModifier& m) { return m.type == "brightdata"; }) >= 0;
+    }
+    // check's line for modifier k: what it maps to; the sky's pattern and glows say that
+    // the sky line's sky is their light (add_skies).
+    std::string describe(std::size_t k) const {
+        const RadianceModifier& mod = model->modifiers[k];
+        const std::string where = model->where(mod.at) + ": ";
+        const int pattern = sky_pattern_of(static_cast<int>(k));
+        if (pattern < 0) return where + mod.type + " " + mappings[k].describe();
+        const RadianceCommand& sky = model->sky_commands[static_cast<std::size_t>(
+            model->modifiers[static_cast<std::size_t>(pattern)].sky_command)];
+        if (mod.sky_command >= 0)
+            return where + mod.name + " -> the sky pattern of the !" + sky.program + " line (below)";
+        return where + mod.type + " " + mod.name + " -> the sky's glow: its light is the sky of the " +
+               model->where(sky.at) + " line (below)";
     }
     std::string modifier_where(int index) const {
         const RadianceModifier& m = model->modifiers[static_cast<std::size_t>(index)];
@@ -110,34 +121,17 @@ struct RadianceModelReader : StepReader {
         model = &m;
         for (const std::string& w : m.warnings) scene.warnings.push_back(w);
         mappings.clear();
-        first_description = scene.radiance_modifiers.size();
-        for (std::size_t k = 0; k < m.modifiers.size(); ++k) {
-            mappings.push_back(map_radiance_modifier(m, k, scene.bands));
-            scene.radiance_modifiers.push_back(model->where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " +
-                                               mappings.back().describe());
-        }
-        // The sky's glows are the sky command's sky (add_skies), not lights of their own.
         for (std::size_t k = 0; k < m.modifiers.size(); ++k)
-            if (m.modifiers[k].sky_command >= 0)
-                scene.radiance_modifiers[first_description + k] =
-                    m.where(m.modifiers[k].at) + ": " + m.modifiers[k].name + " -> the sky pattern of the !" +
-                    m.sky_commands[static_cast<std::size_t>(m.modifiers[k].sky_command)].program + " line (below)";
-            else if (from_sky(static_cast<int>(k)))
-                scene.radiance_modifiers[first_description + k] =
-                    m.where(m.modifiers[k].at) + ": " + m.modifiers[k].type + " " + m.modifiers[k].name +
-                    " -> the sky's glow: its light is the sky of the " +
-                    m.where(
-                        m
-                            .sky_commands[static_cast<std::size_t>(
-                                m.modifiers[static_cast<std::size_t>(sky_command_of(static_cast<int>(k)))].sky_command)]
-                            .at) +
-                    " line (below)";
+            mappings.push_back(map_radiance_modifier(m, k, scene.bands));
+        first_description = scene.radiance_modifiers.size();
+        for (std::size_t k = 0; k < m.modifiers.size(); ++k) scene.radiance_modifiers.push_back(describe(k));
         material_of_modifier.assign(m.modifiers.size(), -1);
         const std::string context = fname + ":" + std::to_string(r.line("file")) + ": " + r.context();
         // ies2rad luminaires are point lights with their photometry; their small emitting
         // surfaces are left out of the geometry (a photon would start on them).
         std::vector<bool> luminaire_triangle(m.mesh.triangles.size(), false);
-        for (const std::size_t b : radiance_luminaire_modifiers(m)) {
+        const std::vector<std::size_t> luminaires = radiance_luminaire_modifiers(m);
+        for (const std::size_t b : luminaires) {
             const std::string& bname = m.modifiers[b].name;
             const auto it = named.find(bname);
             RadianceLuminaire lum;
@@ -158,25 +152,18 @@ struct RadianceModelReader : StepReader {
             describe_luminaire(b, lum, it != named.end() ? it->second.first.filename().string() : "");
             add_luminaire(std::move(lum), m.modifiers[b]);
         }
-        for (const std::size_t b : radiance_luminaire_modifiers(m)) named.erase(m.modifiers[b].name);
+        for (const std::size_t b : luminaires) named.erase(m.modifiers[b].name);
         if (!named.empty())
             throw InputError(fname + ":" + std::to_string(named.begin()->second.second) + ": " + r.context() +
                              ": photometry: '" + named.begin()->first +
                              "' is no brightdata luminaire of the model (check lists its modifiers)");
-        TriangleMesh kept;
-        kept.vertices = m.mesh.vertices;
-        std::vector<std::size_t> kept_from;
-        for (std::size_t t = 0; t < m.mesh.triangles.size(); ++t)
-            if (!luminaire_triangle[t]) {
-                kept.triangles.push_back(m.mesh.triangles[t]);
-                kept_from.push_back(t);
-            }
-        kept.material_names.assign(kept.triangles.size(), "");
-        const std::vector<std::int64_t> placed_kept = add_mesh_triangles(
-            load, kept, [&](std::size_t k) { return material(static_cast<int>(m.triangle_modifier[kept_from[k]])); },
+        const std::vector<std::int64_t> placed = add_mesh_triangles(
+            load, m.mesh,
+            [&](std::size_t tri) {
+                return luminaire_triangle[tri] ? kLeaveOutTriangle
+                                               : material(static_cast<int>(m.triangle_modifier[tri]));
+            },
             [&](const std::string& what) { throw InputError(context + ": " + what); });
-        std::vector<std::int64_t> placed(m.mesh.triangles.size(), -1);
-        for (std::size_t k = 0; k < kept_from.size(); ++k) placed[kept_from[k]] = placed_kept[k];
         add_surface_lights(placed);
         add_portals(placed);
         add_sources();

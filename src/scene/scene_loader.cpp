@@ -154,12 +154,12 @@ Scene load_radiance_scene(const RadianceRun& run) {
     if (run.scale != 1.0) model.insert("scale", run.scale);
     root.insert("radiance", toml::array{std::move(model)});
     if (run.sensors) {
-        toml::table d{{"name", detector_name_of(*run.sensors)}, {"type", "points"}, {"points", run.sensors->string()}};
+        const std::string name = detector_name_of(*run.sensors);
+        toml::table d{{"name", name}, {"type", "points"}, {"points", run.sensors->string()}};
         if (run.sensor_radius_m) d.insert("radius_m", *run.sensor_radius_m);
         root.insert("detector", toml::array{std::move(d)});
         if (run.sensors_relative_error) {
-            toml::table target{{"on", "detector:" + detector_name_of(*run.sensors)},
-                               {"relative_error", *run.sensors_relative_error}};
+            toml::table target{{"on", "detector:" + name}, {"relative_error", *run.sensors_relative_error}};
             root.insert("run", toml::table{{"target", toml::array{std::move(target)}}});
         }
     }

@@ -68,8 +68,12 @@ Vec3 unit_vector(TableReader& r, const std::string& key, Vec3 v);
 // A number as the user would write it (up to 15 significant digits).
 std::string fmt_number(double v);
 
+// What material_of returns for a triangle that is not to be placed (an ies2rad luminaire's
+// emitting face, whose light the luminaire's photometry carries).
+inline constexpr std::uint32_t kLeaveOutTriangle = UINT32_MAX;
 // Appends the mesh's triangles to the scene, triangle t with material material_of(t); leaves
-// out degenerate ones. Returns each mesh triangle's index in the scene (-1 if left out).
+// out degenerate ones and those of kLeaveOutTriangle. Returns each mesh triangle's index in
+// the scene (-1 if left out).
 // `fail` is called (and must throw) for a scene grown too large or a vertex out of range.
 std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh& mesh,
                                              const std::function<std::uint32_t(std::size_t)>& material_of,

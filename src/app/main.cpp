@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -45,6 +46,12 @@ struct SceneArgs {
         std::string s;
         for (const std::string& f : files) s += (s.empty() ? "" : " ") + f;
         if (!sensors.empty()) s += " --sensors " + sensors;
+        const auto number = [](double v) {  // the shortest text that reads back as v
+            char buf[32];
+            return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+        };
+        if (sensor_radius_m) s += " --sensor-radius " + number(*sensor_radius_m);
+        if (scale) s += " --scale " + number(*scale);
         return s;
     }
 };

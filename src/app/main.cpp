@@ -5,6 +5,7 @@
 #include "light_scene_summary.hpp"
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/text.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/io/xdmf.hpp"
@@ -20,7 +21,6 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
-#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -46,12 +46,8 @@ struct SceneArgs {
         std::string s;
         for (const std::string& f : files) s += (s.empty() ? "" : " ") + f;
         if (!sensors.empty()) s += " --sensors " + sensors;
-        const auto number = [](double v) {  // the shortest text that reads back as v
-            char buf[32];
-            return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-        };
-        if (sensor_radius_m) s += " --sensor-radius " + number(*sensor_radius_m);
-        if (scale) s += " --scale " + number(*scale);
+        if (sensor_radius_m) s += " --sensor-radius " + shortest_decimal(*sensor_radius_m);
+        if (scale) s += " --scale " + shortest_decimal(*scale);
         return s;
     }
 };

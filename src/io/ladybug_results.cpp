@@ -1,13 +1,13 @@
 #include "luxtrace/io/ladybug_results.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/text.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 #include <bit>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
@@ -120,12 +120,7 @@ std::string grid_states_json(const std::vector<LadybugGrid>& grids) {
 // Shortest text that reads back as the same double (7.5, 8760 -> "7.5", "8760").
 std::string sun_up_hours_text(const std::vector<double>& hours) {
     std::string out;
-    for (const double h : hours) {
-        char buf[32];
-        const auto r = std::to_chars(buf, buf + sizeof buf, h);
-        out.append(buf, r.ptr);
-        out += '\n';
-    }
+    for (const double h : hours) out += shortest_decimal(h) + '\n';
     return out;
 }
 

@@ -1,11 +1,11 @@
 #include "luxtrace/io/sensor_table.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/text.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/result_estimates.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -15,25 +15,12 @@ namespace {
 
 bool is_table_detector(const Detector& d) { return d.type == DetectorType::points && d.observer < 0; }
 
-// The shortest decimal that reads back as exactly x: a position as the .pts file gave it.
-std::string exact(double x) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    return std::string(buf, r.ptr);
-}
-
 // 9 significant digits: far below any standard error, and "nan" for a sensor without photons.
 std::string nine_digits(double x) {
     if (std::isnan(x)) return "nan";
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.9g", x);
     return buf;
-}
-
-std::string joined(const std::vector<std::string>& words) {
-    std::string s;
-    for (const std::string& w : words) s += (s.empty() ? "" : ", ") + w;
-    return s;
 }
 
 }  // namespace
@@ -58,19 +45,21 @@ SensorTable sensor_table(const Scene& scene, std::size_t detector, const Detecto
 std::string format_sensor_table(const SensorTable& t) {
     std::string s;
     s += "# luxtrace sensor table: points detector " + t.detector + ", " + std::to_string(t.positions.size()) +
-         " sensors of " + t.points_file + " in its order, each a disc of radius " + exact(t.radius_m) + " m\n";
+         " sensors of " + t.points_file + " in its order, each a disc of radius " + shortest_decimal(t.radius_m) +
+         " m\n";
     s += "# photons traced: " + std::to_string(t.photons) + "\n";
-    s += "# values: initial, no maintenance factor applied; maintained = " + exact(t.maintenance_factor) +
+    s += "# values: initial, no maintenance factor applied; maintained = " + shortest_decimal(t.maintenance_factor) +
          (t.maintenance_factor_uniform ? " x E (the lights' maintenance factor)\n"
                                        : " x E about (the lights' flux-weighted maintenance factor; theirs differ)\n");
     s += "# columns: x y z E sigma_E\n";
     s += "#   x y z    m   the sensor's position as read\n";
-    s += "#   E        lx  illuminance on the sensor's front side, summed over the bands (" + joined(t.bands) + ")\n";
+    s += "#   E        lx  illuminance on the sensor's front side, summed over the bands (" + comma_list(t.bands) +
+         ")\n";
     s += "#   sigma_E  lx  one-sigma standard error of E (" + t.error_estimator + "); nan where no photon arrived\n";
     for (std::size_t k = 0; k < t.positions.size(); ++k) {
         const Vec3& p = t.positions[k];
-        s += exact(p.x) + ' ' + exact(p.y) + ' ' + exact(p.z) + ' ' + nine_digits(t.illuminance_lx[k]) + ' ' +
-             nine_digits(t.sigma_lx[k]) + '\n';
+        s += shortest_decimal(p.x) + ' ' + shortest_decimal(p.y) + ' ' + shortest_decimal(p.z) + ' ' +
+             nine_digits(t.illuminance_lx[k]) + ' ' + nine_digits(t.sigma_lx[k]) + '\n';
     }
     return s;
 }

@@ -35,7 +35,8 @@ done
 # outer faces): at most the tally words minus (5 + R) slots per band and map group for each
 # unlit side (R the sobol replicates, whose arrivals each side keeps too), and less by the
 # detector blocks no rank wrote in. An annual scene's sun groups reach few cells: most of
-# its detector words are left out.
+# its detector words are left out. The map's counts since the previous reduction travel as
+# 32-bit words: fewer bytes than 8 per word.
 if /usr/bin/python3 - "$work/r2t1.h5" <<'PY'
 import sys, h5py
 f = h5py.File(sys.argv[1], "r")
@@ -45,10 +46,11 @@ R = int(a["replicates"]) if "replicates" in a else 0
 G = len(a["light_groups"]) if int(a.get("group_maps", 1)) else 1
 unlit = 2 * T - int(g.attrs["lit_sides"])
 words, tally = int(a["reduction_message_words"]), int(a["tally_words"])
-most = tally - unlit * (5 + R) * B * G + 2 * 2 + 4  # + progress of 2 ranks, 4 flags
+nbytes = int(a["reduction_message_bytes"])
+most = tally - unlit * (5 + R) * B * G
 annual = "annual" in f
-print(f"reduction message: {words} words, tallies {tally}, {unlit} of {2 * T} sides unlit, at most {most}")
-ok = unlit > 0 and 0 < words <= most and (not annual or words < tally // 2)
+print(f"reduction message: {words} words ({nbytes} bytes), tallies {tally}, {unlit} of {2 * T} sides unlit, at most {most}")
+ok = unlit > 0 and 0 < words <= most and nbytes < 8 * words and (not annual or words < tally // 2)
 sys.exit(0 if ok else 1)
 PY
 then echo "the reduction message leaves out the unlit sides and unwritten blocks"

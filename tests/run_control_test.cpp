@@ -17,6 +17,7 @@
 #include "luxtrace/run/worker_pool.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
+#include "luxtrace/stats/global_sums.hpp"
 #include "luxtrace/tally/message_packing.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
@@ -25,6 +26,7 @@
 
 #include <unistd.h>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -404,19 +406,15 @@ TEST(RunSimulation, ATracingFaultEndsTheRunWithExitTwoAndWritesNothing) {
 
 // A rank's message decodes to the fields it was encoded from, on a world of three ranks.
 TEST(ReductionMessage, EncodeDecodeKeepsEveryField) {
-    std::mt19937_64 g(5);
-    std::vector<std::uint64_t> tallies(1000);
-    for (std::uint64_t& w : tallies) w = g();
     ReductionMessage m;
-    m.tallies = tallies;
     m.progress = {{0, 0}, {7, 1234}, {0, 0}};  // rank 1's message
-    m.flags = {1, 0, 1, 0};
+    m.flags = {1, 0, 1, 0, 1};
+    m.replicate_photons = {11, 12, 13, 14};
     std::vector<std::uint64_t> words;
     m.encode(words);
-    ASSERT_EQ(words.size(), ReductionMessage::word_count(tallies.size(), 3));
-    EXPECT_EQ(words.size(), tallies.size() + 2 * 3 + RankFlags::kWords);
-    const ReductionMessage d = ReductionMessage::decode(words, tallies.size(), 3);
-    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), tallies.begin(), tallies.end()));
+    ASSERT_EQ(words.size(), ReductionMessage::word_count(3, 4));
+    EXPECT_EQ(words.size(), 2 * 3 + RankFlags::kWords + 4);
+    const ReductionMessage d = ReductionMessage::decode(words, 3, 4);
     ASSERT_EQ(d.progress.size(), 3u);
     for (std::size_t r = 0; r < 3; ++r) {
         EXPECT_EQ(d.progress[r].items_done, m.progress[r].items_done) << "rank " << r;
@@ -426,27 +424,26 @@ TEST(ReductionMessage, EncodeDecodeKeepsEveryField) {
     EXPECT_EQ(d.flags.idle, 0u);
     EXPECT_EQ(d.flags.input_fault, 1u);
     EXPECT_EQ(d.flags.internal_fault, 0u);
-    // Encoding again into the same buffer (the snapshot's, reused) gives the same words.
-    std::vector<std::uint64_t> again = words;
-    m.encode(again);
-    EXPECT_EQ(again, words);
-    EXPECT_THROW(ReductionMessage::decode(words, tallies.size(), 2), std::logic_error);
+    EXPECT_EQ(d.flags.wide, 1u);
+    EXPECT_EQ(d.replicate_photons, m.replicate_photons);
+    EXPECT_THROW(ReductionMessage::decode(words, 2, 4), std::logic_error);
 }
 
 namespace {
 
-// One rank's tracing of its share of `budget` photons of `scene` to the end, as the run
-// loop encodes it.
+// One rank's tracing of its share of `budget` photons of `scene` to the end: its tallies
+// (all of them counts since the start: one reduction's) and its progress.
 struct RankTrace {
-    std::vector<std::uint64_t> words;
+    std::vector<std::uint64_t> tallies;
     RankProgress progress;
 };
-RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPlan& plan, int rank, int ranks,
-                     const RankFlags& flags) {
+RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPlan& plan, int rank) {
     TallyStore store{TallyLayout(scene)};
     RankWork work(plan, rank);
     TraceOptions opt;
     opt.seed = scene.run.seed;
+    opt.sampler = scene.run.sampler;
+    opt.replicates = scene.run.replicates;
     opt.threads = 1;
     {
         WorkerPool pool(scene, embree, store, work, opt);
@@ -454,64 +451,112 @@ RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPl
         pool.stop();
         EXPECT_FALSE(pool.failed());
     }
-    ReductionMessage m;
-    m.tallies = store.data();
-    m.progress.resize(static_cast<std::size_t>(ranks));
-    m.progress[static_cast<std::size_t>(rank)] = work.progress();
-    m.flags = flags;
-    RankTrace t{{}, work.progress()};
-    m.encode(t.words);
-    return t;
+    const std::span<const std::uint64_t> taken = store.take();
+    return {{taken.begin(), taken.end()}, work.progress()};
 }
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace
 
-// The wire form of a reduction on three ranks: each rank encodes its message and packs its
-// lit sides under the mask OR-ed over the ranks, the packed words are summed, and rank 0
-// unpacks and decodes. The tallies are those of one rank tracing every photon (integer
-// sums: bit-identical), each rank's progress is its own, the flags count the ranks; the
-// closed room's unlit backs are left out of the words sent.
-TEST(ReductionMessage, PackedSumOverRanksDecodesToTheOneRankTallies) {
-    const Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
-    const EmbreeScene embree(scene);
-    const TallyLayout layout(scene);
-    constexpr std::uint64_t kBudget = 30000;
-    constexpr int kRanks = 3;
-    const WorkPlan plan({}, kBudget, 4096, kRanks);
-    const std::vector<RankFlags> flags = {{0, 1, 0, 0}, {1, 1, 0, 1}, {1, 0, 1, 0}};
-    std::vector<RankTrace> ranks;
-    for (int r = 0; r < kRanks; ++r) ranks.push_back(trace_rank(scene, embree, plan, r, kRanks, flags[r]));
-    std::vector<std::uint64_t> mask = message_mask(layout, ranks[0].words);
-    for (const RankTrace& t : ranks) {
-        const std::vector<std::uint64_t> m = message_mask(layout, t.words);
-        for (std::size_t i = 0; i < mask.size(); ++i) mask[i] |= m[i];
-    }
-    std::vector<std::uint64_t> sum, packed;
-    for (const RankTrace& t : ranks) {
-        pack_message(layout, mask, t.words, packed);
-        if (sum.empty()) sum.assign(packed.size(), 0);
-        ASSERT_EQ(packed.size(), sum.size());
-        for (std::size_t i = 0; i < packed.size(); ++i) sum[i] += packed[i];
-    }
-    const std::size_t full = ReductionMessage::word_count(layout.size(), kRanks);
-    EXPECT_LT(sum.size(), full) << "the backs of the closed room's walls are never lit";
-    std::vector<std::uint64_t> words(full, 1);  // overwritten everywhere by unpacking
-    unpack_message(layout, mask, sum, words);
-    const ReductionMessage d = ReductionMessage::decode(words, layout.size(), kRanks);
+// A distributed reduction on three ranks, done here by hand the way RunLoop does it over
+// MPI: each rank marks its lit sides, the marks are OR-ed; each owner's part of the map is
+// packed in 32-bit words by every rank and summed (the reduce-scatter), the counters and
+// detectors in 64-bit words for rank 0; each owner adds its sum into its totals and sums
+// its chunks of sides for the global estimate; rank 0 adds the chunks in order and gathers
+// the owners' sides. The tallies are those of one rank tracing every photon, word for word
+// (integer sums), and the estimate has the bits of estimate_global on that one rank's map,
+// for the random and the sobol sampler (whose sides' replicate spread needs every
+// replicate's photons on every rank).
+TEST(DistributedReduction, OwnersSumsAndChunkEstimatesAreTheOneRankOnes) {
+    for (const char* sampler : {"random", "sobol"}) {
+        SCOPED_TRACE(sampler);
+        Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
+        scene.run.sampler = sampler;
+        if (scene.run.sampler == "sobol") scene.run.replicates = 4;
+        const EmbreeScene embree(scene);
+        const TallyLayout L(scene);
+        constexpr std::uint64_t kBudget = 30000;
+        constexpr int kRanks = 3;
+        const WorkPlan plan({}, kBudget, 4096, kRanks);
+        std::vector<RankTrace> ranks;
+        for (int r = 0; r < kRanks; ++r) ranks.push_back(trace_rank(scene, embree, plan, r));
+        const WorkPlan one({}, kBudget, 4096, 1);
+        const RankTrace reference = trace_rank(scene, embree, one, 0);
 
-    const WorkPlan one({}, kBudget, 4096, 1);
-    const RankTrace reference = trace_rank(scene, embree, one, 0, 1, {});
-    const ReductionMessage ref = ReductionMessage::decode(reference.words, layout.size(), 1);
-    EXPECT_TRUE(std::equal(d.tallies.begin(), d.tallies.end(), ref.tallies.begin(), ref.tallies.end()));
-    for (int r = 0; r < kRanks; ++r) {
-        EXPECT_EQ(d.progress[r].items_done, ranks[r].progress.items_done) << "rank " << r;
-        EXPECT_EQ(d.progress[r].prefix, ranks[r].progress.prefix) << "rank " << r;
+        std::vector<std::uint64_t> mask(mask_words(L, L.size()), 0);
+        for (const RankTrace& t : ranks) {
+            std::uint64_t bits = 0;
+            const std::vector<std::uint64_t> m = message_mask(L, t.tallies, MessagePart::whole(L), &bits);
+            EXPECT_LT(bits, std::uint64_t{1} << 32) << "small counts travel as 32-bit words";
+            for (std::size_t i = 0; i < mask.size(); ++i) mask[i] |= m[i];
+        }
+        std::vector<WordArray> totals;
+        std::vector<std::uint64_t> replicate_photons(L.replicates(), 0);
+        for (const RankTrace& t : ranks)
+            for (std::size_t q = 0; q < L.replicates(); ++q) replicate_photons[q] += t.tallies[L.replicate_photons(q)];
+        std::size_t sent = 0;
+        for (int owner = 0; owner < kRanks; ++owner) {
+            const MessagePart part = owned_sides(L, owner, kRanks);
+            std::vector<std::uint32_t> sum(packed_size(L, mask, L.size(), part), 0), packed(sum.size());
+            for (const RankTrace& t : ranks) {
+                pack_part(L, mask, t.tallies, part, packed.data());
+                for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += packed[k];
+            }
+            sent += sum.size();
+            totals.emplace_back(L.size());
+            add_packed_part<std::uint32_t>(L, mask, part, sum, totals.back().span());
+            // Rank 0 has them from the tail; the others from the header (ReductionMessage).
+            for (std::size_t q = 0; q < L.replicates() && owner > 0; ++q)
+                totals.back()[L.replicate_photons(q)] = replicate_photons[q];
+        }
+        const MessagePart head_tail = MessagePart::head_and_tail_only();
+        std::vector<std::uint64_t> tail(packed_size(L, mask, L.size(), head_tail), 0), packed(tail.size());
+        for (const RankTrace& t : ranks) {
+            pack_part(L, mask, t.tallies, head_tail, packed.data());
+            for (std::size_t k = 0; k < tail.size(); ++k) tail[k] += packed[k];
+        }
+        add_packed_part<std::uint64_t>(L, mask, head_tail, tail, totals[0].span());
+        for (std::size_t q = 0; q < L.replicates(); ++q)
+            EXPECT_EQ(totals[0][L.replicate_photons(q)], replicate_photons[q]) << "replicate " << q;
+        EXPECT_LT(sent, L.surface_end()) << "the backs of the closed room's walls are never lit";
+
+        // The global estimate: each owner's chunks, in chunk order.
+        const double e0 = scene.lights.total_flux_lm() / static_cast<double>(kBudget);
+        std::vector<GlobalSums> chunks;
+        for (int owner = 0; owner < kRanks; ++owner) {
+            const MessagePart part = owned_sides(L, owner, kRanks);
+            const WeightedTallies w(L, totals[static_cast<std::size_t>(owner)].span());
+            const std::vector<GlobalSums> mine = chunk_sums(w, scene.triangle_area_m2, e0, kBudget,
+                                                            part.side_begin / kSidesPerChunk,
+                                                            (part.side_end + kSidesPerChunk - 1) / kSidesPerChunk);
+            chunks.insert(chunks.end(), mine.begin(), mine.end());
+        }
+        ASSERT_EQ(chunks.size(), chunk_count(L));
+        const GlobalEstimate d = global_estimate(chunks, L.replicates() > 0);
+        const GlobalEstimate g = estimate_global(L, reference.tallies, scene.triangle_area_m2, e0, kBudget);
+        EXPECT_GT(g.lit_sides, 0u);
+        EXPECT_EQ(d.lit_sides, g.lit_sides);
+        for (auto f :
+             {&GlobalEstimate::sigma_lx, &GlobalEstimate::moment_sigma_lx, &GlobalEstimate::replicate_sigma_lx,
+              &GlobalEstimate::mean_arithmetic_lx, &GlobalEstimate::mean_quadratic_lx, &GlobalEstimate::lit_area_m2})
+            EXPECT_TRUE(same_bits(d.*f, g.*f)) << d.*f << " vs " << g.*f;
+        EXPECT_TRUE(std::isfinite(g.target_sigma_lx()) && g.target_sigma_lx() > 0.0);
+
+        // The owners' sides gathered on rank 0: the one rank's tallies.
+        for (int owner = 1; owner < kRanks; ++owner) {
+            const MessagePart part = owned_sides(L, owner, kRanks);
+            const std::vector<std::uint64_t> own_mask = message_mask(L, totals[static_cast<std::size_t>(owner)].span(),
+                                                                     part);
+            std::vector<std::uint64_t> words(packed_size(L, own_mask, L.size(), part));
+            pack_part(L, own_mask, totals[static_cast<std::size_t>(owner)].span(), part, words.data());
+            unpack_part(L, own_mask, part, words, totals[0].span());
+        }
+        for (std::size_t i = 0; i < L.size(); ++i) ASSERT_EQ(totals[0][i], reference.tallies[i]) << "word " << i;
+        std::vector<RankProgress> progress;
+        for (const RankTrace& t : ranks) progress.push_back(t.progress);
+        EXPECT_EQ(count_photons(plan.done_ranges(progress)), kBudget);
     }
-    EXPECT_EQ(count_photons(plan.done_ranges(d.progress)), kBudget);
-    EXPECT_EQ(d.flags.signalled, 2u);
-    EXPECT_EQ(d.flags.idle, 2u);
-    EXPECT_EQ(d.flags.input_fault, 1u);
-    EXPECT_EQ(d.flags.internal_fault, 1u);
 }
 
 TEST(Decision, EncodeDecodeKeepsEveryFieldButTheReason) {
@@ -552,9 +597,7 @@ const std::vector<std::uint64_t>& room_tallies(const Scene& scene) {
     static const std::vector<std::uint64_t> tallies = [&] {
         const EmbreeScene embree(scene);
         const WorkPlan plan({}, 20000, 4096, 1);
-        const RankTrace t = trace_rank(scene, embree, plan, 0, 1, {});
-        const ReductionMessage m = ReductionMessage::decode(t.words, TallyLayout(scene).size(), 1);
-        return std::vector<std::uint64_t>(m.tallies.begin(), m.tallies.end());
+        return trace_rank(scene, embree, plan, 0).tallies;
     }();
     return tallies;
 }

@@ -129,7 +129,7 @@ void write_metrics(hid_t g, const AnnualEstimate& e, std::size_t cells) {
 }
 
 void write_coefficients(hid_t g, const AnnualSetup& annual, const TallyLayout& layout,
-                        const std::vector<std::uint64_t>& tallies, std::size_t det, std::size_t cells) {
+                        std::span<const std::uint64_t> tallies, std::size_t det, std::size_t cells) {
     // [group][cell]: n_c and q_c of every light group, and the direct registrations.
     const std::size_t groups = layout.groups();
     std::vector<std::uint64_t> n(groups * cells), q(groups * cells), direct(groups * cells, 0);
@@ -150,7 +150,7 @@ void write_coefficients(hid_t g, const AnnualSetup& annual, const TallyLayout& l
 
 }  // namespace
 
-void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, const std::vector<std::uint64_t>& tallies,
+void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> tallies,
                   const ResultEstimates& est) {
     if (!scene.annual) return;
     const AnnualSetup& annual = *scene.annual;

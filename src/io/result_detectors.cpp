@@ -129,7 +129,7 @@ void write_task_areas(hid_t g, const Detector& d, const std::vector<IlluminanceM
     }
 }
 
-std::vector<std::uint64_t> detector_sums(const TallyLayout& L, const std::vector<std::uint64_t>& data, std::size_t di,
+std::vector<std::uint64_t> detector_sums(const TallyLayout& L, std::span<const std::uint64_t> data, std::size_t di,
                                          std::size_t cells, bool sumsq, std::size_t first_group,
                                          std::size_t last_group) {
     const std::size_t B = L.bands();
@@ -142,7 +142,7 @@ std::vector<std::uint64_t> detector_sums(const TallyLayout& L, const std::vector
 }
 
 void write_detector_counts(hid_t g, const Detector& d, std::size_t di, std::size_t B, const TallyLayout& L,
-                           const std::vector<std::uint64_t>& data, std::size_t first_group, std::size_t last_group) {
+                           std::span<const std::uint64_t> data, std::size_t first_group, std::size_t last_group) {
     const std::size_t cells = static_cast<std::size_t>(d.cells());
     const std::vector<hsize_t> dims{static_cast<hsize_t>(d.ny), static_cast<hsize_t>(d.nx), B};
     dataset(g, "count", dims, detector_sums(L, data, di, cells, false, first_group, last_group).data());
@@ -172,7 +172,7 @@ void write_detector_summary(hid_t g, const DetectorEstimate& e) {
     attr(g, "mean_sigma_rel", e.mean_sigma_rel);
 }
 
-void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+void write_detectors(hid_t file, const Scene& scene, const TallyLayout& L, std::span<const std::uint64_t> data,
                      const ResultEstimates& est) {
     const Id dets = create_group(file, "detectors", "group /detectors");
     const std::size_t B = scene.bands.size();

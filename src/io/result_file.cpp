@@ -8,7 +8,7 @@
 namespace luxtrace {
 
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const ResultEstimates& estimates,
+                  std::span<const std::uint64_t> tallies, const RunInfo& info, const ResultEstimates& estimates,
                   const std::vector<HistoryRow>& history, const CheckpointData* checkpoint) {
     using namespace result_parts;
     // The first kSealBytes are kept for luxtrace's seal (file_seal.hpp).

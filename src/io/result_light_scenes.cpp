@@ -11,7 +11,7 @@ using namespace hdf5;
 namespace {
 
 void write_group_detector(hid_t parent, const Detector& d, std::size_t di, std::size_t B, const TallyLayout& L,
-                          const std::vector<std::uint64_t>& data, std::size_t group) {
+                          std::span<const std::uint64_t> data, std::size_t group) {
     const Id g = create_group(parent, d.name, "group detectors/" + d.name);
     write_detector_counts(g, d, di, B, L, data, group, group + 1);
     attr(g, "photons_received", data[L.detector_received(di, group)]);
@@ -53,7 +53,7 @@ void write_scene_observers(hid_t parent, const Scene& scene, const ResultEstimat
 
 }  // namespace
 
-void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data) {
+void write_light_groups(hid_t file, const Scene& scene, const TallyLayout& L, std::span<const std::uint64_t> data) {
     if (L.groups() < 2) return;
     const Id groups = create_group(file, "light_groups", "group /light_groups");
     const std::size_t B = scene.bands.size();

@@ -52,7 +52,7 @@ void write_ugr(hid_t g, const ObserverEstimate& e) {
     attr(g, "indirect_vertical_illuminance_sigma_rel", u.indirect_sigma_rel);
 }
 
-void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+void write_observers(hid_t file, const Scene& scene, const TallyLayout& L, std::span<const std::uint64_t> data,
                      const ResultEstimates& est) {
     if (scene.observers.empty()) return;
     const Id obs = create_group(file, "observers", "group /observers");

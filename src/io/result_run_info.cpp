@@ -9,8 +9,8 @@ namespace luxtrace::result_parts {
 
 using namespace hdf5;
 
-void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
-                    const std::vector<std::uint64_t>& tallies, const RunInfo& info, bool checkpoint) {
+void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> tallies,
+                    const RunInfo& info, bool checkpoint) {
     attr(file, "format", checkpoint ? "luxtrace-checkpoint" : "luxtrace-result");
     attr(file, "format_version", kResultFormatVersion);
     attr(file, "luxtrace_version", info.luxtrace_version);
@@ -54,6 +54,9 @@ void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout,
     attr(file, "reduction_stall_s", info.reduction_stall_s);
     attr(file, "reduction_wait_s", info.reduction_wait_s);
     attr(file, "reduction_message_words", info.reduction_message_words);
+    attr(file, "reduction_message_bytes", info.reduction_message_bytes);
+    attr(file, "reduction_work_s", info.reduction_work_s);
+    attr(file, "gather_s", info.gather_s);
     attr(file, "tally_words", static_cast<std::uint64_t>(layout.size()));
 }
 

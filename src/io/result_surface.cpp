@@ -24,7 +24,7 @@ void write_mesh(hid_t file, const Scene& scene) {
     string_dataset(mesh, "material_names", names);
 }
 
-void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, std::span<const std::uint64_t> data,
                           std::size_t first_group, std::size_t last_group) {
     const std::size_t T = scene.triangle_count(), B = scene.bands.size();
     // Every surface dataset has a side axis, [T, 2, B] (side 0 the front).
@@ -97,7 +97,7 @@ void write_surface_estimates(hid_t glob, const Scene& scene, const SurfaceMaps& 
     attr(glob, "mean_quadratic_lx", g.mean_quadratic_lx);
 }
 
-void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, const std::vector<std::uint64_t>& data,
+void write_surface_map(hid_t file, const Scene& scene, const TallyLayout& L, std::span<const std::uint64_t> data,
                        const ResultEstimates& est) {
     const Id glob = create_group(file, "global", "group /global");
     // The plain run's counts: every light group's together.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstdlib>
+#include <stdexcept>
 
 namespace luxtrace {
 
@@ -51,10 +52,18 @@ Communicator::~Communicator() {
 
 struct PendingReduce::Impl {
     std::vector<MPI_Request> requests;
+    std::vector<std::vector<unsigned char>> round_buffers;  // a reduce-scatter's rounds' send pieces
 };
 
 PendingReduce::PendingReduce(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 PendingReduce PendingReduce::completed() { return PendingReduce(std::make_unique<Impl>()); }
+PendingReduce PendingReduce::both(PendingReduce a, PendingReduce b) {
+    auto impl = std::move(a.impl_);
+    for (MPI_Request r : b.impl_->requests) impl->requests.push_back(r);
+    for (auto& buf : b.impl_->round_buffers) impl->round_buffers.push_back(std::move(buf));
+    b.impl_->requests.clear();
+    return PendingReduce(std::move(impl));
+}
 PendingReduce::~PendingReduce() {
     if (impl_) wait();
 }
@@ -98,6 +107,114 @@ PendingReduce Communicator::ireduce_sum_to_root(const std::vector<std::uint64_t>
     }
     return PendingReduce(std::move(impl));
 }
+
+namespace {
+template <class Word>
+MPI_Datatype mpi_type();
+template <>
+MPI_Datatype mpi_type<std::uint32_t>() {
+    return MPI_UINT32_T;
+}
+template <>
+MPI_Datatype mpi_type<std::uint64_t>() {
+    return MPI_UINT64_T;
+}
+template <>
+MPI_Datatype mpi_type<double>() {
+    return MPI_DOUBLE;
+}
+}  // namespace
+
+template <class Word>
+PendingReduce Communicator::ireduce_scatter_sum(const std::vector<Word>& send, const std::vector<std::size_t>& counts,
+                                                std::vector<Word>& recv) const {
+    auto impl = std::make_unique<PendingReduce::Impl>();
+    const std::size_t R = static_cast<std::size_t>(size_);
+    std::vector<std::size_t> offset(R + 1, 0);
+    for (std::size_t r = 0; r < R; ++r) offset[r + 1] = offset[r] + counts.at(r);
+    recv.resize(counts[static_cast<std::size_t>(rank_)]);
+    if (recv.capacity() == 0) recv.reserve(1);  // a valid address for a part of no words
+    if (size_ == 1) {
+        std::copy(send.begin(), send.end(), recv.begin());
+        return PendingReduce(std::move(impl));
+    }
+    // Round k carries words [k p, (k + 1) p) of every rank's part: at most R p <= max per call.
+    const std::size_t p = std::max<std::size_t>(1, std::min(max_per_call_, static_cast<std::size_t>(INT_MAX)) / R);
+    std::size_t rounds = 1;
+    for (std::size_t r = 0; r < R; ++r) rounds = std::max(rounds, (counts[r] + p - 1) / p);
+    for (std::size_t k = 0; k < rounds; ++k) {
+        std::vector<int> recvcounts(R);
+        for (std::size_t r = 0; r < R; ++r)
+            recvcounts[r] = static_cast<int>(std::min(p, counts[r] - std::min(counts[r], k * p)));
+        const Word* from = send.data();
+        if (rounds > 1) {
+            std::vector<unsigned char>& buf = impl->round_buffers.emplace_back();
+            std::size_t total = 0;
+            for (int c : recvcounts) total += static_cast<std::size_t>(c);
+            buf.resize(std::max<std::size_t>(1, total) * sizeof(Word));
+            Word* out = reinterpret_cast<Word*>(buf.data());
+            for (std::size_t r = 0; r < R; ++r) {
+                out = std::copy_n(send.data() + offset[r] + std::min(counts[r], k * p), recvcounts[r], out);
+            }
+            from = reinterpret_cast<const Word*>(buf.data());
+        }
+        Word* to = recv.data() + std::min(recv.size(), k * p);
+        MPI_Request req;
+        MPI_Ireduce_scatter(from, to, recvcounts.data(), mpi_type<Word>(), MPI_SUM, MPI_COMM_WORLD, &req);
+        impl->requests.push_back(req);
+    }
+    return PendingReduce(std::move(impl));
+}
+
+template PendingReduce Communicator::ireduce_scatter_sum(const std::vector<std::uint32_t>&,
+                                                         const std::vector<std::size_t>&,
+                                                         std::vector<std::uint32_t>&) const;
+template PendingReduce Communicator::ireduce_scatter_sum(const std::vector<std::uint64_t>&,
+                                                         const std::vector<std::size_t>&,
+                                                         std::vector<std::uint64_t>&) const;
+
+void Communicator::allreduce_sum(std::vector<std::uint64_t>& values) const {
+    if (size_ == 1 || values.empty()) return;
+    for (const auto& [off, n] : pieces(values.size(), max_per_call_))
+        MPI_Allreduce(MPI_IN_PLACE, values.data() + off, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+}
+
+template <class Word>
+void Communicator::gather_to_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
+                                  std::vector<Word>& recv) const {
+    if (send.size() != counts.at(static_cast<std::size_t>(rank_)))
+        throw std::logic_error("gather_to_root: this rank's words do not match its count");
+    constexpr int kTag = 26;
+    std::vector<MPI_Request> requests;
+    if (rank_ == 0) {
+        std::size_t total = 0;
+        for (std::size_t c : counts) total += c;
+        recv.resize(total);
+        std::copy(send.begin(), send.end(), recv.begin());
+        std::size_t at = counts[0];
+        for (int r = 1; r < size_; ++r) {
+            const std::size_t n = counts[static_cast<std::size_t>(r)];
+            for (const auto& [off, m] : pieces(n, max_per_call_)) {
+                MPI_Request req;
+                MPI_Irecv(recv.data() + at + off, m, mpi_type<Word>(), r, kTag, MPI_COMM_WORLD, &req);
+                requests.push_back(req);
+            }
+            at += n;
+        }
+    } else {
+        for (const auto& [off, m] : pieces(send.size(), max_per_call_)) {
+            MPI_Request req;
+            MPI_Isend(send.data() + off, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, &req);
+            requests.push_back(req);
+        }
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+template void Communicator::gather_to_root(std::span<const std::uint64_t>, const std::vector<std::size_t>&,
+                                           std::vector<std::uint64_t>&) const;
+template void Communicator::gather_to_root(std::span<const double>, const std::vector<std::size_t>&,
+                                           std::vector<double>&) const;
 
 void Communicator::broadcast(std::vector<double>& values) const {
     if (size_ == 1) return;

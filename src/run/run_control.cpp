@@ -11,7 +11,8 @@ namespace luxtrace {
 RunController::RunController(const Scene& scene, const TallyLayout& layout, std::vector<HistoryRow> previous,
                              double previous_elapsed_s, std::uint64_t previous_photons)
     : scene_(scene), layout_(layout), history_(std::move(previous)), points_(scene.run.targets.size()),
-      time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons), period_s_(initial_period_s(scene.run)) {}
+      time_offset_s_(previous_elapsed_s), photon_offset_(previous_photons), period_s_(initial_period_s(scene.run)),
+      requests_(global_requests(scene)) {}
 
 double RunController::initial_period_s(const RunConfig& run) {
     // Reductions come at photon counts; the period only bounds the wait (time limit).
@@ -37,7 +38,13 @@ Decision RunController::decide(const ReductionInput& in) {
     photons_ = in.photons;
     elapsed_s_ = in.elapsed_s;
     const double e0 = in.photons > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(in.photons) : 0.0;
-    global_ = estimate_global(layout_, in.tallies, scene_.triangle_area_m2, e0, in.photons);
+    std::vector<GlobalEstimate> computed;
+    if (in.globals.empty())
+        for (const std::vector<double>& w : requests_.weights)
+            computed.push_back(
+                estimate_global(WeightedTallies(layout_, in.tallies, w), scene_.triangle_area_m2, e0, in.photons));
+    const std::span<const GlobalEstimate> globals = in.globals.empty() ? computed : in.globals;
+    global_ = globals[0];
     status_.clear();
     forecast_.clear();
     // The photon rate is the tracing's: its first point is where tracing began, not where
@@ -49,7 +56,8 @@ Decision RunController::decide(const ReductionInput& in) {
     HistoryRow
         row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
-        status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons, global_));
+        status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons,
+                                          globals[requests_.of_target[i]]));
         const TargetStatus& s = status_.back();
         // Forecasts use this part of the run only: rates differ between parts.
         if (in.photons > photon_offset_ && std::isfinite(s.value))
@@ -68,7 +76,7 @@ Decision RunController::decide(const ReductionInput& in) {
 
     // Keep the tracing time lost to reductions under 2% of the run. A stall can be
     // inflated by a descheduled thread on a busy machine: use the median of the last five.
-    recent_stalls_.push_back(in.stall_s);
+    recent_stalls_.push_back(in.stall_s + in.work_s);
     if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
     std::vector<double> sorted = recent_stalls_;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());

@@ -7,6 +7,7 @@
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
+#include "luxtrace/stats/global_sums.hpp"
 #include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/message_packing.hpp"
 
@@ -74,8 +75,10 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
       show_(comm.is_root() && !opt.quiet),
       tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
-      fence_step_(fence_step_of(run_, ranks_)), snapshot_(ReductionMessage::word_count(layout_.size(), ranks_), 0),
-      period_s_(RunController::initial_period_s(run_)) {
+      fence_step_(fence_step_of(run_, ranks_)), totals_(layout_.size()),
+      own_(owned_sides(layout_, comm.rank(), ranks_)), requests_(global_requests(scene)),
+      own_replicate_photons_(layout_.replicates(), 0), period_s_(RunController::initial_period_s(run_)) {
+    // A checkpoint's tallies enter the first reduction as rank 0's counts.
     if (!opt.restart.empty()) {
         if (comm.is_root()) store_.assign(restored_.tallies);
         std::vector<std::uint64_t>().swap(restored_.tallies);
@@ -134,16 +137,19 @@ void RunLoop::wait_for_reduction() {
 }
 
 void RunLoop::encode_snapshot(bool signalled, bool idle) {
-    // One rank: the previous reduction's buffer comes back (start_reduce).
-    if (snapshot_.empty()) snapshot_.swap(reduced_);
+    // The threads add to the store's other array from here on: `delta_` holds what they
+    // added since the previous reduction.
+    delta_ = store_.take();
     ReductionMessage m;
-    m.tallies = store_.data();
     m.progress.resize(static_cast<std::size_t>(ranks_));
     m.progress[static_cast<std::size_t>(comm_.rank())] = work_.progress();
     m.flags.signalled = signalled ? 1 : 0;
     m.flags.idle = idle ? 1 : 0;
     if (pool_->failed()) (is_input_error(pool_->error()) ? m.flags.input_fault : m.flags.internal_fault) = 1;
-    m.encode(snapshot_);
+    for (std::size_t r = 0; r < own_replicate_photons_.size(); ++r)
+        own_replicate_photons_[r] += delta_[layout_.replicate_photons(r)];
+    m.replicate_photons = own_replicate_photons_;
+    header_ = std::move(m);
 }
 
 void RunLoop::snapshot() {
@@ -160,65 +166,180 @@ void RunLoop::snapshot() {
 }
 
 PendingReduce RunLoop::start_reduce() {
+    const std::span<const std::uint64_t> delta = delta_;
     if (ranks_ == 1) {
-        // The sum is the snapshot itself: its buffer becomes `reduced_`, and returns to be
-        // the next snapshot once rank 0 is done with it.
-        reduced_.swap(snapshot_);
+        // The rank owns every word: its counts go straight into the totals.
+        local_mask_ = message_mask(layout_, delta);
+        add_part(layout_, local_mask_, MessagePart::whole(layout_), delta, totals_.span());
+        clear_part(layout_, local_mask_, MessagePart::whole(layout_), delta_);
+        summed_header_ = header_;
         return PendingReduce::completed();
     }
-    mask_ = message_mask(layout_, snapshot_);
+    // The counts every rank sent since the previous reduction fit 32-bit words, with room
+    // for their sum over the ranks, unless some rank says otherwise (RankFlags::wide).
+    std::uint64_t map_bits = 0;
+    local_mask_ = message_mask(layout_, delta, MessagePart::whole(layout_), &map_bits);
+    const std::uint64_t bound = opt_.narrow_word_bound > 0
+                                    ? opt_.narrow_word_bound
+                                    : (std::uint64_t{1} << 32) / static_cast<std::uint64_t>(ranks_);
+    header_.flags.wide = map_bits >= bound ? 1 : 0;
+    mask_ = local_mask_;
     comm_.allreduce_or(mask_);
-    pack_message(layout_, mask_, snapshot_, packed_);
-    info_.reduction_message_words = packed_.size();
-    return comm_.ireduce_sum_to_root(packed_, packed_reduced_);
+    std::vector<std::uint64_t> words;
+    header_.encode(words);
+    comm_.allreduce_sum(words);
+    summed_header_ = ReductionMessage::decode(words, ranks_, layout_.replicates());
+    wide_ = summed_header_.flags.wide > 0;
+    // Every owner's part of the map, in rank order, then the head and the tail for rank 0.
+    part_counts_.assign(static_cast<std::size_t>(ranks_), 0);
+    std::size_t map_words = 0;
+    for (int r = 0; r < ranks_; ++r)
+        map_words += part_counts_[static_cast<std::size_t>(r)] = packed_size(layout_, mask_, layout_.size(),
+                                                                             owned_sides(layout_, r, ranks_));
+    const MessagePart head_tail = MessagePart::head_and_tail_only();
+    tail_send_.resize(packed_size(layout_, mask_, layout_.size(), head_tail));
+    pack_part(layout_, mask_, delta, head_tail, tail_send_.data());
+    auto pack_map = [&](auto& send) {
+        send.resize(map_words);
+        auto* out = send.data();
+        for (int r = 0; r < ranks_; ++r) out = pack_part(layout_, mask_, delta, owned_sides(layout_, r, ranks_), out);
+    };
+    if (wide_) pack_map(map_send64_);
+    else pack_map(map_send32_);
+    clear_part(layout_, local_mask_, MessagePart::whole(layout_), delta_);
+    info_.reduction_message_words = map_words + tail_send_.size();
+    info_.reduction_message_bytes = map_words * (wide_ ? 8 : 4) + tail_send_.size() * 8;
+    PendingReduce tail = comm_.ireduce_sum_to_root(tail_send_, tail_recv_);
+    PendingReduce map = wide_ ? comm_.ireduce_scatter_sum(map_send64_, part_counts_, map_recv64_)
+                              : comm_.ireduce_scatter_sum(map_send32_, part_counts_, map_recv32_);
+    return PendingReduce::both(std::move(map), std::move(tail));
 }
 
 void RunLoop::finish_reduce() {
-    if (ranks_ == 1 || !comm_.is_root()) return;
-    reduced_.resize(snapshot_.size());
-    unpack_message(layout_, mask_, packed_reduced_, reduced_);
+    if (ranks_ > 1) {
+        if (wide_) add_packed_part<std::uint64_t>(layout_, mask_, own_, map_recv64_, totals_.span());
+        else add_packed_part<std::uint32_t>(layout_, mask_, own_, map_recv32_, totals_.span());
+        if (comm_.is_root())
+            add_packed_part<std::uint64_t>(layout_, mask_, MessagePart::head_and_tail_only(), tail_recv_,
+                                           totals_.span());
+    }
+    // Every rank knows the photons, and each replicate's (which the sides' replicate
+    // spread reads from the tallies' last words).
+    photons_ = count_photons(plan_.done_ranges(summed_header_.progress));
+    for (std::size_t r = 0; r < layout_.replicates(); ++r)
+        totals_[layout_.replicate_photons(r)] = summed_header_.replicate_photons[r];
+    estimate_owned_sides();
+}
+
+void RunLoop::estimate_owned_sides() {
+    // Each rank sums its own chunks of sides for every global estimate asked for; rank 0
+    // adds all chunks in chunk order (global_sums.hpp: the same bits on any rank count).
+    const double e0 = photons_ > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(photons_) : 0.0;
+    const std::size_t C = chunk_count(layout_), Q = requests_.weights.size();
+    const std::size_t c0 = own_.side_begin / kSidesPerChunk;
+    const std::size_t c1 = (own_.side_end + kSidesPerChunk - 1) / kSidesPerChunk;
+    std::vector<double> words((c1 - c0) * Q * GlobalSums::kWords);
+    for (std::size_t q = 0; q < Q; ++q) {
+        const WeightedTallies w(layout_, totals_.span(), requests_.weights[q]);
+        const std::vector<GlobalSums> sums = chunk_sums(w, scene_.triangle_area_m2, e0, photons_, c0, c1);
+        for (std::size_t c = 0; c < sums.size(); ++c) sums[c].to_words(words.data() + (c * Q + q) * GlobalSums::kWords);
+    }
+    std::vector<double> all;
+    if (ranks_ > 1) {
+        std::vector<std::size_t> counts(static_cast<std::size_t>(ranks_));
+        for (int r = 0; r < ranks_; ++r) {
+            const MessagePart p = owned_sides(layout_, r, ranks_);
+            counts[static_cast<std::size_t>(r)] = ((p.side_end + kSidesPerChunk - 1) / kSidesPerChunk -
+                                                   p.side_begin / kSidesPerChunk) *
+                                                  Q * GlobalSums::kWords;
+        }
+        comm_.gather_to_root(std::span<const double>(words), counts, all);
+    } else all = std::move(words);
+    if (!comm_.is_root()) return;
+    globals_.clear();
+    for (std::size_t q = 0; q < Q; ++q) {
+        std::vector<GlobalSums> chunks(C);
+        for (std::size_t c = 0; c < C; ++c)
+            chunks[c] = GlobalSums::from_words(all.data() + (c * Q + q) * GlobalSums::kWords);
+        globals_.push_back(global_estimate(chunks, layout_.replicates() > 0));
+    }
+}
+
+void RunLoop::gather_map() {
+    if (ranks_ == 1) return;
+    // Each rank's lit sides, OR-ed: every rank then knows every part's length.
+    std::vector<std::uint64_t> mask = message_mask(layout_, totals_.span(), own_);
+    comm_.allreduce_or(mask);
+    std::vector<std::size_t> counts(static_cast<std::size_t>(ranks_));
+    for (int r = 0; r < ranks_; ++r)
+        counts[static_cast<std::size_t>(r)] = packed_size(layout_, mask, layout_.size(),
+                                                          owned_sides(layout_, r, ranks_));
+    std::vector<std::uint64_t> mine(counts[static_cast<std::size_t>(comm_.rank())]), all;
+    pack_part(layout_, mask, totals_.span(), own_, mine.data());
+    comm_.gather_to_root(std::span<const std::uint64_t>(mine), counts, all);
+    if (!comm_.is_root()) return;
+    std::size_t at = counts[0];
+    for (int r = 1; r < ranks_; ++r) {
+        const std::size_t n = counts[static_cast<std::size_t>(r)];
+        unpack_part(layout_, mask, owned_sides(layout_, r, ranks_), std::span<const std::uint64_t>(all).subspan(at, n),
+                    totals_.span());
+        at += n;
+    }
 }
 
 void RunLoop::reduce() {
     const double r0 = comm_.wtime();
     PendingReduce pending = start_reduce();
+    const double w0 = comm_.wtime();
     while (!pending.test()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+    const double w1 = comm_.wtime();
     finish_reduce();
-    reduce_total_s_ += comm_.wtime() - r0;
+    reduce_wait_total_s_ += w1 - w0;
+    work_s_ = (w0 - r0) + (comm_.wtime() - w1);
+    reduce_work_total_s_ += work_s_;
 }
 
 Decision RunLoop::decide() {
     if (!comm_.is_root()) return {};
-    const ReductionMessage m = ReductionMessage::decode(reduced_, layout_.size(), ranks_);
+    const ReductionMessage& m = summed_header_;
     if (m.flags.input_fault > 0 || m.flags.internal_fault > 0) {
         const Decision d = Decision::fault(m.flags.internal_fault > 0);
         summary_.stop_reason = d.reason;
         return d;
     }
     ReductionInput in;
-    in.tallies = m.tallies;
-    in.photons = count_photons(plan_.done_ranges(m.progress));
+    in.tallies = totals_.span();
+    in.globals = globals_;
+    in.photons = photons_;
     in.elapsed_s = comm_.wtime() - t0_;
     in.tracing_start_s = trace0_ - t0_;
     in.all_ranks_idle = m.flags.idle == static_cast<std::uint64_t>(ranks_);
     in.signalled = m.flags.signalled > 0;
     in.stall_s = stall_s_;
+    in.work_s = work_s_;
     in.write_s = write_s_;
     const Decision d = control_->after_reduction(in);
     if (show_) out_ << (tty_ ? "\r" : "") << control_->progress_line() << (tty_ ? "\033[K" : "\n") << std::flush;
     summary_.stop_reason = d.reason;
-    // A periodic checkpoint comes from this exact snapshot; a final one (exit 3) from the
+    decided_elapsed_s_ = in.elapsed_s;
+    return d;
+}
+
+void RunLoop::checkpoint(const Decision& d) {
+    // A periodic checkpoint comes from this exact reduction; a final one (exit 3) from the
     // final reduction, which holds more photons.
-    if (d.checkpoint && !d.stop) {
-        const double w0 = comm_.wtime();
+    if (!d.checkpoint || d.stop) return;
+    const double w0 = comm_.wtime();
+    gather_map();
+    if (comm_.is_root()) {
         // A failed periodic checkpoint leaves the previous one intact: warn, go on.
-        if (const std::string err = attempt_write(checkpoint_path_, in.elapsed_s, "checkpoint", true); !err.empty())
+        if (const std::string err = attempt_write(checkpoint_path_, decided_elapsed_s_, "checkpoint", true);
+            !err.empty())
             std::cerr << "luxtrace: warning: checkpoint not written: " << err << "; " << latest_checkpoint_note()
                       << "; the run goes on\n"
                       << std::flush;
         write_s_ = comm_.wtime() - w0;
     }
-    return d;
 }
 
 Decision RunLoop::broadcast(const Decision& decision) {
@@ -231,10 +352,9 @@ Decision RunLoop::broadcast(const Decision& decision) {
 }
 
 void RunLoop::write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint) {
-    const ReductionMessage m = ReductionMessage::decode(reduced_, layout_.size(), ranks_);
-    const std::vector<PhotonRange> done = plan_.done_ranges(m.progress);
+    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
     const std::uint64_t n = count_photons(done);
-    const std::vector<std::uint64_t> tallies(m.tallies.begin(), m.tallies.end());
+    const std::span<const std::uint64_t> tallies = totals_.span();
     const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
     ResultEstimates est = estimate_result(scene_, layout_, tallies, e0, n);
     // The annual metrics' errors take a few dozen replicate years: the final result only.
@@ -248,7 +368,7 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     control_->fill_run_info(i);
     CheckpointData ck;
     if (as_checkpoint) {
-        ck.tallies = tallies;
+        ck.tallies.assign(tallies.begin(), tallies.end());
         for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
         ck.budget = run_.photons;
     }
@@ -335,22 +455,26 @@ RunSummary RunLoop::write(const Decision& decision) {
         start_reduce().wait();
         finish_reduce();
     }
+    const double g0 = comm_.wtime();
+    gather_map();
+    info_.gather_s = comm_.allreduce_max(comm_.wtime() - g0);
     const double elapsed = comm_.allreduce_max(comm_.wtime() - t0_);
     info_.load_s = comm_.allreduce_max(opt_.load_s);
     info_.bvh_build_s = comm_.allreduce_max(embree_.build_s());
     info_.reductions = reductions_;
     info_.reduction_stall_s = comm_.allreduce_max(stall_total_s_);
-    info_.reduction_wait_s = comm_.allreduce_max(reduce_total_s_);
+    info_.reduction_wait_s = comm_.allreduce_max(reduce_wait_total_s_);
+    info_.reduction_work_s = comm_.allreduce_max(reduce_work_total_s_);
     summary_.elapsed_s = restored_.elapsed_s + elapsed;
     summary_.exit_code = decision.exit_code;
     std::vector<double> final_code{static_cast<double>(summary_.exit_code)};
     if (comm_.is_root()) {
         // Each intersection ends in an arrival on a triangle or in an escape.
-        summary_.rays = reduced_[layout_.counter(TallyLayout::kEscaped)];
+        summary_.rays = totals_[layout_.counter(TallyLayout::kEscaped)];
         for (std::size_t i = 0; i < layout_.sides(); ++i)
             for (std::size_t c = 0; c < layout_.map_columns(); ++c)
-                summary_.rays += reduced_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
-                                 reduced_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
+                summary_.rays += totals_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
+                                 totals_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
         const std::string result_err = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint ||

@@ -26,6 +26,7 @@ RunSummary run_simulation(const Scene& scene, const Communicator& comm, const Ru
         loop.snapshot();
         loop.reduce();
         decision = loop.broadcast(loop.decide());
+        loop.checkpoint(decision);
     } while (!decision.stop);
     return loop.write(decision);
 }

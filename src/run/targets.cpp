@@ -41,6 +41,21 @@ double annual_metric_error(const Target& t, const Scene& scene, const TallyLayou
 
 }  // namespace
 
+GlobalRequests global_requests(const Scene& scene) {
+    GlobalRequests r;
+    r.weights.emplace_back();
+    for (const Target& t : scene.run.targets) {
+        r.of_target.push_back(0);
+        if (!t.detector.empty() || !t.annual_metric.empty() || t.light_scene.empty()) continue;
+        for (const LightScene& ls : scene.light_scenes)
+            if (ls.name == t.light_scene) {
+                r.of_target.back() = r.weights.size();
+                r.weights.push_back(ls.weights);
+            }
+    }
+    return r;
+}
+
 TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                              const GlobalEstimate& g) {
@@ -73,11 +88,7 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
     if (!t.annual_metric.empty()) {
         s.value = annual_metric_error(t, scene, layout, data, e0, photons, s.kind == TargetKind::relative_error);
     } else if (t.detector.empty()) {
-        const GlobalEstimate scene_global = t.light_scene.empty()
-                                                ? g
-                                                : estimate_global(tallies, scene.triangle_area_m2, e0, photons);
-        s.value = s.kind == TargetKind::absolute_error ? scene_global.target_sigma_lx()
-                                                       : scene_global.target_sigma_rel(arith);
+        s.value = s.kind == TargetKind::absolute_error ? g.target_sigma_lx() : g.target_sigma_rel(arith);
     } else {
         const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                      [&](const Detector& d) { return d.name == t.detector; });

@@ -1,6 +1,9 @@
 #include "luxtrace/stats/estimates.hpp"
 
 #include "luxtrace/detector/detector.hpp"
+#include "luxtrace/stats/global_sums.hpp"
+#include "luxtrace/tally/message_packing.hpp"
+#include "side_terms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,42 +12,7 @@
 namespace luxtrace {
 
 namespace {
-// Band sums of one side's slot.
-double side_sum(const WeightedTallies& w, std::size_t i, TallyLayout::SurfaceSlot slot) {
-    double n = 0.0;
-    for (std::size_t b = 0; b < w.layout().bands(); ++b) n += w.side(i, b, slot);
-    return n;
-}
-double side_count(const WeightedTallies& w, std::size_t i) {
-    return side_sum(w, i, TallyLayout::kCountOdd) + side_sum(w, i, TallyLayout::kCountEven);
-}
-double side_sumsq(const WeightedTallies& w, std::size_t i) {
-    double q = 0.0;
-    for (std::size_t b = 0; b < w.layout().bands(); ++b) q += w.side_sumsq(i, b);
-    return q;
-}
-
-// sqrt(Q - S^2 / N) of one side in counts, from its arrivals S and second moment Q.
-double side_sigma_counts(double s, double q, double n) { return std::sqrt(std::max(0.0, q - s * s / n)); }
-
-// sobol: the standard error of side i's band-summed count from its R replicate maps, in
-// counts (the count's own scale: N times the per-photon mean's error).
-double side_replicate_sigma_counts(const WeightedTallies& w, std::size_t i, std::vector<double>& sums,
-                                   std::span<const std::uint64_t> rep_photons, double n) {
-    const TallyLayout& L = w.layout();
-    for (std::size_t r = 0; r < L.replicates(); ++r) {
-        sums[r] = 0.0;
-        for (std::size_t b = 0; b < L.bands(); ++b) sums[r] += w.side_replicate(i, b, r);
-    }
-    return replicate_estimate(sums, rep_photons).sigma * n;
-}
-
-std::vector<std::uint64_t> replicate_photons(const WeightedTallies& w) {
-    std::vector<std::uint64_t> photons(w.layout().replicates());
-    for (std::size_t r = 0; r < photons.size(); ++r) photons[r] = w.replicate_photons(r);
-    return photons;
-}
-
+using namespace side_terms;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
@@ -123,55 +91,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
 
 GlobalEstimate estimate_global(const WeightedTallies& w, std::span<const double> area, double e0,
                                std::uint64_t photons) {
-    // Eqs. (4)-(5) on the band-summed map of the lit sides: E_odd,t = 2 n_odd E0 / A_t,
-    // likewise even; and each side's variance from its second moment or its replicates.
-    const TallyLayout& L = w.layout();
-    double s = 0.0, sum_d2 = 0.0, sum_e = 0.0, sum_e2 = 0.0, sum_var = 0.0, sum_rep_var = 0.0;
-    const double n_photons = static_cast<double>(photons);
-    const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
-    std::vector<double> sums(L.replicates());
-    GlobalEstimate g;
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        const double odd = side_sum(w, i, TallyLayout::kCountOdd);
-        const double even = side_sum(w, i, TallyLayout::kCountEven);
-        if (odd + even == 0.0) continue;
-        const double a = area[L.triangle_of(i)];
-        const double k = e0 / a;
-        const double e_odd = 2.0 * odd * k;
-        const double e_even = 2.0 * even * k;
-        const double e = (odd + even) * k;
-        s += a;
-        ++g.lit_sides;
-        sum_d2 += a * (e_odd - e_even) * (e_odd - e_even);
-        sum_e += a * e;
-        sum_e2 += a * e * e;
-        if (photons > 0) {
-            const double sigma = side_sigma_counts(odd + even, side_sumsq(w, i), n_photons) * k;
-            sum_var += a * sigma * sigma;
-            if (L.replicates() > 0) {
-                const double rs = side_replicate_sigma_counts(w, i, sums, rep_photons, n_photons) * k;
-                sum_rep_var += a * rs * rs;
-            }
-        }
-    }
-    g.primary = L.replicates() == 0 ? GlobalEstimate::Estimator::second_moment
-                                    : GlobalEstimate::Estimator::replicate_spread;
-    g.lit_area_m2 = s;
-    if (s <= 0.0) return g;
-    g.odd_even_rms_lx = std::sqrt(sum_d2 / s);
-    g.sigma_lx = 0.5 * g.odd_even_rms_lx;
-    g.moment_sigma_lx = std::sqrt(sum_var / s);
-    g.replicate_sigma_lx = L.replicates() > 0 ? std::sqrt(sum_rep_var / s) : kNaN;
-    g.mean_arithmetic_lx = sum_e / s;
-    g.mean_quadratic_lx = std::sqrt(sum_e2 / s);
-    auto rel = [&](double sigma, double mean) { return mean > 0.0 ? sigma / mean : kNaN; };
-    g.sigma_rel_arithmetic = rel(g.sigma_lx, g.mean_arithmetic_lx);
-    g.sigma_rel_quadratic = rel(g.sigma_lx, g.mean_quadratic_lx);
-    g.moment_sigma_rel_arithmetic = rel(g.moment_sigma_lx, g.mean_arithmetic_lx);
-    g.moment_sigma_rel_quadratic = rel(g.moment_sigma_lx, g.mean_quadratic_lx);
-    g.replicate_sigma_rel_arithmetic = rel(g.replicate_sigma_lx, g.mean_arithmetic_lx);
-    g.replicate_sigma_rel_quadratic = rel(g.replicate_sigma_lx, g.mean_quadratic_lx);
-    return g;
+    return global_estimate(chunk_sums(w, area, e0, photons, 0, chunk_count(w.layout())), w.layout().replicates() > 0);
 }
 
 std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,

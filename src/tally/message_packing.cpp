@@ -22,51 +22,67 @@ std::size_t run_length(const TallyLayout& L, int run) {
     const std::size_t c = L.map_columns();
     return run == 0 ? c * TallyLayout::kCountSlots : run == 1 ? c : c * L.replicates();
 }
+std::size_t run_begin(const TallyLayout& L, int run, std::size_t side) {
+    return run == 0 ? L.counts_begin(side) : run == 1 ? L.repeats_begin(side) : L.replicas_begin(side);
+}
 
-// Hands the message to `visit(begin, count, kept)` as ranges in address order, adjacent
-// ranges of the same kind merged: the counters, each side's three runs (the runs of all
-// sides lie one after the other: counts, repeats, replicate arrivals), then the blocks
-// after the surface map.
+// Hands `part` of the message to `visit(begin, count, kept)` as ranges: the head, each
+// run of the part's sides (counts, repeats, replicate arrivals), then the blocks after
+// the surface map; adjacent ranges of the same kind merged.
 template <class Visit>
 void for_each_range(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words,
-                    Visit&& visit) {
-    if (message_words < L.surface_end() || mask.size() != mask_words(L, message_words))
-        throw std::logic_error("message packing: the message or its mask does not fit the layout");
+                    const MessagePart& part, Visit&& visit) {
+    if (message_words < L.surface_end() || mask.size() != mask_words(L, message_words) || part.side_end > L.sides() ||
+        part.side_begin > part.side_end)
+        throw std::logic_error("message packing: the message, its mask or the part does not fit the layout");
     std::size_t begin = 0, end = 0;
     bool kept = true;
-    auto add = [&](std::size_t count, bool keep) {
+    auto add = [&](std::size_t at, std::size_t count, bool keep) {
         if (count == 0) return;
-        if (keep != kept && end > begin) {
+        if (end > begin && (keep != kept || at != end)) {
             visit(begin, end - begin, kept);
-            begin = end;
+            begin = end = at;
         }
+        if (end == begin) begin = end = at;
         kept = keep;
         end += count;
     };
-    add(L.counts_begin(0), true);
-    for (int run = 0; run < kRuns; ++run)
-        for (std::size_t i = 0; i < L.sides(); ++i) add(run_length(L, run), bit(mask, i));
-    const std::span<const std::uint64_t> blocks = mask.subspan(mask_side_words(L));
-    const std::size_t n = tail_blocks(L, message_words);
-    for (std::size_t b = 0; b < n;) {
-        const std::uint64_t w = blocks[b / 64];
-        const std::size_t stop = std::min(n, b + 64 - b % 64);
-        // b is a multiple of 64 here: step over each run of equal bits of w at once.
-        for (std::uint64_t rest = w; b < stop;) {
-            const bool keep = (rest & 1u) != 0;
-            const std::size_t run = std::min<std::size_t>(stop - b,
-                                                          static_cast<std::size_t>(keep ? std::countr_one(rest)
-                                                                                        : std::countr_zero(rest)));
-            add(run * kMessageBlockWords, keep);
-            b += run;
-            rest = run < 64 ? rest >> run : 0;
+    if (part.head_and_tail) add(0, L.counts_begin(0), true);
+    for (int run = 0; run < kRuns; ++run) {
+        const std::size_t n = run_length(L, run);
+        for (std::size_t i = part.side_begin; i < part.side_end; ++i) add(run_begin(L, run, i), n, bit(mask, i));
+    }
+    if (part.head_and_tail) {
+        const std::span<const std::uint64_t> blocks = mask.subspan(mask_side_words(L));
+        const std::size_t n = tail_blocks(L, message_words);
+        for (std::size_t b = 0; b < n;) {
+            const std::uint64_t w = blocks[b / 64];
+            const std::size_t stop = std::min(n, b + 64 - b % 64);
+            // b is a multiple of 64 here: step over each run of equal bits of w at once.
+            for (std::uint64_t rest = w; b < stop;) {
+                const bool keep = (rest & 1u) != 0;
+                const std::size_t run = std::min<std::size_t>(stop - b,
+                                                              static_cast<std::size_t>(keep ? std::countr_one(rest)
+                                                                                            : std::countr_zero(rest)));
+                const std::size_t at = L.surface_end() + b * kMessageBlockWords;
+                add(at, std::min(run * kMessageBlockWords, message_words - at), keep);
+                b += run;
+                rest = run < 64 ? rest >> run : 0;
+            }
         }
     }
-    end = std::min(end, message_words);  // the last block may be short
     if (end > begin) visit(begin, end - begin, kept);
 }
 
 }  // namespace
+
+std::size_t chunk_count(const TallyLayout& L) { return (L.sides() + kSidesPerChunk - 1) / kSidesPerChunk; }
+
+MessagePart owned_sides(const TallyLayout& L, int rank, int ranks) {
+    const std::size_t C = chunk_count(L), R = static_cast<std::size_t>(ranks), r = static_cast<std::size_t>(rank);
+    const std::size_t c0 = r * C / R, c1 = (r + 1) * C / R;
+    return {std::min(L.sides(), c0 * kSidesPerChunk), std::min(L.sides(), c1 * kSidesPerChunk), false};
+}
 
 std::size_t mask_side_words(const TallyLayout& L) { return (L.sides() + 63) / 64; }
 
@@ -75,15 +91,30 @@ std::size_t mask_words(const TallyLayout& L, std::size_t message_words) {
 }
 
 std::vector<std::uint64_t> message_mask(const TallyLayout& L, std::span<const std::uint64_t> message) {
+    return message_mask(L, message, MessagePart::whole(L));
+}
+
+std::vector<std::uint64_t> message_mask(const TallyLayout& L, std::span<const std::uint64_t> message,
+                                        const MessagePart& part, std::uint64_t* map_bits) {
     std::vector<std::uint64_t> mask(mask_words(L, message.size()), 0);
     // A side with repeats or replicate arrivals has counts: its counts alone tell.
     const std::size_t n = run_length(L, 0);
-    for (std::size_t i = 0; i < L.sides(); ++i) {
+    std::uint64_t bits = 0;
+    for (std::size_t i = part.side_begin; i < part.side_end; ++i) {
         const std::uint64_t* s = message.data() + L.counts_begin(i);
         std::uint64_t any = 0;
         for (std::size_t k = 0; k < n; ++k) any |= s[k];
-        if (any != 0) mask[i / 64] |= std::uint64_t{1} << (i % 64);
+        if (any == 0) continue;
+        mask[i / 64] |= std::uint64_t{1} << (i % 64);
+        if (map_bits == nullptr) continue;
+        bits |= any;
+        for (int run = 1; run < kRuns; ++run) {
+            const std::uint64_t* w = message.data() + run_begin(L, run, i);
+            for (std::size_t k = 0; k < run_length(L, run); ++k) bits |= w[k];
+        }
     }
+    if (map_bits != nullptr) *map_bits = bits;
+    if (!part.head_and_tail) return mask;
     std::uint64_t* blocks = mask.data() + mask_side_words(L);
     const std::size_t tail = L.surface_end();
     for (std::size_t b = 0; b < tail_blocks(L, message.size()); ++b) {
@@ -96,35 +127,94 @@ std::vector<std::uint64_t> message_mask(const TallyLayout& L, std::span<const st
     return mask;
 }
 
-std::size_t packed_size(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words) {
+std::size_t packed_size(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words,
+                        const MessagePart& part) {
     std::size_t size = 0;
-    for_each_range(L, mask, message_words,
+    for_each_range(L, mask, message_words, part,
                    [&](std::size_t, std::size_t count, bool kept) { size += kept ? count : 0; });
     return size;
 }
 
-void pack_message(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
-                  std::vector<std::uint64_t>& packed) {
-    packed.resize(packed_size(L, mask, message.size()));
-    std::uint64_t* out = packed.data();
-    for_each_range(L, mask, message.size(), [&](std::size_t begin, std::size_t count, bool kept) {
+template <class Word>
+Word* pack_part(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
+                const MessagePart& part, Word* out) {
+    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
         if (!kept) return;
-        std::memcpy(out, message.data() + begin, count * sizeof(std::uint64_t));
-        out += count;
+        if constexpr (sizeof(Word) == sizeof(std::uint64_t)) {
+            std::memcpy(out, message.data() + begin, count * sizeof(std::uint64_t));
+            out += count;
+        } else {
+            for (std::size_t k = 0; k < count; ++k) *out++ = static_cast<Word>(message[begin + k]);
+        }
+    });
+    return out;
+}
+
+template <class Word>
+void add_packed_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
+                     std::span<const Word> packed, std::span<std::uint64_t> message) {
+    if (packed.size() != packed_size(L, mask, message.size(), part))
+        throw std::logic_error("add_packed_part: the packed words do not fit the mask");
+    const Word* in = packed.data();
+    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
+        if (!kept) return;
+        std::uint64_t* w = message.data() + begin;
+        for (std::size_t k = 0; k < count; ++k) w[k] += in[k];
+        in += count;
     });
 }
 
-void unpack_message(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> packed,
-                    std::span<std::uint64_t> message) {
-    if (packed.size() != packed_size(L, mask, message.size()))
-        throw std::logic_error("unpack_message: the packed words do not fit the mask");
+template std::uint32_t* pack_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<const std::uint64_t>,
+                                  const MessagePart&, std::uint32_t*);
+template std::uint64_t* pack_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<const std::uint64_t>,
+                                  const MessagePart&, std::uint64_t*);
+template void add_packed_part(const TallyLayout&, std::span<const std::uint64_t>, const MessagePart&,
+                              std::span<const std::uint32_t>, std::span<std::uint64_t>);
+template void add_packed_part(const TallyLayout&, std::span<const std::uint64_t>, const MessagePart&,
+                              std::span<const std::uint64_t>, std::span<std::uint64_t>);
+
+void unpack_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
+                 std::span<const std::uint64_t> packed, std::span<std::uint64_t> message) {
+    if (packed.size() != packed_size(L, mask, message.size(), part))
+        throw std::logic_error("unpack_part: the packed words do not fit the mask");
     const std::uint64_t* in = packed.data();
-    for_each_range(L, mask, message.size(), [&](std::size_t begin, std::size_t count, bool kept) {
+    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
         if (kept) {
             std::memcpy(message.data() + begin, in, count * sizeof(std::uint64_t));
             in += count;
         } else std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(begin), count, 0);
     });
+}
+
+void add_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
+              std::span<const std::uint64_t> from, std::span<std::uint64_t> to) {
+    if (from.size() != to.size()) throw std::logic_error("add_part: the messages differ in length");
+    for_each_range(L, mask, from.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
+        if (!kept) return;
+        for (std::size_t k = begin; k < begin + count; ++k) to[k] += from[k];
+    });
+}
+
+void clear_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
+                std::span<std::uint64_t> message) {
+    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
+        if (kept) std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(begin), count, 0);
+    });
+}
+
+std::size_t packed_size(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words) {
+    return packed_size(L, mask, message_words, MessagePart::whole(L));
+}
+
+void pack_message(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
+                  std::vector<std::uint64_t>& packed) {
+    packed.resize(packed_size(L, mask, message.size()));
+    pack_part(L, mask, message, MessagePart::whole(L), packed.data());
+}
+
+void unpack_message(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> packed,
+                    std::span<std::uint64_t> message) {
+    unpack_part(L, mask, MessagePart::whole(L), packed, message);
 }
 
 }  // namespace luxtrace

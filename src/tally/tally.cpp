@@ -49,8 +49,17 @@ TallyDims dims_of(const Scene& scene) {
 TallyLayout::TallyLayout(const Scene& scene) : TallyLayout(scene.triangle_count(), dims_of(scene), cells_of(scene)) {}
 
 void TallyStore::assign(std::span<const std::uint64_t> words) {
-    if (words.size() != data_.size()) throw std::logic_error("TallyStore::assign: the words do not fit the layout");
-    std::copy(words.begin(), words.end(), data_.begin());
+    if (words.size() != layout_.size()) throw std::logic_error("TallyStore::assign: the words do not fit the layout");
+    std::copy(words.begin(), words.end(), data_[active_].begin());
+}
+
+std::span<std::uint64_t> TallyStore::take() {
+    // The second array is mapped at the first take: a run without reductions never has it.
+    if (data_[1 - active_].size() != layout_.size()) data_[1 - active_] = WordArray(layout_.size());
+    const int taken = active_;
+    active_ = 1 - active_;
+    words_ = data_[active_].data();
+    return data_[taken].span();
 }
 
 TallyBuffer::TallyBuffer(TallyStore& store) : store_(store), slots_(kCapacity, Slot{kEmpty, 0}), used_(kMaxLoad) {}

@@ -51,7 +51,10 @@ struct RunInfo {
     std::uint64_t reductions = 0;
     double reduction_stall_s = 0.0;             // tracing time lost to snapshots (max over ranks)
     double reduction_wait_s = 0.0;              // main thread's wait for reductions (tracing goes on)
+    double reduction_work_s = 0.0;              // main thread's packing, summing and estimating (max over ranks)
+    double gather_s = 0.0;                      // the map gathered on rank 0 for the result
     std::uint64_t reduction_message_words = 0;  // words a rank sent in the last reduction (0: one rank)
+    std::uint64_t reduction_message_bytes = 0;  // their bytes (the map's words are 32-bit while they fit)
     std::vector<std::string> target_labels;
     std::vector<double> target_goals;
 };
@@ -83,7 +86,7 @@ struct CheckpointState {
 // `tallies` rearranged into the file's arrays, and `estimates` (estimate_result on the same
 // tallies) as they are.
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  const std::vector<std::uint64_t>& tallies, const RunInfo& info, const ResultEstimates& estimates,
+                  std::span<const std::uint64_t> tallies, const RunInfo& info, const ResultEstimates& estimates,
                   const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);
 
 // Reads a checkpoint written by write_result with CheckpointData; throws InputError.

@@ -2,6 +2,7 @@
 // The only door to MPI. Everything here moves plain arrays; no physics type appears.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,8 @@ public:
     explicit PendingReduce(std::unique_ptr<Impl> impl);
     // A reduction that needed no message (one rank).
     static PendingReduce completed();
+    // Both in flight as one: complete when both are.
+    static PendingReduce both(PendingReduce a, PendingReduce b);
     ~PendingReduce();
     PendingReduce(PendingReduce&&) noexcept;
     PendingReduce& operator=(PendingReduce&&) noexcept;
@@ -47,6 +50,21 @@ public:
     // Non-blocking: `recv` (rank 0 only, resized there) receives the element-wise sum of
     // every rank's `send`, which must stay untouched until the reduction completes.
     PendingReduce ireduce_sum_to_root(const std::vector<std::uint64_t>& send, std::vector<std::uint64_t>& recv) const;
+    // Non-blocking reduce-scatter (MPI_Ireduce_scatter): `send` holds every rank's part in
+    // rank order, counts[r] words for rank r (the same counts everywhere); `recv` (resized
+    // to counts[rank]) receives the element-wise sum of this rank's part over the ranks.
+    // Word: std::uint32_t or std::uint64_t. With more than max elements per call in all,
+    // the parts travel in rounds, each from a copy of its pieces.
+    template <class Word>
+    PendingReduce ireduce_scatter_sum(const std::vector<Word>& send, const std::vector<std::size_t>& counts,
+                                      std::vector<Word>& recv) const;
+    // Element-wise sum over the ranks, in place (same length everywhere).
+    void allreduce_sum(std::vector<std::uint64_t>& values) const;
+    // Every rank's `send` (counts[r] words from rank r, the same counts everywhere) to
+    // rank 0's `recv`, in rank order (resized there). Point to point, in pieces.
+    template <class Word>
+    void gather_to_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
+                        std::vector<Word>& recv) const;
     // Rank 0's values to every rank (same length everywhere).
     void broadcast(std::vector<double>& values) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;

@@ -18,13 +18,19 @@ struct Scene;
 struct RunConfig;
 
 struct ReductionInput {
+    // The reduced tallies. With `globals` given, only the words after the surface map are
+    // read (a distributed reduction leaves the map with the ranks that own its sides).
     std::span<const std::uint64_t> tallies;
+    // The global estimates of global_requests(scene), in its order; empty: computed here
+    // from the whole map in `tallies`.
+    std::span<const GlobalEstimate> globals;
     std::uint64_t photons = 0;     // photons traced in all, including earlier runs
     double elapsed_s = 0.0;        // wall time of this run so far
     double tracing_start_s = 0.0;  // elapsed_s when tracing began (after the BVH build)
     bool all_ranks_idle = false;   // the photon budget is spent
     bool signalled = false;        // SIGTERM / SIGUSR1 seen by some rank
-    double stall_s = 0.0;          // tracing time lost per reduction (pause + copy)
+    double stall_s = 0.0;          // tracing time lost to the reduction's pause
+    double work_s = 0.0;           // the main thread's work on the reduction (taken from tracing)
     double write_s = 0.0;          // time of the latest checkpoint write
 };
 
@@ -67,6 +73,7 @@ private:
     double last_checkpoint_s_ = 0.0;
     double period_s_;
     std::vector<double> recent_stalls_;
+    GlobalRequests requests_;
     GlobalEstimate global_;
     std::vector<TargetStatus> status_;
     std::vector<Forecast> forecast_;

@@ -4,21 +4,29 @@
 //
 //   restore    (constructor) a checkpoint's tallies, traced ranges and history; the work plan
 //   trace      the rank's tracing threads start
-//   snapshot   they park at chunk boundaries; the rank's ReductionMessage is encoded
-//   reduce     rank 0 receives the sum of the messages
-//   decide     rank 0: RunController's Decision, and a periodic checkpoint
-//   broadcast  every rank gets rank 0's Decision; snapshot .. broadcast repeat until it stops
+//   snapshot   they park at chunk boundaries; the store hands over the counts added since
+//              the previous reduction, and the rank's ReductionMessage is encoded
+//   reduce     each rank receives the sum of the sides it owns, rank 0 also of the
+//              detectors; each sums its sides' share of the global estimate
+//   decide     rank 0: RunController's Decision
+//   broadcast  every rank gets rank 0's Decision
+//   checkpoint a periodic checkpoint: the owners' sides gathered on rank 0, which writes;
+//              snapshot .. checkpoint repeat until the decision stops the run
 //   write      the final reduction, the result file and the final checkpoint (rank 0)
 //
 // The members are the state the phases share.
+#include "luxtrace/core/word_array.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/decision.hpp"
+#include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/run/restart.hpp"
 #include "luxtrace/run/run_control.hpp"
 #include "luxtrace/run/simulation.hpp"
+#include "luxtrace/run/targets.hpp"
 #include "luxtrace/run/work_plan.hpp"
 #include "luxtrace/run/worker_pool.hpp"
+#include "luxtrace/tally/message_packing.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
@@ -51,6 +59,8 @@ public:
     Decision decide();
     // Rank 0's decision, on every rank.
     Decision broadcast(const Decision& decision);
+    // Writes the periodic checkpoint the decision asks for (every rank takes part).
+    void checkpoint(const Decision& decision);
     // Stops the threads; unless the decision says the last snapshot is the result, reduces
     // once more, exactly; writes the result (and the checkpoint the decision asks for).
     RunSummary write(const Decision& decision);
@@ -60,6 +70,10 @@ private:
     void encode_snapshot(bool signalled, bool idle);
     PendingReduce start_reduce();
     void finish_reduce();
+    // Each rank's partial sums of the global estimates over its sides; rank 0's globals_.
+    void estimate_owned_sides();
+    // Rank 0's totals_ get every rank's sides (for the result and checkpoints).
+    void gather_map();
     // Rank 0: the result or a checkpoint from the reduced message; a failure to write the
     // file comes back as its message (empty: written).
     std::string attempt_write(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint);
@@ -96,20 +110,32 @@ private:
     std::uint64_t fence_ = 0;
     double trace0_ = 0.0;
 
-    // snapshot and reduce: with one rank the sum is the snapshot itself, and the two
-    // buffers swap (one copy of the tallies besides the store, not two: 80 MB on a million
-    // triangles, and as many page faults at the first reduction). With several ranks the
-    // message leaves out the words zero on every rank (message_packing.hpp): a closed room's
-    // walls send their lit side only, an annual run the detector blocks some photon has
-    // reached, and rank 0 restores the full message.
-    std::vector<std::uint64_t> snapshot_, reduced_;
-    std::vector<std::uint64_t> mask_, packed_, packed_reduced_;  // message_packing.hpp
+    // snapshot and reduce (docs/RUN_CONTROL.md, "Reductions"). The store's counts since the
+    // previous reduction (delta_) go out without the words zero on every rank
+    // (message_packing.hpp): the map's as 32-bit words while they fit, reduce-scattered to
+    // the ranks that own its sides; the counters and detectors to rank 0. Each rank keeps
+    // the running sums of the words it owns in totals_ (a full-size WordArray of which only
+    // those words are ever written); with one rank it owns them all.
+    std::span<std::uint64_t> delta_;
+    WordArray totals_;
+    const MessagePart own_;
+    const GlobalRequests requests_;
+    std::vector<std::uint64_t> own_replicate_photons_;  // since the run began (sobol)
+    ReductionMessage header_, summed_header_;
+    std::vector<std::uint64_t> local_mask_, mask_;
+    std::vector<std::size_t> part_counts_;
+    bool wide_ = false;
+    std::vector<std::uint32_t> map_send32_, map_recv32_;
+    std::vector<std::uint64_t> map_send64_, map_recv64_, tail_send_, tail_recv_;
+    std::uint64_t photons_ = 0;
+    std::vector<GlobalEstimate> globals_;  // rank 0
 
     // decide: timing, and the overhead accounting (tracing time lost to pauses, and the
     // main thread's wait for reductions while the workers trace).
     double period_s_;
-    double stall_s_ = 0.0, write_s_ = 0.0;
-    double stall_total_s_ = 0.0, reduce_total_s_ = 0.0;
+    double stall_s_ = 0.0, work_s_ = 0.0, write_s_ = 0.0;
+    double stall_total_s_ = 0.0, reduce_wait_total_s_ = 0.0, reduce_work_total_s_ = 0.0;
+    double decided_elapsed_s_ = 0.0;
     std::uint64_t reductions_ = 0;
 
     // write: the latest checkpoint this run wrote (rank 0), for messages after a failed write.

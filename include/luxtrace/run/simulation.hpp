@@ -28,6 +28,10 @@ struct RunOptions {
     const EmbreeScene* embree = nullptr;
     // Wall time the caller spent loading the scene (s), for the result's report.
     double load_s = 0.0;
+    // A reduction sends the map's counts as 32-bit words while every rank's are below this
+    // bound; 0: 2^32 / ranks, so that their sum fits too. Tests lower it to take the
+    // 64-bit way.
+    std::uint64_t narrow_word_bound = 0;
 };
 
 struct RunSummary {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace luxtrace {
 
@@ -24,8 +25,17 @@ struct TargetStatus {
 
 TargetKind kind_of(const Target& t);
 
-// `global` is estimate_global's answer for the same tallies (computed once per
-// reduction for all targets).
+// The global estimates a reduction needs: [0] the plain run's, then one per light scene a
+// target on the whole map reads. Each is weights for WeightedTallies (empty: plain); a
+// distributed reduction has every rank sum its sides for each (stats/global_sums.hpp).
+struct GlobalRequests {
+    std::vector<std::vector<double>> weights;
+    std::vector<std::size_t> of_target;  // per [[run.target]]: its estimate's index
+};
+GlobalRequests global_requests(const Scene& scene);
+
+// `global` is the target's global estimate (GlobalRequests) for the same tallies; a target
+// on a detector or an annual metric reads only the words after the surface map of `data`.
 TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                              const GlobalEstimate& global);

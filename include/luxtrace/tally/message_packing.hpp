@@ -1,15 +1,22 @@
 #pragma once
-// A reduction message without the words that are zero on every rank.
+// A reduction message without the words that are zero on every rank, and the parts of it
+// each rank owns in a distributed reduction.
 //
 // A message is the flat tally array (TallyLayout order), possibly followed by a few other
-// words (progress, flags). Two kinds of words are mostly zero: the slots of triangle sides
-// no photon has reached (the back of a closed room's walls), and, after the surface map,
-// detector words (an annual run keeps three words per cell and light group, thousands of
-// groups; the sun groups reach few cells, the direct counts of most patches are zero). A
-// rank marks the sides it has lit and the 8-word blocks after the surface map it holds
-// anything in; the marks are OR-ed over the ranks, and every rank sends only the marked
-// words, in message order. A word unmarked on every rank is zero on every rank, so its sum
-// is zero and unpacking restores the summed message exactly, whatever was left out.
+// words. Two kinds of words are mostly zero: the slots of triangle sides no photon has
+// reached (the back of a closed room's walls), and, after the surface map, detector words
+// (an annual run keeps three words per cell and light group, thousands of groups; the sun
+// groups reach few cells, the direct counts of most patches are zero). A rank marks the
+// sides it has lit and the 8-word blocks after the surface map it holds anything in; the
+// marks are OR-ed over the ranks, and every rank sends only the marked words. A word
+// unmarked on every rank is zero on every rank, so its sum is zero and unpacking restores
+// the summed message exactly, whatever was left out.
+//
+// A MessagePart is a run of sides (each side's counts, repeats and replicate arrivals,
+// which lie in three separate runs of the layout), and optionally the head (the photon
+// fates' counters) and the tail (everything after the surface map). In a distributed
+// reduction (docs/RUN_CONTROL.md) rank r owns the sides of chunks [r C / R, (r + 1) C / R)
+// of the C chunks of kSidesPerChunk sides, and rank 0 also the head and the tail.
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstddef>
@@ -21,19 +28,60 @@ namespace luxtrace {
 
 // Words after the surface map are kept or left out by blocks of this many (a cache line).
 inline constexpr std::size_t kMessageBlockWords = 8;
+// Sides per chunk: the unit a rank owns, and the unit of the global estimate's partial
+// sums (stats/global_sums.hpp), whatever the rank count.
+inline constexpr std::size_t kSidesPerChunk = 4096;
+
+struct MessagePart {
+    std::size_t side_begin = 0, side_end = 0;
+    bool head_and_tail = false;
+    // Every word of the message.
+    static MessagePart whole(const TallyLayout& layout) { return {0, layout.sides(), true}; }
+    static MessagePart head_and_tail_only() { return {0, 0, true}; }
+};
+
+std::size_t chunk_count(const TallyLayout& layout);
+// The sides rank `rank` of `ranks` owns (whole chunks), without the head and tail.
+MessagePart owned_sides(const TallyLayout& layout, int rank, int ranks);
 
 // The mask of a message of `message_words` words: one bit per side (word i / 64, bit
 // i % 64), then, from word mask_side_words(layout) on, one bit per block after the
-// surface map. Its words are OR-ed over the ranks as they are.
+// surface map. Its words are OR-ed over the ranks as they are. Only the bits of `part`
+// are set; `map_bits`, when given, receives the OR of every word of the part's sides (a
+// bound on the largest: below 2^k when it is).
 std::size_t mask_side_words(const TallyLayout& layout);
 std::size_t mask_words(const TallyLayout& layout, std::size_t message_words);
 std::vector<std::uint64_t> message_mask(const TallyLayout& layout, std::span<const std::uint64_t> message);
-// The length of a message packed under `mask`.
+std::vector<std::uint64_t> message_mask(const TallyLayout& layout, std::span<const std::uint64_t> message,
+                                        const MessagePart& part, std::uint64_t* map_bits = nullptr);
+
+// The length of `part` of a message packed under `mask`.
+std::size_t packed_size(const TallyLayout& layout, std::span<const std::uint64_t> mask, std::size_t message_words,
+                        const MessagePart& part);
+// Writes the marked words of `part` to `out` (packed_size of them, as Word: uint32_t or
+// uint64_t; a narrower Word must hold every value) and returns the end.
+template <class Word>
+Word* pack_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
+                const MessagePart& part, Word* out);
+// Adds the packed words of `part` to the words of `message` they came from.
+template <class Word>
+void add_packed_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
+                     std::span<const Word> packed, std::span<std::uint64_t> message);
+// Adds the marked words of `part` of `from` to the same words of `to` (one rank's own sums).
+void add_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
+              std::span<const std::uint64_t> from, std::span<std::uint64_t> to);
+// Sets the words of `part` from its packed words, the left-out ones to zero.
+void unpack_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
+                 std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
+// Zeroes the marked words of `part` (the left-out ones are zero already).
+void clear_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
+                std::span<std::uint64_t> message);
+
+// The whole message: `packed` is resized to packed_size (without reallocating a buffer of
+// that size already); `message` must have the full length and is overwritten.
 std::size_t packed_size(const TallyLayout& layout, std::span<const std::uint64_t> mask, std::size_t message_words);
-// `packed` is resized to packed_size (without reallocating a buffer of that size already).
 void pack_message(const TallyLayout& layout, std::span<const std::uint64_t> mask,
                   std::span<const std::uint64_t> message, std::vector<std::uint64_t>& packed);
-// `message` must have the full length; it is overwritten (the left-out words with zeros).
 void unpack_message(const TallyLayout& layout, std::span<const std::uint64_t> mask,
                     std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
 

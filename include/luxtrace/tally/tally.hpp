@@ -170,24 +170,40 @@ private:
 
 // The rank's shared tallies. The words live in a WordArray: zero without being written,
 // so the sides a run never reaches take no memory.
+//
+// Two arrays take turns (issue 26): the threads add to one while the counts of the other,
+// everything added since the previous reduction, travel. take() swaps them while no thread
+// traces, so a reduction costs the threads a pause, not a copy of the tallies.
 class TallyStore {
 public:
     TallyStore() = default;
-    explicit TallyStore(TallyLayout layout) : layout_(std::move(layout)), data_(layout_.size()) {}
+    explicit TallyStore(TallyLayout layout) : layout_(std::move(layout)), data_{WordArray(layout_.size()), {}} {
+        words_ = data_[0].data();
+    }
+    TallyStore(const TallyStore&) = delete;
+    TallyStore& operator=(const TallyStore&) = delete;
     const TallyLayout& layout() const { return layout_; }
     void add(std::size_t index, std::uint64_t value) {
-        std::atomic_ref<std::uint64_t>(data_[index]).fetch_add(value, std::memory_order_relaxed);
+        std::atomic_ref<std::uint64_t>(words_[index]).fetch_add(value, std::memory_order_relaxed);
     }
-    std::uint64_t operator[](std::size_t i) const { return data_[i]; }
-    const std::uint64_t* address(std::size_t i) const { return &data_[i]; }
-    std::span<std::uint64_t> data() { return data_.span(); }
-    std::span<const std::uint64_t> data() const { return data_.span(); }
-    // Sets every word (a checkpoint's tallies); `words` must have the layout's size.
+    std::uint64_t operator[](std::size_t i) const { return words_[i]; }
+    const std::uint64_t* address(std::size_t i) const { return &words_[i]; }
+    // The array the threads add to.
+    std::span<std::uint64_t> data() { return data_[active_].span(); }
+    std::span<const std::uint64_t> data() const { return data_[active_].span(); }
+    // Sets every word of the array the threads add to (a checkpoint's tallies); `words`
+    // must have the layout's size.
     void assign(std::span<const std::uint64_t> words);
+    // Only while no thread adds: the words added since the previous take (or since the
+    // start); the threads add to the other array from now on, which the caller must have
+    // zeroed (every word it was handed by the take before).
+    std::span<std::uint64_t> take();
 
 private:
     TallyLayout layout_;
-    WordArray data_;
+    WordArray data_[2];
+    int active_ = 0;
+    std::uint64_t* words_ = nullptr;  // data_[active_]
 };
 
 // A thread's fixed-size write-combining buffer (open addressing on the tally index).

@@ -76,8 +76,9 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
       show_(comm.is_root() && !opt.quiet),
       tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
       fence_step_(fence_step_of(run_, ranks_)), totals_(layout_.size()),
-      own_(owned_sides(layout_, comm.rank(), ranks_)), requests_(global_requests(scene)),
-      own_replicate_photons_(layout_.replicates(), 0), period_s_(RunController::initial_period_s(run_)) {
+      own_(owned_sides(layout_, comm.rank(), ranks_)), lit_(mask_side_words(layout_), 0),
+      requests_(global_requests(scene)), own_replicate_photons_(layout_.replicates(), 0),
+      period_s_(RunController::initial_period_s(run_)) {
     // A checkpoint's tallies enter the first reduction as rank 0's counts.
     if (!opt.restart.empty()) {
         if (comm.is_root()) store_.assign(restored_.tallies);
@@ -169,9 +170,7 @@ PendingReduce RunLoop::start_reduce() {
     const std::span<const std::uint64_t> delta = delta_;
     if (ranks_ == 1) {
         // The rank owns every word: its counts go straight into the totals.
-        local_mask_ = message_mask(layout_, delta);
-        add_part(layout_, local_mask_, MessagePart::whole(layout_), delta, totals_.span());
-        clear_part(layout_, local_mask_, MessagePart::whole(layout_), delta_);
+        add_and_clear(layout_, delta_, totals_.span(), lit_);
         summed_header_ = header_;
         return PendingReduce::completed();
     }
@@ -185,6 +184,7 @@ PendingReduce RunLoop::start_reduce() {
     header_.flags.wide = map_bits >= bound ? 1 : 0;
     mask_ = local_mask_;
     comm_.allreduce_or(mask_);
+    for (std::size_t w = 0; w < lit_.size(); ++w) lit_[w] |= mask_[w];
     std::vector<std::uint64_t> words;
     header_.encode(words);
     comm_.allreduce_sum(words);
@@ -241,7 +241,7 @@ void RunLoop::estimate_owned_sides() {
     std::vector<double> words((c1 - c0) * Q * GlobalSums::kWords);
     for (std::size_t q = 0; q < Q; ++q) {
         const WeightedTallies w(layout_, totals_.span(), requests_.weights[q]);
-        const std::vector<GlobalSums> sums = chunk_sums(w, scene_.triangle_area_m2, e0, photons_, c0, c1);
+        const std::vector<GlobalSums> sums = chunk_sums(w, scene_.triangle_area_m2, e0, photons_, c0, c1, lit_);
         for (std::size_t c = 0; c < sums.size(); ++c) sums[c].to_words(words.data() + (c * Q + q) * GlobalSums::kWords);
     }
     std::vector<double> all;

@@ -29,7 +29,7 @@ void GlobalSums::to_words(double* out) const {
 GlobalSums GlobalSums::from_words(const double* in) { return {in[0], in[1], in[2], in[3], in[4], in[5], in[6]}; }
 
 GlobalSums global_sums(const WeightedTallies& w, std::span<const double> area, double e0, std::uint64_t photons,
-                       std::size_t side_begin, std::size_t side_end) {
+                       std::size_t side_begin, std::size_t side_end, std::span<const std::uint64_t> lit) {
     // Eqs. (4)-(5) on the band-summed map of the lit sides: E_odd,t = 2 n_odd E0 / A_t,
     // likewise even; and each side's variance from its second moment or its replicates.
     const TallyLayout& L = w.layout();
@@ -38,6 +38,11 @@ GlobalSums global_sums(const WeightedTallies& w, std::span<const double> area, d
     std::vector<double> sums(L.replicates());
     GlobalSums g;
     for (std::size_t i = side_begin; i < side_end; ++i) {
+        if (!lit.empty() && ((lit[i / 64] >> (i % 64)) & 1u) == 0) {
+            // Step over the rest of an empty mask word at once.
+            if (lit[i / 64] >> (i % 64) == 0) i = std::min(side_end, (i / 64 + 1) * 64) - 1;
+            continue;
+        }
         const double odd = side_sum(w, i, TallyLayout::kCountOdd);
         const double even = side_sum(w, i, TallyLayout::kCountEven);
         if (odd + even == 0.0) continue;
@@ -64,13 +69,14 @@ GlobalSums global_sums(const WeightedTallies& w, std::span<const double> area, d
 }
 
 std::vector<GlobalSums> chunk_sums(const WeightedTallies& w, std::span<const double> area, double e0,
-                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end) {
+                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end,
+                                   std::span<const std::uint64_t> lit) {
     std::vector<GlobalSums> out;
     out.reserve(chunk_end - chunk_begin);
     const std::size_t sides = w.layout().sides();
     for (std::size_t c = chunk_begin; c < chunk_end; ++c)
         out.push_back(global_sums(w, area, e0, photons, std::min(sides, c * kSidesPerChunk),
-                                  std::min(sides, (c + 1) * kSidesPerChunk)));
+                                  std::min(sides, (c + 1) * kSidesPerChunk), lit));
     return out;
 }
 

@@ -195,6 +195,34 @@ void add_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const M
     });
 }
 
+void add_and_clear(const TallyLayout& L, std::span<std::uint64_t> from, std::span<std::uint64_t> to,
+                   std::span<std::uint64_t> lit) {
+    if (from.size() != to.size() || from.size() < L.surface_end() || lit.size() < mask_side_words(L))
+        throw std::logic_error("add_and_clear: the arrays do not fit the layout");
+    auto move = [&](std::size_t begin, std::size_t count) {
+        for (std::size_t k = begin; k < begin + count; ++k) {
+            to[k] += from[k];
+            from[k] = 0;
+        }
+    };
+    move(0, L.counts_begin(0));
+    const std::size_t n = run_length(L, 0);
+    for (std::size_t i = 0; i < L.sides(); ++i) {
+        const std::uint64_t* s = from.data() + L.counts_begin(i);
+        std::uint64_t any = 0;
+        for (std::size_t k = 0; k < n; ++k) any |= s[k];
+        if (any == 0) continue;
+        lit[i / 64] |= std::uint64_t{1} << (i % 64);
+        for (int run = 0; run < kRuns; ++run) move(run_begin(L, run, i), run_length(L, run));
+    }
+    for (std::size_t b = L.surface_end(); b < from.size(); b += kMessageBlockWords) {
+        const std::size_t e = std::min(from.size(), b + kMessageBlockWords);
+        std::uint64_t any = 0;
+        for (std::size_t k = b; k < e; ++k) any |= from[k];
+        if (any != 0) move(b, e - b);
+    }
+}
+
 void clear_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
                 std::span<std::uint64_t> message) {
     for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {

@@ -119,6 +119,7 @@ private:
     std::span<std::uint64_t> delta_;
     WordArray totals_;
     const MessagePart own_;
+    std::vector<std::uint64_t> lit_;  // one bit per side some photon has reached (mask_side_words)
     const GlobalRequests requests_;
     std::vector<std::uint64_t> own_replicate_photons_;  // since the run began (sobol)
     ReductionMessage header_, summed_header_;

@@ -31,12 +31,16 @@ struct GlobalSums {
     static GlobalSums from_words(const double* in);
 };
 
-// The sums of sides [side_begin, side_end); E0 = flux per photon (lm), photons = N.
+// The sums of sides [side_begin, side_end); E0 = flux per photon (lm), photons = N. With
+// `lit` (one bit per side, message_packing.hpp's mask), only the sides marked are read:
+// the others must have no counts (the sums are the same, a closed model's backs are skipped).
 GlobalSums global_sums(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
-                       std::uint64_t photons, std::size_t side_begin, std::size_t side_end);
+                       std::uint64_t photons, std::size_t side_begin, std::size_t side_end,
+                       std::span<const std::uint64_t> lit = {});
 // One GlobalSums per chunk of sides, chunks [chunk_begin, chunk_end).
 std::vector<GlobalSums> chunk_sums(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
-                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end);
+                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end,
+                                   std::span<const std::uint64_t> lit = {});
 // The estimate from every chunk's sums, added in chunk order; `replicates`: the layout
 // has replicate maps (sobol), whose spread is then the primary estimate.
 GlobalEstimate global_estimate(std::span<const GlobalSums> chunks, bool replicates);

@@ -180,6 +180,8 @@ for ((r = 1; r <= repeats; ++r)); do
     ((repeats == 1)) || echo " repeat $r of $repeats"
     timed_run one "$lux"
     printf '  one: 1 rank, no MPI launcher, wall %.2f s\n' "$took"
+    timed_run shm mpirun -n 2 --bind-to none --mca pml ob1 --mca btl self,vader --mca oob_tcp_if_include lo "$lux"
+    printf '  shm: 2 ranks on one node over shared memory (for comparison), wall %.2f s\n' "$took"
     run_two_nodes two 2
     run_two_nodes four 4
 done
@@ -228,11 +230,11 @@ sys.exit(1 if bad or total == 0 else 0)
 PY
 }
 status=0
-for other in two four; do
+for other in shm two four; do
     echo "  one vs $other:"
     compare "$work/one.h5" "$work/$other.h5" || status=1
 done
-[[ $status == 0 ]] && echo "  tallies bit-identical: 1 rank = 2 ranks on two nodes = 4 ranks on two nodes" ||
+[[ $status == 0 ]] && echo "  tallies bit-identical: 1 rank = 2 ranks on one node = 2 and 4 ranks on two nodes" ||
     echo "  FAIL: the tallies differ"
 
 if [[ $collectives == 1 ]]; then

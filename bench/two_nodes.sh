@@ -84,7 +84,8 @@ cleanup() {
     exit "$status"
 }
 trap cleanup EXIT
-trap 'exit 130' INT TERM
+trap 'exit 130' INT
+trap 'exit 143' TERM
 
 # Idempotent: a namespace of an earlier run killed with -9 is removed first.
 teardown

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         expect(words_b > 0 && bytes_b == 8 * words_b, "the forced run sent 64-bit words");
         const std::vector<double> ha = a.f64("/history/sigma_rel_global"), hb = b.f64("/history/sigma_rel_global");
         expect(ha.size() >= 5 && ha == hb, "the history's global errors have the same bits");
-        std::printf("reduction_mpi_test: %d ranks, %zu reductions, last message %llu words: %llu bytes (32-bit), "
+        std::printf("reduction_mpi_test: %d ranks, %zu reductions, longest message %llu words: %llu bytes (32-bit), "
                     "%llu bytes (64-bit)\n",
                     comm.size(), ha.size(), static_cast<unsigned long long>(words_a),
                     static_cast<unsigned long long>(bytes_a), static_cast<unsigned long long>(bytes_b));

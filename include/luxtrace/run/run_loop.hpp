@@ -134,7 +134,15 @@ private:
     // decide: timing, and the overhead accounting (tracing time lost to pauses, and the
     // main thread's wait for reductions while the workers trace).
     double period_s_;
-    double stall_s_ = 0.0, work_s_ = 0.0, write_s_ = 0.0;
+    double stall_s_ = 0.0, work_s_ = 0.0, wait_s_ = 0.0, write_s_ = 0.0;
+    // Runs `wait` (a collective: this rank waits for the others) and counts its time as
+    // the reduction's wait, not its work.
+    template <class Wait>
+    void timed_wait(Wait&& wait) {
+        const double t = comm_.wtime();
+        wait();
+        wait_s_ += comm_.wtime() - t;
+    }
     double stall_total_s_ = 0.0, reduce_wait_total_s_ = 0.0, reduce_work_total_s_ = 0.0;
     double decided_elapsed_s_ = 0.0;
     std::uint64_t reductions_ = 0;

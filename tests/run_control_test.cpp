@@ -523,21 +523,20 @@ TEST(DistributedReduction, OwnersSumsAndChunkEstimatesAreTheOneRankOnes) {
 
         // The global estimate: each owner's chunks, in chunk order.
         const double e0 = scene.lights.total_flux_lm() / static_cast<double>(kBudget);
-        std::vector<GlobalSums> chunks;
+        std::vector<GlobalSums> chunks(chunk_count(L));
         for (int owner = 0; owner < kRanks; ++owner) {
             const MessagePart part = owned_sides(L, owner, kRanks);
             const WeightedTallies w(L, totals[static_cast<std::size_t>(owner)].span());
-            const std::vector<GlobalSums> mine = chunk_sums(w, scene.triangle_area_m2, e0, kBudget,
-                                                            part.side_begin / kSidesPerChunk,
-                                                            (part.side_end + kSidesPerChunk - 1) / kSidesPerChunk);
-            chunks.insert(chunks.end(), mine.begin(), mine.end());
+            for (const ChunkRange& range : {part.fronts, part.backs}) {
+                const std::vector<GlobalSums> mine = chunk_sums(w, scene.triangle_area_m2, e0, kBudget, range);
+                std::copy(mine.begin(), mine.end(), chunks.begin() + static_cast<std::ptrdiff_t>(range.begin));
+            }
         }
-        ASSERT_EQ(chunks.size(), chunk_count(L));
         const GlobalEstimate d = global_estimate(chunks, L.replicates() > 0);
         // Summed over the lit sides only (the OR-ed marks), as the run does: the same bits.
         const WeightedTallies whole(L, reference.tallies);
-        const GlobalEstimate skipping = global_estimate(chunk_sums(whole, scene.triangle_area_m2, e0, kBudget, 0,
-                                                                   chunk_count(L), mask),
+        const GlobalEstimate skipping = global_estimate(chunk_sums(whole, scene.triangle_area_m2, e0, kBudget,
+                                                                   {0, chunk_count(L)}, mask),
                                                         L.replicates() > 0);
         const GlobalEstimate g = estimate_global(L, reference.tallies, scene.triangle_area_m2, e0, kBudget);
         EXPECT_GT(g.lit_sides, 0u);

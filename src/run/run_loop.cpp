@@ -233,35 +233,38 @@ void RunLoop::finish_reduce() {
 }
 
 void RunLoop::estimate_owned_sides() {
-    // Each rank sums its own chunks of sides for every global estimate asked for; rank 0
-    // adds all chunks in chunk order (global_sums.hpp: the same bits on any rank count).
+    // Each rank sums its own chunks of sides (its fronts', then its backs') for every
+    // global estimate asked for; rank 0 adds all chunks in chunk order (global_sums.hpp:
+    // the same bits on any rank count).
     const double e0 = photons_ > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(photons_) : 0.0;
-    const std::size_t C = chunk_count(layout_), Q = requests_.weights.size();
-    const std::size_t c0 = own_.side_begin / kSidesPerChunk;
-    const std::size_t c1 = (own_.side_end + kSidesPerChunk - 1) / kSidesPerChunk;
-    std::vector<double> words((c1 - c0) * Q * GlobalSums::kWords);
+    const std::size_t C = chunk_count(layout_), Q = requests_.weights.size(), K = GlobalSums::kWords;
+    std::vector<double> words(own_.chunks() * Q * K);
     for (std::size_t q = 0; q < Q; ++q) {
         const WeightedTallies w(layout_, totals_.span(), requests_.weights[q]);
-        const std::vector<GlobalSums> sums = chunk_sums(w, scene_.triangle_area_m2, e0, photons_, c0, c1, lit_);
-        for (std::size_t c = 0; c < sums.size(); ++c) sums[c].to_words(words.data() + (c * Q + q) * GlobalSums::kWords);
+        std::size_t c = 0;
+        for (const ChunkRange& range : {own_.fronts, own_.backs})
+            for (const GlobalSums& sums : chunk_sums(w, scene_.triangle_area_m2, e0, photons_, range, lit_))
+                sums.to_words(words.data() + (c++ * Q + q) * K);
     }
     std::vector<double> all;
+    std::vector<MessagePart> parts;
+    for (int r = 0; r < ranks_; ++r) parts.push_back(owned_sides(layout_, r, ranks_));
     if (ranks_ > 1) {
-        std::vector<std::size_t> counts(static_cast<std::size_t>(ranks_));
-        for (int r = 0; r < ranks_; ++r) {
-            const MessagePart p = owned_sides(layout_, r, ranks_);
-            counts[static_cast<std::size_t>(r)] = ((p.side_end + kSidesPerChunk - 1) / kSidesPerChunk -
-                                                   p.side_begin / kSidesPerChunk) *
-                                                  Q * GlobalSums::kWords;
-        }
+        std::vector<std::size_t> counts;
+        for (const MessagePart& p : parts) counts.push_back(p.chunks() * Q * K);
         timed_wait([&] { comm_.gather_to_root(std::span<const double>(words), counts, all); });
     } else all = std::move(words);
     if (!comm_.is_root()) return;
+    // `all` holds each rank's chunks in rank order: put them in chunk order.
+    std::vector<std::size_t> at(C);
+    std::size_t k = 0;
+    for (const MessagePart& p : parts)
+        for (const ChunkRange& range : {p.fronts, p.backs})
+            for (std::size_t c = range.begin; c < range.end; ++c) at[c] = k++;
     globals_.clear();
     for (std::size_t q = 0; q < Q; ++q) {
         std::vector<GlobalSums> chunks(C);
-        for (std::size_t c = 0; c < C; ++c)
-            chunks[c] = GlobalSums::from_words(all.data() + (c * Q + q) * GlobalSums::kWords);
+        for (std::size_t c = 0; c < C; ++c) chunks[c] = GlobalSums::from_words(all.data() + (at[c] * Q + q) * K);
         globals_.push_back(global_estimate(chunks, layout_.replicates() > 0));
     }
 }

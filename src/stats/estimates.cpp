@@ -91,7 +91,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
 
 GlobalEstimate estimate_global(const WeightedTallies& w, std::span<const double> area, double e0,
                                std::uint64_t photons) {
-    return global_estimate(chunk_sums(w, area, e0, photons, 0, chunk_count(w.layout())), w.layout().replicates() > 0);
+    return global_estimate(chunk_sums(w, area, e0, photons, {0, chunk_count(w.layout())}), w.layout().replicates() > 0);
 }
 
 std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,

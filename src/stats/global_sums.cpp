@@ -1,6 +1,5 @@
 #include "luxtrace/stats/global_sums.hpp"
 
-#include "luxtrace/tally/message_packing.hpp"
 #include "side_terms.hpp"
 
 #include <algorithm>
@@ -69,14 +68,13 @@ GlobalSums global_sums(const WeightedTallies& w, std::span<const double> area, d
 }
 
 std::vector<GlobalSums> chunk_sums(const WeightedTallies& w, std::span<const double> area, double e0,
-                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end,
-                                   std::span<const std::uint64_t> lit) {
+                                   std::uint64_t photons, ChunkRange chunks, std::span<const std::uint64_t> lit) {
     std::vector<GlobalSums> out;
-    out.reserve(chunk_end - chunk_begin);
-    const std::size_t sides = w.layout().sides();
-    for (std::size_t c = chunk_begin; c < chunk_end; ++c)
-        out.push_back(global_sums(w, area, e0, photons, std::min(sides, c * kSidesPerChunk),
-                                  std::min(sides, (c + 1) * kSidesPerChunk), lit));
+    out.reserve(chunks.size());
+    for (std::size_t c = chunks.begin; c < chunks.end; ++c) {
+        const auto [begin, end] = chunk_sides(w.layout(), c);
+        out.push_back(global_sums(w, area, e0, photons, begin, end, lit));
+    }
     return out;
 }
 

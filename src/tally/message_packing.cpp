@@ -26,14 +26,25 @@ std::size_t run_begin(const TallyLayout& L, int run, std::size_t side) {
     return run == 0 ? L.counts_begin(side) : run == 1 ? L.repeats_begin(side) : L.replicas_begin(side);
 }
 
+// Calls `f(side)` for every side of `part`'s chunks, in chunk order.
+template <class F>
+void for_each_side(const TallyLayout& L, const MessagePart& part, F&& f) {
+    for (const ChunkRange& r : {part.fronts, part.backs})
+        if (r.size() > 0) {
+            const std::size_t begin = chunk_sides(L, r.begin).first, end = chunk_sides(L, r.end - 1).second;
+            for (std::size_t i = begin; i < end; ++i) f(i);
+        }
+}
+
 // Hands `part` of the message to `visit(begin, count, kept)` as ranges: the head, each
 // run of the part's sides (counts, repeats, replicate arrivals), then the blocks after
 // the surface map; adjacent ranges of the same kind merged.
 template <class Visit>
 void for_each_range(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words,
                     const MessagePart& part, Visit&& visit) {
-    if (message_words < L.surface_end() || mask.size() != mask_words(L, message_words) || part.side_end > L.sides() ||
-        part.side_begin > part.side_end)
+    const std::size_t C = chunk_count(L);
+    if (message_words < L.surface_end() || mask.size() != mask_words(L, message_words) || part.fronts.end > C ||
+        part.backs.end > C || part.fronts.begin > part.fronts.end || part.backs.begin > part.backs.end)
         throw std::logic_error("message packing: the message, its mask or the part does not fit the layout");
     std::size_t begin = 0, end = 0;
     bool kept = true;
@@ -50,7 +61,7 @@ void for_each_range(const TallyLayout& L, std::span<const std::uint64_t> mask, s
     if (part.head_and_tail) add(0, L.counts_begin(0), true);
     for (int run = 0; run < kRuns; ++run) {
         const std::size_t n = run_length(L, run);
-        for (std::size_t i = part.side_begin; i < part.side_end; ++i) add(run_begin(L, run, i), n, bit(mask, i));
+        for_each_side(L, part, [&](std::size_t i) { add(run_begin(L, run, i), n, bit(mask, i)); });
     }
     if (part.head_and_tail) {
         const std::span<const std::uint64_t> blocks = mask.subspan(mask_side_words(L));
@@ -76,12 +87,27 @@ void for_each_range(const TallyLayout& L, std::span<const std::uint64_t> mask, s
 
 }  // namespace
 
-std::size_t chunk_count(const TallyLayout& L) { return (L.sides() + kSidesPerChunk - 1) / kSidesPerChunk; }
+namespace {
+std::size_t half_chunks(const TallyLayout& L) { return (L.triangles() + kSidesPerChunk - 1) / kSidesPerChunk; }
+}  // namespace
+
+std::size_t chunk_count(const TallyLayout& L) { return 2 * half_chunks(L); }
+
+std::pair<std::size_t, std::size_t> chunk_sides(const TallyLayout& L, std::size_t c) {
+    const std::size_t H = half_chunks(L), T = L.triangles();
+    const std::size_t side = c < H ? 0 : 1, k = c < H ? c : c - H;
+    return {side * T + std::min(T, k * kSidesPerChunk), side * T + std::min(T, (k + 1) * kSidesPerChunk)};
+}
+
+MessagePart MessagePart::whole(const TallyLayout& L) {
+    const std::size_t H = half_chunks(L);
+    return {{0, H}, {H, 2 * H}, true};
+}
 
 MessagePart owned_sides(const TallyLayout& L, int rank, int ranks) {
-    const std::size_t C = chunk_count(L), R = static_cast<std::size_t>(ranks), r = static_cast<std::size_t>(rank);
-    const std::size_t c0 = r * C / R, c1 = (r + 1) * C / R;
-    return {std::min(L.sides(), c0 * kSidesPerChunk), std::min(L.sides(), c1 * kSidesPerChunk), false};
+    const std::size_t H = half_chunks(L), R = static_cast<std::size_t>(ranks), r = static_cast<std::size_t>(rank);
+    const std::size_t c0 = r * H / R, c1 = (r + 1) * H / R;
+    return {{c0, c1}, {H + c0, H + c1}, false};
 }
 
 std::size_t mask_side_words(const TallyLayout& L) { return (L.sides() + 63) / 64; }
@@ -100,19 +126,19 @@ std::vector<std::uint64_t> message_mask(const TallyLayout& L, std::span<const st
     // A side with repeats or replicate arrivals has counts: its counts alone tell.
     const std::size_t n = run_length(L, 0);
     std::uint64_t bits = 0;
-    for (std::size_t i = part.side_begin; i < part.side_end; ++i) {
+    for_each_side(L, part, [&](std::size_t i) {
         const std::uint64_t* s = message.data() + L.counts_begin(i);
         std::uint64_t any = 0;
         for (std::size_t k = 0; k < n; ++k) any |= s[k];
-        if (any == 0) continue;
+        if (any == 0) return;
         mask[i / 64] |= std::uint64_t{1} << (i % 64);
-        if (map_bits == nullptr) continue;
+        if (map_bits == nullptr) return;
         bits |= any;
         for (int run = 1; run < kRuns; ++run) {
             const std::uint64_t* w = message.data() + run_begin(L, run, i);
             for (std::size_t k = 0; k < run_length(L, run); ++k) bits |= w[k];
         }
-    }
+    });
     if (map_bits != nullptr) *map_bits = bits;
     if (!part.head_and_tail) return mask;
     std::uint64_t* blocks = mask.data() + mask_side_words(L);

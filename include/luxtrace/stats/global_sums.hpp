@@ -1,12 +1,13 @@
 #pragma once
 // The global estimate (estimates.hpp, eqs. 4-5 and the second moment) as partial sums
-// over chunks of sides, so that each rank of a distributed reduction sums the sides it
+// over chunks of sides (message_packing.hpp), so that each rank of a distributed reduction sums the sides it
 // owns and only the chunks' sums travel to rank 0 (docs/RUN_CONTROL.md). The chunks are
-// fixed by the layout (kSidesPerChunk), not by the rank count, and rank 0 adds them in
+// fixed by the layout, not by the rank count, and rank 0 adds them in
 // chunk order: the estimate has the same bits on any number of ranks, and the same as
 // estimate_global on the whole map.
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/weighted_tallies.hpp"
+#include "luxtrace/tally/message_packing.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -37,10 +38,9 @@ struct GlobalSums {
 GlobalSums global_sums(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                        std::uint64_t photons, std::size_t side_begin, std::size_t side_end,
                        std::span<const std::uint64_t> lit = {});
-// One GlobalSums per chunk of sides, chunks [chunk_begin, chunk_end).
+// One GlobalSums per chunk of sides (message_packing.hpp's chunks), in chunk order.
 std::vector<GlobalSums> chunk_sums(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
-                                   std::uint64_t photons, std::size_t chunk_begin, std::size_t chunk_end,
-                                   std::span<const std::uint64_t> lit = {});
+                                   std::uint64_t photons, ChunkRange chunks, std::span<const std::uint64_t> lit = {});
 // The estimate from every chunk's sums, added in chunk order; `replicates`: the layout
 // has replicate maps (sobol), whose spread is then the primary estimate.
 GlobalEstimate global_estimate(std::span<const GlobalSums> chunks, bool replicates);

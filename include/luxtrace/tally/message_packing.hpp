@@ -12,16 +12,20 @@
 // unmarked on every rank is zero on every rank, so its sum is zero and unpacking restores
 // the summed message exactly, whatever was left out.
 //
-// A MessagePart is a run of sides (each side's counts, repeats and replicate arrivals,
-// which lie in three separate runs of the layout), and optionally the head (the photon
-// fates' counters) and the tail (everything after the surface map). In a distributed
-// reduction (docs/RUN_CONTROL.md) rank r owns the sides of chunks [r C / R, (r + 1) C / R)
-// of the C chunks of kSidesPerChunk sides, and rank 0 also the head and the tail.
+// The sides are cut into chunks of kSidesPerChunk: H chunks of the front sides, then H of
+// the back sides (H = ceil(T / kSidesPerChunk)). A MessagePart is two runs of chunks, one
+// of fronts and one of backs (each side's counts, repeats and replicate arrivals, which lie
+// in three separate runs of the layout), and optionally the head (the photon fates'
+// counters) and the tail (everything after the surface map). In a distributed reduction
+// (docs/RUN_CONTROL.md) rank r owns front chunks [r H / R, (r + 1) H / R) and the backs of
+// the same triangles, so that a closed model's lit fronts are shared evenly; rank 0 also
+// owns the head and the tail.
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace luxtrace {
@@ -32,16 +36,24 @@ inline constexpr std::size_t kMessageBlockWords = 8;
 // sums (stats/global_sums.hpp), whatever the rank count.
 inline constexpr std::size_t kSidesPerChunk = 4096;
 
-struct MessagePart {
-    std::size_t side_begin = 0, side_end = 0;
-    bool head_and_tail = false;
-    // Every word of the message.
-    static MessagePart whole(const TallyLayout& layout) { return {0, layout.sides(), true}; }
-    static MessagePart head_and_tail_only() { return {0, 0, true}; }
+struct ChunkRange {
+    std::size_t begin = 0, end = 0;  // chunks [begin, end)
+    std::size_t size() const { return end - begin; }
 };
 
-std::size_t chunk_count(const TallyLayout& layout);
-// The sides rank `rank` of `ranks` owns (whole chunks), without the head and tail.
+std::size_t chunk_count(const TallyLayout& layout);  // 2 H
+// The sides [first, second) of chunk c.
+std::pair<std::size_t, std::size_t> chunk_sides(const TallyLayout& layout, std::size_t chunk);
+
+struct MessagePart {
+    ChunkRange fronts, backs;
+    bool head_and_tail = false;
+    std::size_t chunks() const { return fronts.size() + backs.size(); }
+    // Every word of the message.
+    static MessagePart whole(const TallyLayout& layout);
+    static MessagePart head_and_tail_only() { return {{}, {}, true}; }
+};
+// The sides rank `rank` of `ranks` owns, without the head and tail.
 MessagePart owned_sides(const TallyLayout& layout, int rank, int ranks);
 
 // The mask of a message of `message_words` words: one bit per side (word i / 64, bit

@@ -4,13 +4,13 @@
 // room's share of its sides lit (the fronts: every other side), counts on each lit side
 // as a reduction period leaves them; then, as RunLoop does it on R ranks:
 //   mark     message_mask over the rank's counts (every side's count words read)
-//   pack     every owner's part packed as 32-bit words (the reduce-scatter's send buffer)
-//   clear    the rank's counts zeroed where marked
+//   take     every owner's part packed as 32-bit words (the reduce-scatter's send buffer)
+//            and the rank's counts zeroed, in one pass (take_part)
 //   add      the owner adds its summed part into its totals (its 1/R of the sides)
 //   chunks   the owner's chunk sums for the global estimate (its lit sides only)
 //   one rank add_and_clear: the one-rank reduction (counts into totals, cleared)
-// Each is the best of --repeats, in ns per side of the layout (mark), per lit word (pack,
-// clear, add, one rank) and per lit side (chunks).
+// Each is the best of --repeats, in ns per side of the layout (mark, one rank), per lit
+// word (take, add) and per lit side (chunks).
 //   build/bench/reduction_costs --triangles 1e6 --ranks 4
 #include "luxtrace/core/count.hpp"
 #include "luxtrace/core/word_array.hpp"
@@ -83,12 +83,20 @@ int main(int argc, char** argv) {
     for (std::size_t w = 0; w < mask_side_words(L); ++w)
         lit_sides += static_cast<std::size_t>(__builtin_popcountll(mask[w]));
     std::vector<std::uint32_t> send(lit_words);
-    const double pack = best_of(repeats, [&] {
-        std::uint32_t* out = send.data();
-        for (int r = 0; r < ranks; ++r) out = pack_part(L, mask, counts.span(), owned_sides(L, r, ranks), out);
-    });
+    // Taking and the one-rank pass clear the counts: each repeat refills them first (the
+    // refill is not timed).
+    double take = 1e300;
+    for (int r = 0; r < repeats; ++r) {
+        fill(L, counts.span(), 1);
+        take = std::min(take, best_of(1, [&] {
+                            std::uint32_t* out = send.data();
+                            for (int o = 0; o < ranks; ++o)
+                                out = take_part(L, mask, counts.span(), owned_sides(L, o, ranks), out);
+                        }));
+    }
     const MessagePart own = owned_sides(L, 0, ranks);
     const std::size_t own_words = packed_size(L, mask, L.size(), own);
+    fill(L, counts.span(), 1);
     const std::vector<std::uint32_t> part(send.begin(), send.begin() + static_cast<std::ptrdiff_t>(own_words));
     const double add = best_of(repeats, [&] { add_packed_part<std::uint32_t>(L, mask, own, part, totals.span()); });
     const WeightedTallies w(L, totals.span());
@@ -102,13 +110,9 @@ int main(int argc, char** argv) {
         for (const ChunkRange& range : {own.fronts, own.backs})
             if (chunk_sums(w, area, 1e-3, 1000000, range, mask).size() != range.size()) std::puts("chunks missing");
     });
-    // Clearing and the one-rank pass destroy the counts: each repeat refills them first
-    // (the refill is not timed).
-    double clear = 1e300, one_rank = 1e300;
+    double one_rank = 1e300;
     std::vector<std::uint64_t> lit(mask_side_words(L));
     for (int r = 0; r < repeats; ++r) {
-        fill(L, counts.span(), 1);
-        clear = std::min(clear, best_of(1, [&] { clear_part(L, mask, MessagePart::whole(L), counts.span()); }));
         fill(L, counts.span(), 1);
         one_rank = std::min(one_rank, best_of(1, [&] { add_and_clear(L, counts.span(), totals.span(), lit); }));
     }
@@ -117,8 +121,7 @@ int main(int argc, char** argv) {
         "triangles %zu  sides %zu  lit sides %zu  lit words %zu  ranks %d (owner 0: %zu words, %zu lit sides)\n", T,
         L.sides(), lit_sides, lit_words, ranks, own_words, own_lit);
     std::printf("mark    %8.3f ms  %6.2f ns per side\n", 1e3 * mark, ns * mark / static_cast<double>(L.sides()));
-    std::printf("pack    %8.3f ms  %6.2f ns per lit word\n", 1e3 * pack, ns * pack / static_cast<double>(lit_words));
-    std::printf("clear   %8.3f ms  %6.2f ns per lit word\n", 1e3 * clear, ns * clear / static_cast<double>(lit_words));
+    std::printf("take    %8.3f ms  %6.2f ns per lit word\n", 1e3 * take, ns * take / static_cast<double>(lit_words));
     std::printf("add     %8.3f ms  %6.2f ns per owned word\n", 1e3 * add,
                 ns * add / static_cast<double>(std::max<std::size_t>(1, own_words)));
     std::printf("chunks  %8.3f ms  %6.2f ns per owned lit side\n", 1e3 * chunks,

@@ -665,7 +665,7 @@ TEST(RunController, DecidesEachRuleAsTabled) {
         {.name = "the period as asked", .report_every_s = 0.7, .next_period_s = 0.7},
         {.name = "a period too short is raised", .report_every_s = 0.001, .next_period_s = 0.05},
         {.name = "a period too long is lowered", .report_every_s = 1000, .next_period_s = 60},
-        {.name = "stalls: the period is 50 times the stall", .stall_s = 0.1, .next_period_s = 5.0},
+        {.name = "stalls: the period is 100 times the stall", .stall_s = 0.1, .next_period_s = 10.0},
         {.name = "median of the last five stalls", .earlier_s = {0.2, 0.4, 0.6, 0.8}, .stall_s = 0.1,
          .next_period_s = dflt},
         {.name = "photon counts: the period only bounds the wait", .report_every_photons = 1000,

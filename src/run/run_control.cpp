@@ -74,13 +74,13 @@ Decision RunController::decide(const ReductionInput& in) {
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
     history_.push_back(row);
 
-    // Keep the tracing time lost to reductions under 2% of the run. A stall can be
+    // Keep the tracing time reductions take under 1% of the run (issue 26). A stall can be
     // inflated by a descheduled thread on a busy machine: use the median of the last five.
     recent_stalls_.push_back(in.stall_s + in.work_s);
     if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
     std::vector<double> sorted = recent_stalls_;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    const double min_period_s = 50.0 * sorted[sorted.size() / 2];
+    const double min_period_s = 100.0 * sorted[sorted.size() / 2];
     if (scene_.run.report_every_photons == 0) period_s_ = std::max(period_s_, min_period_s);
     Decision d;
     d.next_period_s = period_s_;

@@ -177,12 +177,11 @@ PendingReduce RunLoop::start_reduce() {
     // The counts every rank sent since the previous reduction fit 32-bit words, with room
     // for their sum over the ranks, unless some rank says otherwise (RankFlags::wide).
     std::uint64_t map_bits = 0;
-    local_mask_ = message_mask(layout_, delta, MessagePart::whole(layout_), &map_bits);
+    mask_ = message_mask(layout_, delta, MessagePart::whole(layout_), &map_bits);
     const std::uint64_t bound = opt_.narrow_word_bound > 0
                                     ? opt_.narrow_word_bound
                                     : (std::uint64_t{1} << 32) / static_cast<std::uint64_t>(ranks_);
     header_.flags.wide = map_bits >= bound ? 1 : 0;
-    mask_ = local_mask_;
     timed_wait([&] { comm_.allreduce_or(mask_); });
     for (std::size_t w = 0; w < lit_.size(); ++w) lit_[w] |= mask_[w];
     std::vector<std::uint64_t> words;
@@ -198,15 +197,14 @@ PendingReduce RunLoop::start_reduce() {
                                                                              owned_sides(layout_, r, ranks_));
     const MessagePart head_tail = MessagePart::head_and_tail_only();
     tail_send_.resize(packed_size(layout_, mask_, layout_.size(), head_tail));
-    pack_part(layout_, mask_, delta, head_tail, tail_send_.data());
+    take_part(layout_, mask_, delta_, head_tail, tail_send_.data());
     auto pack_map = [&](auto& send) {
         send.resize(map_words);
         auto* out = send.data();
-        for (int r = 0; r < ranks_; ++r) out = pack_part(layout_, mask_, delta, owned_sides(layout_, r, ranks_), out);
+        for (int r = 0; r < ranks_; ++r) out = take_part(layout_, mask_, delta_, owned_sides(layout_, r, ranks_), out);
     };
     if (wide_) pack_map(map_send64_);
     else pack_map(map_send32_);
-    clear_part(layout_, local_mask_, MessagePart::whole(layout_), delta_);
     info_.reduction_message_words = std::max(info_.reduction_message_words, map_words + tail_send_.size());
     info_.reduction_message_bytes = std::max(info_.reduction_message_bytes,
                                              map_words * (wide_ ? 8 : 4) + tail_send_.size() * 8);

@@ -177,6 +177,20 @@ Word* pack_part(const TallyLayout& L, std::span<const std::uint64_t> mask, std::
 }
 
 template <class Word>
+Word* take_part(const TallyLayout& L, std::span<const std::uint64_t> mask, std::span<std::uint64_t> message,
+                const MessagePart& part, Word* out) {
+    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
+        if (!kept) return;
+        std::uint64_t* w = message.data() + begin;
+        for (std::size_t k = 0; k < count; ++k) {
+            *out++ = static_cast<Word>(w[k]);
+            if (w[k] != 0) w[k] = 0;
+        }
+    });
+    return out;
+}
+
+template <class Word>
 void add_packed_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
                      std::span<const Word> packed, std::span<std::uint64_t> message) {
     if (packed.size() != packed_size(L, mask, message.size(), part))
@@ -193,6 +207,10 @@ void add_packed_part(const TallyLayout& L, std::span<const std::uint64_t> mask, 
 template std::uint32_t* pack_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<const std::uint64_t>,
                                   const MessagePart&, std::uint32_t*);
 template std::uint64_t* pack_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<const std::uint64_t>,
+                                  const MessagePart&, std::uint64_t*);
+template std::uint32_t* take_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<std::uint64_t>,
+                                  const MessagePart&, std::uint32_t*);
+template std::uint64_t* take_part(const TallyLayout&, std::span<const std::uint64_t>, std::span<std::uint64_t>,
                                   const MessagePart&, std::uint64_t*);
 template void add_packed_part(const TallyLayout&, std::span<const std::uint64_t>, const MessagePart&,
                               std::span<const std::uint32_t>, std::span<std::uint64_t>);

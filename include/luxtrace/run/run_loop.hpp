@@ -123,7 +123,7 @@ private:
     const GlobalRequests requests_;
     std::vector<std::uint64_t> own_replicate_photons_;  // since the run began (sobol)
     ReductionMessage header_, summed_header_;
-    std::vector<std::uint64_t> local_mask_, mask_;
+    std::vector<std::uint64_t> mask_;
     std::vector<std::size_t> part_counts_;
     bool wide_ = false;
     std::vector<std::uint32_t> map_send32_, map_recv32_;

@@ -75,6 +75,12 @@ std::size_t packed_size(const TallyLayout& layout, std::span<const std::uint64_t
 template <class Word>
 Word* pack_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, std::span<const std::uint64_t> message,
                 const MessagePart& part, Word* out);
+// pack_part, zeroing each packed word of `message` that is not zero already (so that pages
+// of words this rank never wrote stay unwritten): a rank's counts handed over and cleared
+// in one pass.
+template <class Word>
+Word* take_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, std::span<std::uint64_t> message,
+                const MessagePart& part, Word* out);
 // Adds the packed words of `part` to the words of `message` they came from.
 template <class Word>
 void add_packed_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,

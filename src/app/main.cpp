@@ -24,6 +24,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <optional>
 
@@ -229,7 +230,8 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
             print_result_summary(ResultFile(s.output), std::cout);
         }
         if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
-        std::cout << "result: " << fs::absolute(s.output).string() << '\n';
+        std::cout << "result: " << fs::absolute(s.output).string() << " (written in " << std::fixed
+                  << std::setprecision(2) << s.result_write_s << " s)" << std::defaultfloat << '\n';
         for (const std::string& table : s.sensor_tables)
             std::cout << "sensor table: " << fs::absolute(table).string() << '\n';
         if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';

@@ -117,10 +117,17 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
     if (r.has_attr("/", "bvh_build_s"))
         out << "setup          scene loaded in " << std::fixed << std::setprecision(2) << r.attr_f64("/", "load_s")
             << " s (before the run's time), BVH built in " << r.attr_f64("/", "bvh_build_s") << " s (within it)\n";
-    if (r.has_attr("/", "reductions"))
+    if (r.has_attr("/", "reductions")) {
         out << "reductions     " << r.attr_u64("/", "reductions") << ", tracing stalled " << std::fixed
             << std::setprecision(3) << r.attr_f64("/", "reduction_stall_s") << " s (" << std::setprecision(2)
-            << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0) << " % of the run)\n";
+            << (elapsed > 0 ? 100.0 * r.attr_f64("/", "reduction_stall_s") / elapsed : 0.0) << " % of the run)";
+        if (r.has_attr("/", "reduction_work_s")) {
+            const double work = r.attr_f64("/", "reduction_work_s");
+            out << ", main thread's work " << std::setprecision(3) << work << " s (" << std::setprecision(2)
+                << (elapsed > 0 ? 100.0 * work / elapsed : 0.0) << " %)";
+        }
+        out << '\n';
+    }
     if (r.has("/checkpoint/done_ranges")) {
         const std::vector<std::uint64_t> done = r.u64("/checkpoint/done_ranges");
         std::uint64_t n = 0, highest = 0;

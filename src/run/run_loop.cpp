@@ -480,7 +480,9 @@ RunSummary RunLoop::write(const Decision& decision) {
             for (std::size_t c = 0; c < layout_.map_columns(); ++c)
                 summary_.rays += totals_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
                                  totals_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
+        const double w0 = comm_.wtime();
         const std::string result_err = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
+        summary_.result_write_s = comm_.wtime() - w0;
         // A result that cannot be written: keep the tallies in a checkpoint instead.
         const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint ||
                                      !result_err.empty();

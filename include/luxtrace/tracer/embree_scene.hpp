@@ -17,6 +17,16 @@ namespace luxtrace {
 
 struct Scene;
 
+// Embree's build settings. docs/SCALING.md "Setup time of ten million triangles" measures
+// each against the build time and the photon rate it gives.
+struct BvhOptions {
+    RTCBuildQuality quality = RTC_BUILD_QUALITY_HIGH;
+    // Used by Embree only under RTC_BUILD_QUALITY_LOW, which builds two levels: a BVH over
+    // the geometry's triangles at this quality, under a top level over the geometries.
+    RTCBuildQuality geometry_quality = RTC_BUILD_QUALITY_MEDIUM;
+    bool compact = false;  // RTC_SCENE_FLAG_COMPACT: a smaller BVH (indexed leaves)
+};
+
 struct Hit {
     bool found = false;
     float t = std::numeric_limits<float>::infinity();
@@ -26,7 +36,8 @@ struct Hit {
 
 class EmbreeScene {
 public:
-    explicit EmbreeScene(const Scene& scene);
+    // `scene` must outlive the EmbreeScene: Embree reads its triangles in place.
+    explicit EmbreeScene(const Scene& scene, const BvhOptions& options = {});
     ~EmbreeScene();
     // Wall time the construction took (buffers and BVH build), for the result's report.
     double build_s() const { return build_s_; }

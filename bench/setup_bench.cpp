@@ -3,7 +3,7 @@
 // option against the speed of the BVH it gives.
 //
 // In one process: the scene is loaded --repeats times (timed); the tracer's own rays are
-// recorded once on a BVH of the default options; then, repeats outermost and the options
+// recorded once on the BVH the scene itself gets (BvhOptions::of); then, repeats outermost and the options
 // in turn (so that other load on the machine hits all alike), each option's EmbreeScene is
 // built (wall time; CPU time: cpu / wall is how many cores the build used, and the share of
 // it spent by threads other than the caller; the resident memory it added) and the recorded

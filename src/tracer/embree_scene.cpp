@@ -12,6 +12,17 @@
 
 namespace luxtrace {
 
+BvhOptions BvhOptions::of(const Scene& scene) {
+    const std::string& q = scene.run.bvh_quality;
+    BvhOptions o;
+    if (q == "low" || (q == "auto" && scene.triangle_count() >= kLowBvhTriangles))
+        o.quality = o.geometry_quality = RTC_BUILD_QUALITY_LOW;
+    else if (q == "medium") o.quality = RTC_BUILD_QUALITY_MEDIUM;
+    return o;
+}
+
+EmbreeScene::EmbreeScene(const Scene& scene) : EmbreeScene(scene, BvhOptions::of(scene)) {}
+
 EmbreeScene::EmbreeScene(const Scene& scene, const BvhOptions& options)
     : origin_(0.5 * (scene.bounds_min + scene.bounds_max)) {
     const auto start = std::chrono::steady_clock::now();

@@ -26,7 +26,6 @@
 #include <unistd.h>
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -61,13 +60,6 @@ double resident_bytes() {
     double size = 0.0, resident = 0.0;
     statm >> size >> resident;
     return resident * double(::sysconf(_SC_PAGESIZE));
-}
-
-// CPU time of the calling thread alone.
-double thread_cpu_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 struct Samples {

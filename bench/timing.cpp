@@ -4,11 +4,19 @@
 
 namespace luxtrace::bench {
 
-double process_cpu_seconds() {
+namespace {
+
+double cpu_seconds(clockid_t clock) {
     timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    clock_gettime(clock, &ts);
     return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
+
+}  // namespace
+
+double process_cpu_seconds() { return cpu_seconds(CLOCK_PROCESS_CPUTIME_ID); }
+
+double thread_cpu_seconds() { return cpu_seconds(CLOCK_THREAD_CPUTIME_ID); }
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());

@@ -17,6 +17,8 @@ inline double seconds_since(Clock::time_point t0) { return std::chrono::duration
 // CPU time of the whole process: CPU / (wall x threads) well below 1 means other
 // processes took the cores during a measurement.
 double process_cpu_seconds();
+// CPU time of the calling thread alone.
+double thread_cpu_seconds();
 
 double median(std::vector<double> v);
 

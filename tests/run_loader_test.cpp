@@ -1,7 +1,8 @@
 // Tests of the run part of load_scene (src/scene/run_loader.cpp: [run] and its
 // [[run.target]]): the run table and the targets land as they should, and bad photon
-// counts, samplers, target ranges and light-scene keys are InputErrors naming the file,
-// the line (or key) and what is wrong.
+// counts, samplers, target ranges, light-scene keys and BVH qualities are InputErrors
+// naming the file, the line (or key) and what is wrong; "auto" picks the BVH quality by size.
+#include "luxtrace/tracer/embree_scene.hpp"
 #include "scene_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,33 @@ TEST_F(Loader, BadPhotonCounts) {
 TEST_F(Loader, MaxBouncesPastTheIntRangeIsRefused) {
     expect_bad(kMat + kFloor + kLamp + "[run]\nmax_bounces = 4294967297\n", "max_bounces",
                {"key 'max_bounces'", "must lie in [1, 1000000]"});
+}
+
+// ---------------------------------------------------------------------------------
+// Embree's build quality (docs/SCALING.md "Setup time of ten million triangles").
+
+TEST_F(Loader, BvhQualityIsAutoUnlessGivenAndRefusesOtherNames) {
+    EXPECT_EQ(load(kMat + kFloor + kLamp).run.bvh_quality, "auto");
+    EXPECT_EQ(load(kMat + kFloor + kLamp + "[run]\nbvh_quality = \"low\"\n").run.bvh_quality, "low");
+    expect_bad(kMat + kFloor + kLamp + "[run]\nbvh_quality = \"best\"\n", "bvh_quality",
+               {"key 'bvh_quality'", "expected \"auto\", \"low\", \"medium\" or \"high\""});
+}
+
+// "auto" builds a large scene fast (LOW) and a small one well (HIGH); a name given wins.
+TEST(BvhOptions, AutoIsLowFromTheThresholdAndAGivenQualityWins) {
+    Scene scene;
+    scene.triangles.resize(BvhOptions::kLowBvhTriangles - 1);
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_HIGH);
+    scene.triangles.emplace_back(0u);
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_LOW);
+    EXPECT_EQ(BvhOptions::of(scene).geometry_quality, RTC_BUILD_QUALITY_LOW);
+    scene.run.bvh_quality = "high";
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_HIGH);
+    scene.run.bvh_quality = "medium";
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_MEDIUM);
+    scene.triangles.resize(3);
+    scene.run.bvh_quality = "low";
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_LOW);
 }
 
 // ---------------------------------------------------------------------------------

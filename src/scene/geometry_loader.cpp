@@ -12,6 +12,12 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <tuple>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 namespace luxtrace::detail {
 
@@ -166,11 +172,12 @@ struct GeometryReader : StepReader {
     }
 
     void add_triangles(const TriangleMesh& mesh, std::uint32_t default_material, TableReader& r) {
+        static const std::string kNoName;
         add_mesh_triangles(
             load, mesh,
             [&](std::size_t t) {
                 std::uint32_t mat = default_material;
-                const std::string& usemtl = mesh.material_names[t];
+                const std::string& usemtl = mesh.material_names.empty() ? kNoName : mesh.material_names[t];
                 if (!usemtl.empty()) {
                     const auto it = material_index.find(usemtl);
                     if (it != material_index.end()) mat = it->second;
@@ -209,16 +216,26 @@ struct GeometryReader : StepReader {
         add_triangles(mesh, mat, r);
     }
 
-    void parse_shape(const toml::table& t, std::size_t i) {
+    // A [[shape]] read and checked, its triangles not yet made.
+    struct PendingShape {
+        TableReader r;
+        std::uint32_t material;
+        std::optional<std::string> name;
+        std::function<TriangleMesh()> make;
+        std::uint64_t triangles;
+    };
+
+    PendingShape read_shape(const toml::table& t, std::size_t i) {
         TableReader r(t, fname, entry_name("shape", i, t), "shape");
         const std::string type = r.string("type").value_or("");
         const std::uint32_t mat = material_ref(r, "material", true);
         const Vec3 center = r.vec3("center").value_or(Vec3(0.0));
-        const auto name = r.string("name");
+        auto name = r.string("name");
         const std::int64_t subdiv64 = r.integer("subdivisions").value_or(type == "sphere" ? 16 : 1);
         if (subdiv64 < 1 || subdiv64 > 4096) r.fail("subdivisions", "must lie in [1, 4096]");
         const int subdiv = static_cast<int>(subdiv64);
-        if (const std::uint64_t n = shape_triangles(type, static_cast<std::uint64_t>(subdiv)); n > kMaxShapeTriangles)
+        const std::uint64_t n = shape_triangles(type, static_cast<std::uint64_t>(subdiv));
+        if (n > kMaxShapeTriangles)
             r.fail("subdivisions", std::to_string(subdiv) + " gives " + std::to_string(n) + " triangles; a " + type +
                                        " may have at most " + std::to_string(kMaxShapeTriangles) +
                                        " (split it into several shapes or use a mesh)");
@@ -228,47 +245,81 @@ struct GeometryReader : StepReader {
             if (!(*v > 0.0)) r.fail(key, "must be positive");
             return *v;
         };
-        TriangleMesh mesh;
+        std::function<TriangleMesh()> make;
         if (type == "rectangle" || type == "disk") {
-            const Vec3 n = unit_vector(r, "normal", r.vec3("normal").value_or(Vec3(0, 0, 1)));
+            const Vec3 nrm = unit_vector(r, "normal", r.vec3("normal").value_or(Vec3(0, 0, 1)));
             if (type == "rectangle") {
-                const Vec3 up = unit_vector(r, "up", r.vec3("up").value_or(default_up(n)));
-                if (glm::length(glm::cross(up, n)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
+                const Vec3 up = unit_vector(r, "up", r.vec3("up").value_or(default_up(nrm)));
+                if (glm::length(glm::cross(up, nrm)) < 1e-6) r.fail("up", "must not be parallel to 'normal'");
                 const auto size = r.numbers("size", 2);
                 if (!size) r.fail_entry("type 'rectangle' needs 'size' = [w, h]");
                 if (!((*size)[0] > 0.0 && (*size)[1] > 0.0)) r.fail("size", "must be positive");
-                mesh = make_rectangle(center, n, up, (*size)[0], (*size)[1], subdiv);
+                make = [=, w = (*size)[0], h = (*size)[1]] { return make_rectangle(center, nrm, up, w, h, subdiv); };
             } else {
-                mesh = make_disk(center, n, positive("radius"), subdiv);
+                make = [=, radius = positive("radius")] { return make_disk(center, nrm, radius, subdiv); };
             }
         } else if (type == "box") {
             const auto size = r.vec3("size");
             if (!size) r.fail_entry("type 'box' needs 'size' = [x, y, z]");
             if (!(size->x > 0.0 && size->y > 0.0 && size->z > 0.0)) r.fail("size", "must be positive");
-            mesh = make_box(center, *size, subdiv, r.boolean("inward").value_or(false));
+            make = [=, size = *size, inward = r.boolean("inward").value_or(false)] {
+                return make_box(center, size, subdiv, inward);
+            };
         } else if (type == "sphere") {
-            mesh = make_sphere(center, positive("radius"), subdiv, r.boolean("inward").value_or(false));
+            make = [=, radius = positive("radius"), inward = r.boolean("inward").value_or(false)] {
+                return make_sphere(center, radius, subdiv, inward);
+            };
         } else {
             r.fail("type", "unknown shape type '" + type + "' (expected rectangle, box, sphere or disk)");
         }
         r.finish();
-        const std::size_t first = scene.triangles.size();
-        add_triangles(mesh, mat, r);
-        if (name) {
-            if (load.named_shapes.count(*name)) r.fail("name", "shape '" + *name + "' is defined twice");
-            load.named_shapes[*name] = {first, scene.triangles.size()};
+        return PendingShape{std::move(r), mat, std::move(name), std::move(make), n};
+    }
+
+    // The shapes' triangles are made in parallel (each shape on its own) and placed in the
+    // scene in the file's order, so the scene is the same on any number of threads.
+    void add_shapes(const std::vector<const toml::table*>& tables) {
+        std::vector<PendingShape> shapes;
+        shapes.reserve(tables.size());
+        std::uint64_t total = 0;
+        for (std::size_t i = 0; i < tables.size(); ++i) {
+            shapes.push_back(read_shape(*tables[i], i));
+            total += shapes.back().triangles;
+        }
+        reserve_triangles(load, std::min<std::uint64_t>(total, kMaxSceneTriangles));
+        std::vector<TriangleMesh> meshes(shapes.size());
+        tbb::parallel_for(std::size_t{0}, shapes.size(), [&](std::size_t i) { meshes[i] = shapes[i].make(); });
+        for (std::size_t i = 0; i < shapes.size(); ++i) {
+            PendingShape& shape = shapes[i];
+            const std::size_t first = scene.triangles.size();
+            add_triangles(meshes[i], shape.material, shape.r);
+            meshes[i] = TriangleMesh();  // its memory back before the next is placed
+            if (shape.name) {
+                if (load.named_shapes.count(*shape.name))
+                    shape.r.fail("name", "shape '" + *shape.name + "' is defined twice");
+                load.named_shapes[*shape.name] = {first, scene.triangles.size()};
+            }
         }
     }
 
     void finish_geometry() {
         if (scene.triangles.empty()) throw InputError(fname + ": the scene has no surfaces");
-        scene.bounds_min = scene.bounds_max = Vec3(scene.vertices[scene.triangles[0].x]);
-        for (const glm::uvec3& t : scene.triangles)
-            for (int k = 0; k < 3; ++k) {
-                const Vec3 v(scene.vertices[t[k]]);
-                scene.bounds_min = glm::min(scene.bounds_min, v);
-                scene.bounds_max = glm::max(scene.bounds_max, v);
-            }
+        // The box of the triangles' vertices: min and max are exact, so any split gives it.
+        using Box = std::pair<Vec3, Vec3>;
+        const Vec3 v0 = scene.vertices[scene.triangles[0].x];
+        std::tie(scene.bounds_min, scene.bounds_max) = tbb::parallel_reduce(
+            tbb::blocked_range<std::size_t>(0, scene.triangles.size(), 1 << 14), Box{v0, v0},
+            [&](const tbb::blocked_range<std::size_t>& r, Box box) {
+                for (std::size_t i = r.begin(); i < r.end(); ++i)
+                    for (int k = 0; k < 3; ++k) {
+                        const Vec3& v = scene.vertices[scene.triangles[i][k]];
+                        box = {glm::min(box.first, v), glm::max(box.second, v)};
+                    }
+                return box;
+            },
+            [](const Box& a, const Box& b) {
+                return Box{glm::min(a.first, b.first), glm::max(a.second, b.second)};
+            });
     }
 };
 
@@ -286,23 +337,59 @@ std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh
             fail("a vertex at (" + fmt_number(v.x) + ", " + fmt_number(v.y) + ", " + fmt_number(v.z) +
                  ") lies outside the +-" + fmt_number(kMaxCoordinate) + " m that luxtrace can place");
     const auto base = static_cast<unsigned>(scene.vertices.size());
-    for (const Vec3& v : mesh.vertices) scene.vertices.emplace_back(v);
-    std::vector<std::int64_t> placed(mesh.triangles.size(), -1);
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const std::uint32_t mat = material_of(t);
-        if (mat == kLeaveOutTriangle) continue;
-        const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
-        const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
-        const Vec3 cr = glm::cross(b - a, c - a);
-        const double area = 0.5 * glm::length(cr);
-        if (!(area > 0.0)) continue;  // degenerate triangles carry no light and no map entry
-        placed[t] = static_cast<std::int64_t>(scene.triangles.size());
-        scene.triangles.push_back(tri);
-        scene.triangle_material.push_back(mat);
-        scene.triangle_area_m2.push_back(area);
-        scene.triangle_normal.push_back(cr / (2.0 * area));
+    scene.vertices.insert(scene.vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+    const std::size_t n = mesh.triangles.size();
+    std::vector<std::uint32_t> material(n);
+    for (std::size_t t = 0; t < n; ++t) material[t] = material_of(t);
+    // Every triangle's entries at first + t, in parallel; then the ones not placed (left
+    // out, or degenerate: no light and no map entry) are squeezed out in order.
+    const std::size_t first = scene.triangles.size();
+    scene.triangles.resize(first + n);
+    scene.triangle_material.resize(first + n);
+    scene.triangle_area_m2.resize(first + n);
+    scene.triangle_normal.resize(first + n);
+    std::vector<std::uint8_t> keep(n);
+    constexpr std::size_t kGrain = 1 << 14;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t t = r.begin(); t < r.end(); ++t) {
+            const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
+            const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
+            const Vec3 cr = glm::cross(b - a, c - a);
+            const double area = 0.5 * glm::length(cr);
+            keep[t] = material[t] != kLeaveOutTriangle && area > 0.0;
+            const std::size_t i = first + t;
+            scene.triangles[i] = tri;
+            scene.triangle_material[i] = material[t];
+            scene.triangle_area_m2[i] = area;
+            scene.triangle_normal[i] = keep[t] ? cr / (2.0 * area) : Vec3(0.0);
+        }
+    });
+    std::vector<std::int64_t> placed(n, -1);
+    std::size_t next = first;
+    for (std::size_t t = 0; t < n; ++t) {
+        if (!keep[t]) continue;
+        if (const std::size_t i = first + t; i != next) {
+            scene.triangles[next] = scene.triangles[i];
+            scene.triangle_material[next] = scene.triangle_material[i];
+            scene.triangle_area_m2[next] = scene.triangle_area_m2[i];
+            scene.triangle_normal[next] = scene.triangle_normal[i];
+        }
+        placed[t] = static_cast<std::int64_t>(next++);
     }
+    scene.triangles.resize(next);
+    scene.triangle_material.resize(next);
+    scene.triangle_area_m2.resize(next);
+    scene.triangle_normal.resize(next);
     return placed;
+}
+
+void reserve_triangles(SceneLoad& load, std::size_t more) {
+    Scene& scene = load.scene;
+    scene.vertices.reserve(scene.vertices.size() + more);
+    scene.triangles.reserve(scene.triangles.size() + more);
+    scene.triangle_material.reserve(scene.triangle_material.size() + more);
+    scene.triangle_area_m2.reserve(scene.triangle_area_m2.size() + more);
+    scene.triangle_normal.reserve(scene.triangle_normal.size() + more);
 }
 
 void read_geometry(SceneLoad& load, TableReader& root) {
@@ -311,8 +398,7 @@ void read_geometry(SceneLoad& load, TableReader& root) {
     for (std::size_t i = 0; i < materials.size(); ++i) g.parse_material(*materials[i], i);
     const auto meshes = tables_of(root, "mesh");
     for (std::size_t i = 0; i < meshes.size(); ++i) g.parse_mesh(*meshes[i], i);
-    const auto shapes = tables_of(root, "shape");
-    for (std::size_t i = 0; i < shapes.size(); ++i) g.parse_shape(*shapes[i], i);
+    g.add_shapes(tables_of(root, "shape"));
     read_radiance_models(load, root);
     g.finish_geometry();
 }

@@ -49,6 +49,11 @@ struct RunReader : StepReader {
             run.max_bounces = static_cast<int>(*mb);
         }
         run.group_maps = r.boolean("group_maps").value_or(run.group_maps);
+        run.bvh_quality = r.string("bvh_quality").value_or(run.bvh_quality);
+        if (run.bvh_quality != "auto" && run.bvh_quality != "low" && run.bvh_quality != "medium" &&
+            run.bvh_quality != "high")
+            r.fail("bvh_quality",
+                   "expected \"auto\", \"low\", \"medium\" or \"high\", got \"" + run.bvh_quality + "\"");
         if (load.scene.annual && run.group_maps)
             r.fail("group_maps", "an annual run keeps one surface map for its sky patches and suns");
         if (const toml::array* targets = r.array("target"))

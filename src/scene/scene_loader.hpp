@@ -75,9 +75,14 @@ inline constexpr std::uint32_t kLeaveOutTriangle = UINT32_MAX;
 // out degenerate ones and those of kLeaveOutTriangle. Returns each mesh triangle's index in
 // the scene (-1 if left out).
 // `fail` is called (and must throw) for a scene grown too large or a vertex out of range.
+// material_of is called once per triangle, in order, on the calling thread; the areas and
+// normals are computed in parallel.
 std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh& mesh,
                                              const std::function<std::uint32_t(std::size_t)>& material_of,
                                              const std::function<void(const std::string&)>& fail);
+// Room in the scene's per-triangle arrays for `more` triangles (and as many vertices) than
+// it has, so that adding many meshes copies none of them.
+void reserve_triangles(SceneLoad& load, std::size_t more);
 // The scene triangles as a surface to emit from, uniform in area (any order, any planes).
 EmitterSurface triangles_surface(const Scene& scene, const std::vector<std::size_t>& triangles);
 

@@ -50,7 +50,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"camera", {"name", "position", "target", "up", "fov_deg", "size"}},
         {"run",
          {"seed", "photons", "time_limit_s", "report_every_s", "report_every_photons", "output", "checkpoint",
-          "checkpoint_every_s", "sampler", "replicates", "max_bounces", "group_maps", "target"}},
+          "checkpoint_every_s", "sampler", "replicates", "max_bounces", "group_maps", "bvh_quality", "target"}},
         {"run.target", {"on", "relative_error", "absolute_error", "photons_received", "averaging", "scene"}},
     };
     // clang-format on

@@ -17,6 +17,8 @@ TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& 
     const Vec3 v = glm::cross(n, u);
     const int s = std::max(1, subdivisions);
     TriangleMesh m;
+    m.vertices.reserve(std::size_t(s + 1) * (s + 1));
+    m.triangles.reserve(2 * std::size_t(s) * s);
     for (int j = 0; j <= s; ++j)
         for (int i = 0; i <= s; ++i)
             m.vertices.push_back(center + (double(i) / s - 0.5) * size_u * u + (double(j) / s - 0.5) * size_v * v);
@@ -26,7 +28,6 @@ TriangleMesh make_rectangle(const Vec3& center, const Vec3& normal, const Vec3& 
             m.triangles.push_back({a, b, c});  // u x v = n: counter-clockwise from the front
             m.triangles.push_back({a, c, d});
         }
-    m.material_names.resize(m.triangles.size());
     return m;
 }
 
@@ -42,6 +43,8 @@ TriangleMesh make_box(const Vec3& center, const Vec3& size, int subdivisions, bo
             grid[a].push_back(k == 0 ? lo[a] : k == s ? hi[a] : lo[a] + (hi[a] - lo[a]) * (double(k) / s));
     const int sign = inward ? -1 : 1;
     TriangleMesh m;
+    m.vertices.reserve(6 * std::size_t(s + 1) * (s + 1));
+    m.triangles.reserve(12 * std::size_t(s) * s);
     for (int axis = 0; axis < 3; ++axis)
         for (int dir = -1; dir <= 1; dir += 2) {
             // The face's "up" is the next axis but one, its u axis (up x normal) the next
@@ -64,7 +67,6 @@ TriangleMesh make_box(const Vec3& center, const Vec3& size, int subdivisions, bo
                     m.triangles.push_back({a, c, d});
                 }
         }
-    m.material_names.resize(m.triangles.size());
     return m;
 }
 
@@ -73,6 +75,8 @@ TriangleMesh make_sphere(const Vec3& center, double radius, int subdivisions, bo
     const int stacks = std::max(3, subdivisions);
     const int slices = 2 * stacks;
     TriangleMesh m;
+    m.vertices.reserve(std::size_t(stacks + 1) * slices);
+    m.triangles.reserve(2 * std::size_t(stacks - 1) * slices);
     for (int j = 0; j <= stacks; ++j) {
         const double theta = kPi * j / stacks;
         for (int i = 0; i < slices; ++i) {
@@ -92,7 +96,6 @@ TriangleMesh make_sphere(const Vec3& center, double radius, int subdivisions, bo
             if (j > 0) add(idx(j, i), idx(j + 1, i), idx(j, i + 1));
             if (j < stacks - 1) add(idx(j, i + 1), idx(j + 1, i), idx(j + 1, i + 1));
         }
-    m.material_names.resize(m.triangles.size());
     return m;
 }
 
@@ -114,7 +117,6 @@ TriangleMesh make_disk(const Vec3& center, const Vec3& normal, double radius, in
             m.triangles.push_back({idx(r, i), idx(r + 1, i), idx(r + 1, i + 1)});
             m.triangles.push_back({idx(r, i), idx(r + 1, i + 1), idx(r, i + 1)});
         }
-    m.material_names.resize(m.triangles.size());
     return m;
 }
 

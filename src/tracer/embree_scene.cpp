@@ -3,35 +3,59 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <chrono>
 #include <stdexcept>
 #include <string>
 
 namespace luxtrace {
 
-EmbreeScene::EmbreeScene(const Scene& scene) : origin_(0.5 * (scene.bounds_min + scene.bounds_max)) {
+BvhOptions BvhOptions::of(const Scene& scene) {
+    const std::string& q = scene.run.bvh_quality;
+    BvhOptions o;
+    if (q == "low" || (q == "auto" && scene.triangle_count() >= kLowBvhTriangles))
+        o.quality = o.geometry_quality = RTC_BUILD_QUALITY_LOW;
+    else if (q == "medium") o.quality = RTC_BUILD_QUALITY_MEDIUM;
+    return o;
+}
+
+EmbreeScene::EmbreeScene(const Scene& scene) : EmbreeScene(scene, BvhOptions::of(scene)) {}
+
+EmbreeScene::EmbreeScene(const Scene& scene, const BvhOptions& options)
+    : origin_(0.5 * (scene.bounds_min + scene.bounds_max)) {
     const auto start = std::chrono::steady_clock::now();
     device_ = rtcNewDevice(nullptr);
     if (device_ == nullptr) throw std::runtime_error("Embree: cannot create a device");
     scene_ = rtcNewScene(device_);
-    // Static scene traced by incoherent photon rays: spend build time on BVH quality.
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(scene_, options.quality);
     // Robust mode: no arithmetic shortcuts in the triangle and box tests, so that a ray
     // never slips through the shared edge of two triangles (a closed room stays closed).
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(scene_, options.compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(geom, options.geometry_quality);
     // Embree reads vertex buffers with 16-byte loads: the buffer it allocates is padded.
     auto* v = static_cast<Vec3f*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           sizeof(Vec3f), scene.vertices.size()));
-    for (std::size_t i = 0; i < scene.vertices.size(); ++i) v[i] = to_local(scene.vertices[i]);
-    vertices_ = v;
-    auto* idx = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 sizeof(glm::uvec3), scene.triangles.size()));
+    // The scene's index buffer is Embree's too (no copy): the scene outlives this BVH.
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, scene.triangles.data(), 0,
+                               sizeof(glm::uvec3), scene.triangles.size());
     margin_.resize(scene.triangles.size());
-    for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
-        const glm::uvec3 t = idx[i] = scene.triangles[i];
-        margin_[i] = luxtrace::self_hit_margin(v[t.x], v[t.y], v[t.z]);
-    }
+    // Element by element, so the threads' split changes no value.
+    constexpr std::size_t kGrain = 1 << 14;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.vertices.size(), kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) v[i] = to_local(scene.vertices[i]);
+                      });
+    vertices_ = v;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.triangles.size(), kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                              const glm::uvec3 t = scene.triangles[i];
+                              margin_[i] = luxtrace::self_hit_margin(v[t.x], v[t.y], v[t.z]);
+                          }
+                      });
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene_, geom);
     rtcReleaseGeometry(geom);  // the scene keeps it, and with it the vertex buffer

@@ -47,6 +47,9 @@ struct RunConfig {
     // Keep the surface map per light group (80 bytes per triangle and band per group);
     // false keeps one map of all groups together, and light scenes then have detectors only.
     bool group_maps = true;
+    // Embree's BVH build: "auto" (low from kLowBvhTriangles triangles, else high), "low",
+    // "medium" or "high" (embree_scene.hpp; docs/SCALING.md measures each).
+    std::string bvh_quality = "auto";
     std::vector<Target> targets;
 };
 

@@ -11,7 +11,9 @@ namespace luxtrace {
 struct TriangleMesh {
     std::vector<Vec3> vertices;
     std::vector<glm::uvec3> triangles;
-    std::vector<std::string> material_names;  // per triangle; empty string = none given
+    // Per triangle, an empty string where none is given; empty (the built-in shapes): none
+    // given for any triangle.
+    std::vector<std::string> material_names;
 };
 
 // Default `up` for a plane with normal n: +z unless n is close to +-z, then +y.

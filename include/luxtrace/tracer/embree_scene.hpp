@@ -10,12 +10,30 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstddef>
 #include <limits>
 #include <vector>
 
 namespace luxtrace {
 
 struct Scene;
+
+// Embree's build settings. docs/SCALING.md "Setup time of ten million triangles" measures
+// each against the build time and the photon rate it gives.
+struct BvhOptions {
+    // Scenes of this many triangles or more are built at RTC_BUILD_QUALITY_LOW by "auto":
+    // there the build takes seconds, and saves more than the slower rays cost in a run of a
+    // minute or two (docs/SCALING.md).
+    static constexpr std::size_t kLowBvhTriangles = std::size_t{1} << 22;
+    // The options of the scene's [run] bvh_quality.
+    static BvhOptions of(const Scene& scene);
+
+    RTCBuildQuality quality = RTC_BUILD_QUALITY_HIGH;
+    // Used by Embree only under RTC_BUILD_QUALITY_LOW, which builds two levels: a BVH over
+    // the geometry's triangles at this quality, under a top level over the geometries.
+    RTCBuildQuality geometry_quality = RTC_BUILD_QUALITY_MEDIUM;
+    bool compact = false;  // RTC_SCENE_FLAG_COMPACT: a smaller BVH (indexed leaves)
+};
 
 struct Hit {
     bool found = false;
@@ -26,7 +44,10 @@ struct Hit {
 
 class EmbreeScene {
 public:
+    // `scene` must outlive the EmbreeScene: Embree reads its triangles in place. Built with
+    // BvhOptions::of(scene) unless given options.
     explicit EmbreeScene(const Scene& scene);
+    EmbreeScene(const Scene& scene, const BvhOptions& options);
     ~EmbreeScene();
     // Wall time the construction took (buffers and BVH build), for the result's report.
     double build_s() const { return build_s_; }

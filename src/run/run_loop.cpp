@@ -170,7 +170,14 @@ PendingReduce RunLoop::start_reduce() {
     const std::span<const std::uint64_t> delta = delta_;
     if (ranks_ == 1) {
         // The rank owns every word: its counts go straight into the totals.
-        add_and_clear(layout_, delta_, totals_.span(), lit_);
+        if (totals_empty_) {
+            // The totals are still zero: the counts become them as they are (the store
+            // gets the totals' untouched array back), marking the sides with counts.
+            const std::vector<std::uint64_t> marks = message_mask(layout_, delta);
+            for (std::size_t w = 0; w < lit_.size(); ++w) lit_[w] |= marks[w];
+            store_.exchange_taken(totals_);
+            totals_empty_ = false;
+        } else add_and_clear(layout_, delta_, totals_.span(), lit_);
         summed_header_ = header_;
         return PendingReduce::completed();
     }

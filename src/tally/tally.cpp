@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace luxtrace {
 
@@ -51,6 +52,11 @@ TallyLayout::TallyLayout(const Scene& scene) : TallyLayout(scene.triangle_count(
 void TallyStore::assign(std::span<const std::uint64_t> words) {
     if (words.size() != layout_.size()) throw std::logic_error("TallyStore::assign: the words do not fit the layout");
     std::copy(words.begin(), words.end(), data_[active_].begin());
+}
+
+void TallyStore::exchange_taken(WordArray& other) {
+    if (other.size() != layout_.size()) throw std::logic_error("TallyStore::exchange_taken: the array does not fit");
+    std::swap(data_[1 - active_], other);
 }
 
 std::span<std::uint64_t> TallyStore::take() {

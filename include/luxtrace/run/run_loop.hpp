@@ -118,6 +118,7 @@ private:
     // those words are ever written); with one rank it owns them all.
     std::span<std::uint64_t> delta_;
     WordArray totals_;
+    bool totals_empty_ = true;  // one rank: no reduction has added to totals_ yet
     const MessagePart own_;
     std::vector<std::uint64_t> lit_;  // one bit per side some photon has reached (mask_side_words)
     const GlobalRequests requests_;

@@ -198,6 +198,9 @@ public:
     // start); the threads add to the other array from now on, which the caller must have
     // zeroed (every word it was handed by the take before).
     std::span<std::uint64_t> take();
+    // Only while no thread adds: swaps the array the last take handed out with `other`
+    // (the layout's size, all zero), which the threads will add to after the next take.
+    void exchange_taken(WordArray& other);
 
 private:
     TallyLayout layout_;

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Reductions against ranks and triangles (issue 26, docs/SCALING.md): a closed box room of
 # about 10^4, 10^5 and 10^6 triangles (an inward box of n subdivisions per face: 12 n^2
-# triangles) and bench/scenes/ten_million.toml, each traced with a fixed budget and
-# reductions at fixed photon counts on 1, 2, 4 and 8 ranks (above 2 ranks the 2-core
-# machine is oversubscribed: --bind-to none), one tracing thread per rank (two on one
-# rank). Prints one row per run from its result file: reductions, the stall, the main
-# thread's work and wait per reduction, the last message's bytes, the photon rate between
-# the first and the last reduction, and the peak resident memory of rank 0's process tree.
+# triangles) and bench/scenes/ten_million.toml, each traced with a fixed budget on 1, 2,
+# 4 and 8 ranks (above 2 ranks the 2-core machine is oversubscribed: --bind-to none), one
+# tracing thread per rank (two on one rank), reductions every 0.5 s at first (the period
+# rule then lengthens them as their cost asks). Prints one row per run from its result
+# file: reductions, the stall, the main thread's work and its wait for the other ranks per
+# reduction, the longest message's bytes, the photon rate over the run's time without the
+# BVH build, and the peak resident memory (one rank only: under mpirun, mpirun's own).
+# (Reductions at photon counts would make the ranks wait for each other at every fence.)
 #
 #   bash bench/reduction_scaling.sh [BUILD_DIR] [SIZES] [RANKS]
 #   e.g. bash bench/reduction_scaling.sh build "1e4 1e5 1e6 1e7" "1 2 4 8"
@@ -65,21 +67,21 @@ for size in $sizes; do
         threads=$((ranks == 1 ? 2 : 1))
         out=$work/r.h5
         rm -f "$out"
-        cmd=("$lux" run "$scene" --photons "$photons" --report-every-photons 400k --threads "$threads" --quiet
+        cmd=("$lux" run "$scene" --photons "$photons" --report-every 0.5 --threads "$threads" --quiet
              --output "$out")
         if ((ranks > 1)); then
             cmd=(mpirun -n "$ranks" --oversubscribe --bind-to none --mca btl self,vader "${cmd[@]}")
         fi
         /usr/bin/time -f '%M' -o "$work/rss" "${cmd[@]}" >/dev/null
         rss_kb=$(tail -1 "$work/rss")
+        ((ranks > 1)) && rss_kb=0
         /usr/bin/python3 - "$out" "$ranks" "$threads" "$rss_kb" <<'PY'
 import sys, h5py
 f = h5py.File(sys.argv[1], "r")
 a = f.attrs
 n = int(a["reductions"])
 T = f["mesh"]["triangles"].shape[0] if "triangles" in f["mesh"] else 0
-p, t = f["history"]["photons"][:], f["history"]["time_s"][:]
-rate = (p[-1] - p[0]) / (t[-1] - t[0]) if len(p) > 1 and t[-1] > t[0] else float("nan")
+rate = int(a["photons"]) / (float(a["elapsed_s"]) - float(a["bvh_build_s"]))
 per = lambda k: 1e3 * float(a[k]) / n
 print(f'{T:<9d} {sys.argv[2]:>5} {sys.argv[3]:>7} {n:>6d} {per("reduction_stall_s"):>10.2f} '
       f'{per("reduction_work_s"):>10.2f} {per("reduction_wait_s"):>10.2f} {int(a["reduction_message_bytes"]):>12d} '

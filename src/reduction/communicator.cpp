@@ -185,15 +185,22 @@ template PendingReduce Communicator::ireduce_scatter_sum(const std::vector<std::
                                                          const std::vector<std::size_t>&,
                                                          std::vector<std::uint64_t>&) const;
 
-void Communicator::allreduce_sum(std::vector<std::uint64_t>& values) const {
-    if (size_ == 1 || values.empty()) return;
+namespace {
+// `op` over the ranks, element-wise and in place, in pieces of at most `max_per_call`.
+void allreduce_in_place(std::vector<std::uint64_t>& values, MPI_Op op, std::size_t max_per_call) {
     std::vector<MPI_Request> requests;
-    for (const auto& [off, n] : pieces(values.size(), max_per_call_)) {
+    for (const auto& [off, n] : Communicator::pieces(values.size(), max_per_call)) {
         MPI_Request r;
-        MPI_Iallreduce(MPI_IN_PLACE, values.data() + off, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD, &r);
+        MPI_Iallreduce(MPI_IN_PLACE, values.data() + off, n, MPI_UINT64_T, op, MPI_COMM_WORLD, &r);
         requests.push_back(r);
     }
     wait_politely(requests);
+}
+}  // namespace
+
+void Communicator::allreduce_sum(std::vector<std::uint64_t>& values) const {
+    if (size_ == 1 || values.empty()) return;
+    allreduce_in_place(values, MPI_SUM, max_per_call_);
 }
 
 template <class Word>
@@ -252,13 +259,7 @@ std::uint64_t Communicator::allreduce_max(std::uint64_t v) const {
 
 void Communicator::allreduce_or(std::vector<std::uint64_t>& bits) const {
     if (size_ == 1 || bits.empty()) return;
-    std::vector<MPI_Request> requests;
-    for (const auto& [off, n] : pieces(bits.size(), max_per_call_)) {
-        MPI_Request r;
-        MPI_Iallreduce(MPI_IN_PLACE, bits.data() + off, n, MPI_UINT64_T, MPI_BOR, MPI_COMM_WORLD, &r);
-        requests.push_back(r);
-    }
-    wait_politely(requests);
+    allreduce_in_place(bits, MPI_BOR, max_per_call_);
 }
 
 double Communicator::allreduce_max(double v) const {

@@ -37,14 +37,11 @@ Timed run_tracer(const Scene& base, const EmbreeScene& embree, const Communicato
     opt.quiet = true;
     opt.embree = &embree;
     std::ostringstream sink;
-    const double c0 = process_cpu_seconds();
-    const auto t0 = Clock::now();
     const RunSummary s = run_simulation(scene, comm, opt, sink);
-    const double wall = seconds_since(t0), cpu = process_cpu_seconds() - c0;
     if (s.failed || s.photons != photons) throw std::runtime_error("the tracer run failed: " + s.error);
     if (checksum != nullptr) *checksum = tally_checksum(out);
-    // CPU share over the whole call (it includes writing the result, single-threaded).
-    return {s.tracing_s, cpu * s.tracing_s / wall, s.rays, 0};
+    // The tracing threads' own CPU share (the result's write, single-threaded, is not theirs).
+    return {s.tracing_s, s.tracing_busy * s.tracing_s * threads, s.rays, 0};
 }
 
 }  // namespace luxtrace::bench

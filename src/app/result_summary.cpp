@@ -126,6 +126,8 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
             out << ", main thread's work " << std::setprecision(3) << work << " s (" << std::setprecision(2)
                 << (elapsed > 0 ? 100.0 * work / elapsed : 0.0) << " %)";
         }
+        if (r.has_attr("/", "tracing_busy"))
+            out << ", tracing threads busy " << std::setprecision(1) << 100.0 * r.attr_f64("/", "tracing_busy") << " %";
         out << '\n';
     }
     if (r.has("/checkpoint/done_ranges")) {

@@ -50,6 +50,7 @@ ResultFile::ResultFile(const std::filesystem::path& path) : reader_(path) {
     optional_attr(r, "reduction_message_bytes", i.reduction_message_bytes, u64);
     optional_attr(r, "reduction_work_s", i.reduction_work_s, f64);
     optional_attr(r, "gather_s", i.gather_s, f64);
+    optional_attr(r, "tracing_busy", i.tracing_busy, f64);
     if (r.has_attr("/history", "target_labels")) {
         i.target_labels = r.attr_strs("/history", "target_labels");
         i.target_goals = r.f64_attr_array("/history", "target_goals");

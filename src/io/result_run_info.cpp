@@ -57,6 +57,7 @@ void write_run_info(hid_t file, const Scene& scene, const TallyLayout& layout, s
     attr(file, "reduction_message_bytes", info.reduction_message_bytes);
     attr(file, "reduction_work_s", info.reduction_work_s);
     attr(file, "gather_s", info.gather_s);
+    attr(file, "tracing_busy", info.tracing_busy);
     attr(file, "tally_words", static_cast<std::uint64_t>(layout.size()));
 }
 

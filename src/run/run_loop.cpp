@@ -456,6 +456,7 @@ RunSummary RunLoop::write(const Decision& decision) {
     // The final exact reduction: the threads finish their chunks and flush.
     pool_->stop();
     summary_.tracing_s = comm_.allreduce_max(comm_.wtime() - trace0_);
+    summary_.tracing_busy = info_.tracing_busy = 1.0 - comm_.allreduce_max(1.0 - pool_->busy_fraction());
     if (decision.exit_code == kExitInternal || decision.exit_code == kExitBadInput) {
         summary_.exit_code = decision.exit_code;
         summary_.failed = true;

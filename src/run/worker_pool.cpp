@@ -3,6 +3,8 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/sampler/sampler.hpp"
 
+#include <time.h>
+
 #include <chrono>
 
 namespace luxtrace {
@@ -15,7 +17,31 @@ WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore
 
 WorkerPool::~WorkerPool() { stop(); }
 
+namespace {
+double thread_cpu_s() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+}  // namespace
+
+double WorkerPool::busy_fraction() const {
+    std::lock_guard lock(mutex_);
+    return alive_s_ > 0.0 ? cpu_s_ / alive_s_ : 0.0;
+}
+
 void WorkerPool::worker() {
+    const auto wall0 = std::chrono::steady_clock::now();
+    const double cpu0 = thread_cpu_s();
+    run_worker();
+    const double cpu = thread_cpu_s() - cpu0;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    std::lock_guard lock(mutex_);
+    cpu_s_ += cpu;
+    alive_s_ += wall;
+}
+
+void WorkerPool::run_worker() {
     try {
         trace_until_stopped();
     } catch (...) {

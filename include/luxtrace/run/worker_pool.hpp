@@ -50,10 +50,15 @@ public:
     // still return) and keeps the first exception for the main thread; the tallies are
     // then incomplete and must not be written.
     bool failed() const { return failed_.load(); }
+    // After stop(): the share of the threads' lifetime they ran on a core (their CPU time
+    // over their wall time, summed over the threads): parks, waits for work and for the
+    // core count the lost share.
+    double busy_fraction() const;
     std::exception_ptr error() const;
 
 private:
-    void worker();
+    void worker();      // times run_worker on its thread
+    void run_worker();  // traces until stopped; a failure parks it as idle
     void trace_until_stopped();
     const Scene& scene_;
     const EmbreeScene& embree_;
@@ -69,7 +74,8 @@ private:
     std::atomic<int> idle_{0};
     std::atomic<std::uint64_t> traced_{0};
     std::atomic<bool> failed_{false};
-    std::exception_ptr error_;  // guarded by mutex_
+    std::exception_ptr error_;            // guarded by mutex_
+    double cpu_s_ = 0.0, alive_s_ = 0.0;  // summed over finished threads, guarded by mutex_
     std::vector<std::thread> threads_;
 };
 

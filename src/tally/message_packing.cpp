@@ -230,15 +230,6 @@ void unpack_part(const TallyLayout& L, std::span<const std::uint64_t> mask, cons
     });
 }
 
-void add_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
-              std::span<const std::uint64_t> from, std::span<std::uint64_t> to) {
-    if (from.size() != to.size()) throw std::logic_error("add_part: the messages differ in length");
-    for_each_range(L, mask, from.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
-        if (!kept) return;
-        for (std::size_t k = begin; k < begin + count; ++k) to[k] += from[k];
-    });
-}
-
 void add_and_clear(const TallyLayout& L, std::span<std::uint64_t> from, std::span<std::uint64_t> to,
                    std::span<std::uint64_t> lit) {
     if (from.size() != to.size() || from.size() < L.surface_end() || lit.size() < mask_side_words(L))
@@ -265,13 +256,6 @@ void add_and_clear(const TallyLayout& L, std::span<std::uint64_t> from, std::spa
         for (std::size_t k = b; k < e; ++k) any |= from[k];
         if (any != 0) move(b, e - b);
     }
-}
-
-void clear_part(const TallyLayout& L, std::span<const std::uint64_t> mask, const MessagePart& part,
-                std::span<std::uint64_t> message) {
-    for_each_range(L, mask, message.size(), part, [&](std::size_t begin, std::size_t count, bool kept) {
-        if (kept) std::fill_n(message.begin() + static_cast<std::ptrdiff_t>(begin), count, 0);
-    });
 }
 
 std::size_t packed_size(const TallyLayout& L, std::span<const std::uint64_t> mask, std::size_t message_words) {

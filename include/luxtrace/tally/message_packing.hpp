@@ -85,9 +85,6 @@ Word* take_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, 
 template <class Word>
 void add_packed_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
                      std::span<const Word> packed, std::span<std::uint64_t> message);
-// Adds the marked words of `part` of `from` to the same words of `to` (one rank's own sums).
-void add_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
-              std::span<const std::uint64_t> from, std::span<std::uint64_t> to);
 // One rank's reduction (it owns every word): adds every word of `from` to `to` and zeroes
 // it, in one pass that touches only the sides with counts and the blocks after the surface
 // map that hold anything; the sides with counts are marked in `lit` (mask_side_words).
@@ -96,9 +93,6 @@ void add_and_clear(const TallyLayout& layout, std::span<std::uint64_t> from, std
 // Sets the words of `part` from its packed words, the left-out ones to zero.
 void unpack_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
                  std::span<const std::uint64_t> packed, std::span<std::uint64_t> message);
-// Zeroes the marked words of `part` (the left-out ones are zero already).
-void clear_part(const TallyLayout& layout, std::span<const std::uint64_t> mask, const MessagePart& part,
-                std::span<std::uint64_t> message);
 
 // The whole message: `packed` is resized to packed_size (without reallocating a buffer of
 // that size already); `message` must have the full length and is overwritten.

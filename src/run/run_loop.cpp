@@ -63,6 +63,13 @@ std::uint64_t fence_step_of(const RunConfig& run, int ranks) {
                : 0;
 }
 
+// The sides each rank owns, by rank (message_packing.hpp).
+std::vector<MessagePart> every_rank_sides(const TallyLayout& layout, int ranks) {
+    std::vector<MessagePart> parts;
+    for (int r = 0; r < ranks; ++r) parts.push_back(owned_sides(layout, r, ranks));
+    return parts;
+}
+
 }  // namespace
 
 RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
@@ -75,8 +82,8 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
       show_(comm.is_root() && !opt.quiet),
       tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
-      fence_step_(fence_step_of(run_, ranks_)), totals_(layout_.size()),
-      own_(owned_sides(layout_, comm.rank(), ranks_)), lit_(mask_side_words(layout_), 0),
+      fence_step_(fence_step_of(run_, ranks_)), totals_(layout_.size()), parts_(every_rank_sides(layout_, ranks_)),
+      own_(parts_[static_cast<std::size_t>(comm.rank())]), lit_(mask_side_words(layout_), 0),
       requests_(global_requests(scene)), own_replicate_photons_(layout_.replicates(), 0),
       period_s_(RunController::initial_period_s(run_)) {
     // A checkpoint's tallies enter the first reduction as rank 0's counts.
@@ -195,35 +202,35 @@ PendingReduce RunLoop::start_reduce() {
     header_.encode(words);
     timed_wait([&] { comm_.allreduce_sum(words); });
     summed_header_ = ReductionMessage::decode(words, ranks_, layout_.replicates());
-    wide_ = summed_header_.flags.wide > 0;
+    const bool wide = summed_header_.flags.wide > 0;
     // Every owner's part of the map, in rank order, then the head and the tail for rank 0.
-    part_counts_.assign(static_cast<std::size_t>(ranks_), 0);
+    part_counts_.clear();
     std::size_t map_words = 0;
-    for (int r = 0; r < ranks_; ++r)
-        map_words += part_counts_[static_cast<std::size_t>(r)] = packed_size(layout_, mask_, layout_.size(),
-                                                                             owned_sides(layout_, r, ranks_));
+    for (const MessagePart& p : parts_)
+        map_words += part_counts_.emplace_back(packed_size(layout_, mask_, layout_.size(), p));
     const MessagePart head_tail = MessagePart::head_and_tail_only();
     tail_send_.resize(packed_size(layout_, mask_, layout_.size(), head_tail));
     take_part(layout_, mask_, delta_, head_tail, tail_send_.data());
     auto pack_map = [&](auto& send) {
         send.resize(map_words);
         auto* out = send.data();
-        for (int r = 0; r < ranks_; ++r) out = take_part(layout_, mask_, delta_, owned_sides(layout_, r, ranks_), out);
+        for (const MessagePart& p : parts_) out = take_part(layout_, mask_, delta_, p, out);
     };
-    if (wide_) pack_map(map_send64_);
+    if (wide) pack_map(map_send64_);
     else pack_map(map_send32_);
     info_.reduction_message_words = std::max(info_.reduction_message_words, map_words + tail_send_.size());
     info_.reduction_message_bytes = std::max(info_.reduction_message_bytes,
-                                             map_words * (wide_ ? 8 : 4) + tail_send_.size() * 8);
+                                             map_words * (wide ? 8 : 4) + tail_send_.size() * 8);
     PendingReduce tail = comm_.ireduce_sum_to_root(tail_send_, tail_recv_);
-    PendingReduce map = wide_ ? comm_.ireduce_scatter_sum(map_send64_, part_counts_, map_recv64_)
-                              : comm_.ireduce_scatter_sum(map_send32_, part_counts_, map_recv32_);
+    PendingReduce map = wide ? comm_.ireduce_scatter_sum(map_send64_, part_counts_, map_recv64_)
+                             : comm_.ireduce_scatter_sum(map_send32_, part_counts_, map_recv32_);
     return PendingReduce::both(std::move(map), std::move(tail));
 }
 
 void RunLoop::finish_reduce() {
     if (ranks_ > 1) {
-        if (wide_) add_packed_part<std::uint64_t>(layout_, mask_, own_, map_recv64_, totals_.span());
+        if (summed_header_.flags.wide > 0)
+            add_packed_part<std::uint64_t>(layout_, mask_, own_, map_recv64_, totals_.span());
         else add_packed_part<std::uint32_t>(layout_, mask_, own_, map_recv32_, totals_.span());
         if (comm_.is_root())
             add_packed_part<std::uint64_t>(layout_, mask_, MessagePart::head_and_tail_only(), tail_recv_,
@@ -252,18 +259,16 @@ void RunLoop::estimate_owned_sides() {
                 sums.to_words(words.data() + (c++ * Q + q) * K);
     }
     std::vector<double> all;
-    std::vector<MessagePart> parts;
-    for (int r = 0; r < ranks_; ++r) parts.push_back(owned_sides(layout_, r, ranks_));
     if (ranks_ > 1) {
         std::vector<std::size_t> counts;
-        for (const MessagePart& p : parts) counts.push_back(p.chunks() * Q * K);
+        for (const MessagePart& p : parts_) counts.push_back(p.chunks() * Q * K);
         timed_wait([&] { comm_.gather_to_root(std::span<const double>(words), counts, all); });
     } else all = std::move(words);
     if (!comm_.is_root()) return;
     // `all` holds each rank's chunks in rank order: put them in chunk order.
     std::vector<std::size_t> at(C);
     std::size_t k = 0;
-    for (const MessagePart& p : parts)
+    for (const MessagePart& p : parts_)
         for (const ChunkRange& range : {p.fronts, p.backs})
             for (std::size_t c = range.begin; c < range.end; ++c) at[c] = k++;
     globals_.clear();
@@ -279,10 +284,8 @@ void RunLoop::gather_map() {
     // Each rank's lit sides, OR-ed: every rank then knows every part's length.
     std::vector<std::uint64_t> mask = message_mask(layout_, totals_.span(), own_);
     comm_.allreduce_or(mask);
-    std::vector<std::size_t> counts(static_cast<std::size_t>(ranks_));
-    for (int r = 0; r < ranks_; ++r)
-        counts[static_cast<std::size_t>(r)] = packed_size(layout_, mask, layout_.size(),
-                                                          owned_sides(layout_, r, ranks_));
+    std::vector<std::size_t> counts;
+    for (const MessagePart& p : parts_) counts.push_back(packed_size(layout_, mask, layout_.size(), p));
     std::vector<std::uint64_t> mine(counts[static_cast<std::size_t>(comm_.rank())]), all;
     pack_part(layout_, mask, totals_.span(), own_, mine.data());
     comm_.gather_to_root(std::span<const std::uint64_t>(mine), counts, all);
@@ -290,8 +293,8 @@ void RunLoop::gather_map() {
     std::size_t at = counts[0];
     for (int r = 1; r < ranks_; ++r) {
         const std::size_t n = counts[static_cast<std::size_t>(r)];
-        unpack_part(layout_, mask, owned_sides(layout_, r, ranks_), std::span<const std::uint64_t>(all).subspan(at, n),
-                    totals_.span());
+        unpack_part(layout_, mask, parts_[static_cast<std::size_t>(r)],
+                    std::span<const std::uint64_t>(all).subspan(at, n), totals_.span());
         at += n;
     }
 }

@@ -118,15 +118,15 @@ private:
     // those words are ever written); with one rank it owns them all.
     std::span<std::uint64_t> delta_;
     WordArray totals_;
-    bool totals_empty_ = true;  // one rank: no reduction has added to totals_ yet
-    const MessagePart own_;
-    std::vector<std::uint64_t> lit_;  // one bit per side some photon has reached (mask_side_words)
+    bool totals_empty_ = true;              // one rank: no reduction has added to totals_ yet
+    const std::vector<MessagePart> parts_;  // the sides each rank owns, by rank
+    const MessagePart own_;                 // this rank's
+    std::vector<std::uint64_t> lit_;        // one bit per side some photon has reached (mask_side_words)
     const GlobalRequests requests_;
     std::vector<std::uint64_t> own_replicate_photons_;  // since the run began (sobol)
     ReductionMessage header_, summed_header_;
     std::vector<std::uint64_t> mask_;
     std::vector<std::size_t> part_counts_;
-    bool wide_ = false;
     std::vector<std::uint32_t> map_send32_, map_recv32_;
     std::vector<std::uint64_t> map_send64_, map_recv64_, tail_send_, tail_recv_;
     std::uint64_t photons_ = 0;

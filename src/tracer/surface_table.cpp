@@ -3,24 +3,33 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace luxtrace {
 
-SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree) : bands_(scene.band_count()) {
-    triangles_.resize(scene.triangle_count());
-    for (std::size_t t = 0; t < triangles_.size(); ++t) {
-        const glm::uvec3 v = scene.triangles[t];
-        TriangleRecord& r = triangles_[t];
-        r.p0 = embree.local_vertex(v.x);
-        r.p1 = embree.local_vertex(v.y);
-        r.p2 = embree.local_vertex(v.z);
-        r.normal = Vec3f(scene.triangle_normal[t]);
-        r.material = scene.triangle_material[t];
-        r.margin = embree.self_hit_margin(static_cast<unsigned>(t));
-        const float longest = std::max({glm::length(r.p1 - r.p0), glm::length(r.p2 - r.p1), glm::length(r.p0 - r.p2)});
-        r.min_height = longest > 0.0f ? glm::length(glm::cross(r.p1 - r.p0, r.p2 - r.p0)) / longest : 0.0f;
-    }
+void SurfaceTable::fill(const Scene& scene, const EmbreeScene& embree, std::size_t t) {
+    const glm::uvec3 v = scene.triangles[t];
+    TriangleRecord& r = triangles_[t];
+    r.p0 = embree.local_vertex(v.x);
+    r.p1 = embree.local_vertex(v.y);
+    r.p2 = embree.local_vertex(v.z);
+    r.normal = Vec3f(scene.triangle_normal[t]);
+    r.material = scene.triangle_material[t];
+    r.margin = embree.self_hit_margin(static_cast<unsigned>(t));
+    const float longest = std::max({glm::length(r.p1 - r.p0), glm::length(r.p2 - r.p1), glm::length(r.p0 - r.p2)});
+    r.min_height = longest > 0.0f ? glm::length(glm::cross(r.p1 - r.p0, r.p2 - r.p0)) / longest : 0.0f;
+}
+
+SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree)
+    : triangles_(new TriangleRecord[scene.triangle_count()]), bands_(scene.band_count()) {
+    constexpr std::size_t kGrain = 16384;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.triangle_count(), kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t t = range.begin(); t != range.end(); ++t) fill(scene, embree, t);
+                      });
     for (const Material& m : scene.materials)
         for (int b = 0; b < bands_; ++b) models_.push_back(scatter_model(m, b));
 }

@@ -78,7 +78,7 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
       restored_(opt.restart.empty() ? RestartState{}
                                     : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups)),
       plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),
-      embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)),
+      embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)), surfaces_(scene, embree_),
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
       show_(comm.is_root() && !opt.quiet),
       tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
@@ -134,7 +134,7 @@ void RunLoop::trace() {
     topt.threads = threads_;
     topt.chunk = 256;  // pause latency: a thread finishes its chunk before parking
     trace0_ = comm_.wtime();
-    pool_.emplace(scene_, embree_, store_, work_, topt);
+    pool_.emplace(scene_, embree_, surfaces_, store_, work_, topt);
 }
 
 void RunLoop::wait_for_reduction() {
@@ -458,7 +458,7 @@ RunSummary RunLoop::write(const Decision& decision) {
     if (tty_) out_ << '\n';
     // The final exact reduction: the threads finish their chunks and flush.
     pool_->stop();
-    summary_.tracing_s = comm_.allreduce_max(comm_.wtime() - trace0_);
+    summary_.tracing_s = comm_.allreduce_max(pool_->tracing_s());
     summary_.tracing_busy = info_.tracing_busy = 1.0 - comm_.allreduce_max(1.0 - pool_->busy_fraction());
     if (decision.exit_code == kExitInternal || decision.exit_code == kExitBadInput) {
         summary_.exit_code = decision.exit_code;

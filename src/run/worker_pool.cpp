@@ -11,7 +11,19 @@ namespace luxtrace {
 
 WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
                        const TraceOptions& opt)
-    : scene_(scene), embree_(embree), surfaces_(scene, embree), store_(store), work_(work), opt_(opt) {
+    : scene_(scene), embree_(embree), own_surfaces_(std::in_place, scene, embree), surfaces_(*own_surfaces_),
+      store_(store), work_(work), opt_(opt) {
+    start();
+}
+
+WorkerPool::WorkerPool(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces, TallyStore& store,
+                       RankWork& work, const TraceOptions& opt)
+    : scene_(scene), embree_(embree), surfaces_(surfaces), store_(store), work_(work), opt_(opt) {
+    start();
+}
+
+void WorkerPool::start() {
+    start_ = std::chrono::steady_clock::now();
     for (int i = 0; i < std::max(1, opt_.threads); ++i) threads_.emplace_back([this] { worker(); });
 }
 
@@ -30,20 +42,31 @@ double WorkerPool::busy_fraction() const {
     return alive_s_ > 0.0 ? cpu_s_ / alive_s_ : 0.0;
 }
 
+double WorkerPool::tracing_s() const {
+    std::lock_guard lock(mutex_);
+    return last_done_s_;
+}
+
 void WorkerPool::worker() {
-    const auto wall0 = std::chrono::steady_clock::now();
-    const double cpu0 = thread_cpu_s();
-    run_worker();
-    const double cpu = thread_cpu_s() - cpu0;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    ThreadTime time{thread_cpu_s()};
+    run_worker(time);
+    thread_done(time);
+}
+
+void WorkerPool::thread_done(ThreadTime& time) {
+    if (time.counted) return;  // when it ran out of work
+    time.counted = true;
+    const double cpu = thread_cpu_s() - time.cpu0_s;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     std::lock_guard lock(mutex_);
     cpu_s_ += cpu;
     alive_s_ += wall;
+    last_done_s_ = std::max(last_done_s_, wall);
 }
 
-void WorkerPool::run_worker() {
+void WorkerPool::run_worker(ThreadTime& time) {
     try {
-        trace_until_stopped();
+        trace_until_stopped(time);
     } catch (...) {
         {
             std::lock_guard lock(mutex_);
@@ -60,7 +83,7 @@ void WorkerPool::run_worker() {
     }
 }
 
-void WorkerPool::trace_until_stopped() {
+void WorkerPool::trace_until_stopped(ThreadTime& time) {
     PhotonTracer tracer(scene_, embree_, surfaces_, store_.layout(),
                         PhotonSampler(sampler_kind(opt_.sampler), opt_.seed, opt_.replicates));
     TallyBuffer buffer(store_);
@@ -91,6 +114,10 @@ void WorkerPool::trace_until_stopped() {
             continue;
         }
         if (next == RankWork::Next::exhausted) {
+            // The thread's part of the tracing ends here: the parks and reductions after
+            // it are the run's end, not time the tracer lost.
+            buffer.flush();
+            thread_done(time);
             out_of_work = true;
             idle_.fetch_add(1);
             continue;

@@ -29,6 +29,7 @@
 #include "luxtrace/tally/message_packing.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/surface_table.hpp"
 
 #include <cstdint>
 #include <iosfwd>
@@ -98,6 +99,7 @@ private:
     RankWork work_;
     std::optional<EmbreeScene> own_embree_;
     const EmbreeScene& embree_;
+    const SurfaceTable surfaces_;           // the tracing threads' view of the scene, built with the BVH
     std::optional<RunController> control_;  // rank 0
     const std::string checkpoint_path_;
     const bool show_;  // rank 0 prints progress lines

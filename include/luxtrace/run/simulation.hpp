@@ -46,8 +46,8 @@ struct RunSummary {
     std::vector<std::string> sensor_tables;  // the points detectors' tables beside the result (io/sensor_table.hpp)
     std::uint64_t photons = 0;
     double elapsed_s = 0.0;
-    double tracing_s = 0.0;  // this run's tracing threads, from start to stop (max over ranks)
-    // The tracing threads' CPU time over their lifetime, the least busy rank's.
+    double tracing_s = 0.0;  // this run's tracing threads, from start until out of work or stopped (max over ranks)
+    // The tracing threads' CPU time over their tracing time (WorkerPool::busy_fraction), the least busy rank's.
     double tracing_busy = 0.0;
     double result_write_s = 0.0;  // rank 0: the result's estimates and file (with its sensor tables)
     std::uint64_t rays = 0;       // intersections in all: surface arrivals + escaped photons (root)

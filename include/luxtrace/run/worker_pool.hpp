@@ -8,9 +8,11 @@
 #include "luxtrace/tracer/tracer.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,8 +29,12 @@ struct TraceOptions {
 
 class WorkerPool {
 public:
+    // `surfaces` is the scene's on `embree`, built by the caller as part of its setup (a
+    // large scene's takes a noticeable time); the first form builds its own.
     WorkerPool(const Scene& scene, const EmbreeScene& embree, TallyStore& store, RankWork& work,
                const TraceOptions& opt);
+    WorkerPool(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces, TallyStore& store,
+               RankWork& work, const TraceOptions& opt);
     ~WorkerPool();  // stops and joins
     WorkerPool(const WorkerPool&) = delete;
     WorkerPool& operator=(const WorkerPool&) = delete;
@@ -50,19 +56,29 @@ public:
     // still return) and keeps the first exception for the main thread; the tallies are
     // then incomplete and must not be written.
     bool failed() const { return failed_.load(); }
-    // After stop(): the share of the threads' lifetime they ran on a core (their CPU time
-    // over their wall time, summed over the threads): parks, waits for work and for the
-    // core count the lost share.
+    // After stop(): the share of the threads' tracing time they ran on a core (their CPU
+    // time over their wall time from the pool's start until each ran out of work or was
+    // stopped, summed over the threads): parks for reductions and waits for the core
+    // count the lost share.
     double busy_fraction() const;
+    // After stop(): from the pool's start until its last thread ran out of work or stopped.
+    double tracing_s() const;
     std::exception_ptr error() const;
 
 private:
-    void worker();      // times run_worker on its thread
-    void run_worker();  // traces until stopped; a failure parks it as idle
-    void trace_until_stopped();
+    void start();  // the threads
+    struct ThreadTime {
+        double cpu0_s = 0.0;  // the thread's CPU time at its start
+        bool counted = false;
+    };
+    void worker();                       // times run_worker on its thread
+    void thread_done(ThreadTime& time);  // adds the thread's CPU and wall time to the sums, once
+    void run_worker(ThreadTime& time);   // traces until stopped; a failure parks it as idle
+    void trace_until_stopped(ThreadTime& time);
     const Scene& scene_;
     const EmbreeScene& embree_;
-    const SurfaceTable surfaces_;  // shared by the threads
+    std::optional<SurfaceTable> own_surfaces_;
+    const SurfaceTable& surfaces_;  // shared by the threads
     TallyStore& store_;
     RankWork& work_;
     TraceOptions opt_;
@@ -76,6 +92,8 @@ private:
     std::atomic<bool> failed_{false};
     std::exception_ptr error_;            // guarded by mutex_
     double cpu_s_ = 0.0, alive_s_ = 0.0;  // summed over finished threads, guarded by mutex_
+    double last_done_s_ = 0.0;            // guarded by mutex_
+    std::chrono::steady_clock::time_point start_;
     std::vector<std::thread> threads_;
 };
 

@@ -2,19 +2,31 @@
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace luxtrace::result_parts {
 
 using namespace hdf5;
 
+namespace {
+// Calls f(t) for every triangle, on every core (each writes its own elements).
+template <class F>
+void for_each_triangle(std::size_t triangles, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t t = r.begin(); t != r.end(); ++t) f(t);
+                      });
+}
+}  // namespace
+
 void write_mesh(hid_t file, const Scene& scene) {
     const std::size_t T = scene.triangle_count();
     const Id mesh = create_group(file, "mesh", "group /mesh");
-    std::vector<double> v;
-    for (const Vec3& p : scene.vertices) v.insert(v.end(), {p.x, p.y, p.z});
-    dataset(mesh, "vertices", {scene.vertices.size(), 3}, v.data());
-    std::vector<std::uint32_t> t;
-    for (const glm::uvec3& tri : scene.triangles) t.insert(t.end(), {tri.x, tri.y, tri.z});
-    dataset(mesh, "triangles", {T, 3}, t.data());
+    // Vec3 and glm::uvec3 hold their three numbers and nothing else.
+    static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(glm::uvec3) == 3 * sizeof(std::uint32_t));
+    dataset(mesh, "vertices", {scene.vertices.size(), 3}, reinterpret_cast<const double*>(scene.vertices.data()));
+    dataset(mesh, "triangles", {T, 3}, reinterpret_cast<const std::uint32_t*>(scene.triangles.data()));
     dataset(mesh, "area", {T}, scene.triangle_area_m2.data());
     dataset(mesh, "material", {T}, scene.triangle_material.data());
     std::vector<std::string> names;
@@ -41,29 +53,32 @@ void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, std
                                                                       {"direct_even", TallyLayout::kDirectEven}};
     std::vector<std::uint64_t> buf(T * kS * B);
     for (const auto& [name, slot] : slots) {
-        for (std::size_t t = 0; t < T; ++t)
+        for_each_triangle(T, [&](std::size_t t) {
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b) buf[(t * kS + side) * B + b] = slot_of(t, side, b, slot);
+        });
         dataset(g, name, dims, buf.data());
     }
     // Sum over photons of (arrivals on the side)^2 = arrivals + repeats (tally.hpp).
-    for (std::size_t t = 0; t < T; ++t)
+    for_each_triangle(T, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side)
             for (std::size_t b = 0; b < B; ++b)
                 buf[(t * kS + side) * B + b] = slot_of(t, side, b, TallyLayout::kCountOdd) +
                                                slot_of(t, side, b, TallyLayout::kCountEven) +
                                                slot_of(t, side, b, TallyLayout::kRepeats);
+    });
     dataset(g, "sumsq", dims, buf.data());
     if (const std::size_t R = L.replicates(); R > 0) {
         // sobol: each side's arrivals per replicate.
         std::vector<std::uint64_t> rep(T * kS * B * R, 0);
-        for (std::size_t t = 0; t < T; ++t)
+        for_each_triangle(T, [&](std::size_t t) {
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b)
                     for (std::size_t lg = first_group; lg < last_group; ++lg)
                         for (std::size_t r = 0; r < R; ++r)
                             rep[((t * kS + side) * B + b) * R + r] +=
                                 data[L.map_replicate(L.side_index(t, side), L.map_column(b, lg), r)];
+        });
         dataset(g, "replicate_count", {T, kS, B, R}, rep.data());
     }
 }

@@ -5,6 +5,10 @@
 #include "luxtrace/tally/message_packing.hpp"
 #include "side_terms.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,14 +18,25 @@ namespace luxtrace {
 namespace {
 using namespace side_terms;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Calls f(t) for every triangle, on every core: each writes its own elements, so the maps
+// have the same bits on any core count (a result of ten million triangles, issue 26).
+template <class F>
+void for_each_triangle(std::size_t triangles, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t t = r.begin(); t != r.end(); ++t) f(t);
+                      });
+}
 }  // namespace
 
 std::vector<double> side_illuminance_lx(const WeightedTallies& w, std::span<const double> area, double e0) {
     const TallyLayout& L = w.layout();
     std::vector<double> e(L.sides());
-    for (std::size_t t = 0; t < L.triangles(); ++t)
+    for_each_triangle(L.triangles(), [&](std::size_t t) {
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
             e[t * TallyLayout::kSides + side] = side_count(w, L.side_index(t, side)) * e0 / area[t];
+    });
     return e;
 }
 
@@ -31,12 +46,13 @@ std::vector<double> side_sigma_lx(const WeightedTallies& w, std::span<const doub
     std::vector<double> sigma(L.sides(), kNaN);
     if (photons == 0) return sigma;
     const double n = static_cast<double>(photons);
-    for (std::size_t t = 0; t < L.triangles(); ++t)
+    for_each_triangle(L.triangles(), [&](std::size_t t) {
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side) {
             const std::size_t i = L.side_index(t, side);
             sigma[t * TallyLayout::kSides + side] = side_sigma_counts(side_count(w, i), side_sumsq(w, i), n) * e0 /
                                                     area[t];
         }
+    });
     return sigma;
 }
 
@@ -48,11 +64,13 @@ std::vector<double> side_replicate_sigma_lx(const WeightedTallies& w, std::span<
     if (photons == 0) return sigma;
     const double n = static_cast<double>(photons);
     const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
-    std::vector<double> sums(L.replicates());
-    for (std::size_t t = 0; t < L.triangles(); ++t)
+    tbb::enumerable_thread_specific<std::vector<double>> scratch(L.replicates());
+    for_each_triangle(L.triangles(), [&](std::size_t t) {
+        std::vector<double>& sums = scratch.local();
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
             sigma[t * TallyLayout::kSides + side] =
                 side_replicate_sigma_counts(w, L.side_index(t, side), sums, rep_photons, n) * e0 / area[t];
+    });
     return sigma;
 }
 
@@ -66,7 +84,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
     SurfaceMaps m;
     m.illuminance_lx.resize(T * kS * B);
     m.illuminance_direct_lx.resize(T * kS * B);
-    for (std::size_t t = 0; t < T; ++t)
+    for_each_triangle(T, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side)
             for (std::size_t b = 0; b < B; ++b) {
                 const double k = e0 / area[t];
@@ -76,14 +94,16 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
                 m.illuminance_direct_lx[i] = k * (slot_of(t, side, b, TallyLayout::kDirectOdd) +
                                                   slot_of(t, side, b, TallyLayout::kDirectEven));
             }
+    });
     m.odd_even_difference_lx.resize(T * kS);
-    for (std::size_t t = 0; t < T; ++t)
+    for_each_triangle(T, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side) {
             double d = 0.0;
             for (std::size_t b = 0; b < B; ++b)
                 d += slot_of(t, side, b, TallyLayout::kCountOdd) - slot_of(t, side, b, TallyLayout::kCountEven);
             m.odd_even_difference_lx[t * kS + side] = 2.0 * d * e0 / area[t];
         }
+    });
     m.sigma_lx = side_sigma_lx(w, area, e0, photons);
     m.replicate_sigma_lx = side_replicate_sigma_lx(w, area, e0, photons);
     return m;

@@ -1,7 +1,8 @@
 // The chunk filters luxtrace applies itself before handing a large dataset's chunks to
-// HDF5 (src/io/chunk_filters.hpp): each against its definition, and the whole pipeline
-// through HDF5's reader on a result and checkpoint whose maps span several chunks, the
-// last one partly filled.
+// HDF5 (src/io/chunk_filters.hpp): each against its definition; the stored bytes against
+// those HDF5's own filters make of the same chunks (the one place outside src/io that calls
+// HDF5: the library is the reference here); and the whole pipeline through HDF5's reader
+// on a checkpoint whose maps span several chunks, the last one partly filled.
 #include "io/chunk_filters.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
@@ -10,8 +11,10 @@
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <zlib.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -78,6 +81,64 @@ TEST(ChunkFilters, StoredChunkInflatesToTheShuffledBytesAndEndsWithTheirChecksum
     std::vector<unsigned char> shuffled(chunk.size());
     hdf5::shuffle_bytes(chunk, 8, shuffled.data());
     EXPECT_EQ(inflated, shuffled);
+}
+
+// Datasets of the shapes a result has ([T, 2, 1] counts, [V, 3] vertices, [T, 3] indices),
+// each of several chunks and a partial last one, filtered by HDF5 itself (shuffle, deflate
+// 1, Fletcher-32, as write_dataset asks for); each stored chunk, read raw, is what
+// filtered_chunk makes of the same rows.
+template <class T>
+void expect_hdf5_stores_what_we_make(hid_t file, const char* name, std::vector<hsize_t> dims, hsize_t chunk_rows,
+                                     hid_t type, const std::vector<T>& data) {
+    const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    std::vector<hsize_t> chunk = dims;
+    chunk[0] = chunk_rows;
+    ASSERT_GE(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), 0);
+    ASSERT_GE(H5Pset_shuffle(plist), 0);
+    ASSERT_GE(H5Pset_deflate(plist, 1), 0);
+    ASSERT_GE(H5Pset_fletcher32(plist), 0);
+    const hid_t ds = H5Dcreate2(file, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    ASSERT_GE(ds, 0);
+    ASSERT_GE(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), 0);
+    std::size_t row = 1;
+    for (std::size_t d = 1; d < dims.size(); ++d) row *= static_cast<std::size_t>(dims[d]);
+    const std::size_t chunks = static_cast<std::size_t>((dims[0] + chunk_rows - 1) / chunk_rows);
+    EXPECT_GE(chunks, 3u);
+    for (std::size_t c = 0; c < chunks; ++c) {
+        std::vector<hsize_t> offset(dims.size(), 0);
+        offset[0] = c * chunk_rows;
+        hsize_t stored_size = 0;
+        ASSERT_GE(H5Dget_chunk_storage_size(ds, offset.data(), &stored_size), 0);
+        std::vector<unsigned char> stored(stored_size);
+        std::uint32_t mask = 1;
+        ASSERT_GE(H5Dread_chunk(ds, H5P_DEFAULT, offset.data(), &mask, stored.data()), 0);
+        EXPECT_EQ(mask, 0u) << name << " chunk " << c;  // every filter applied
+        std::vector<unsigned char> rows(static_cast<std::size_t>(chunk_rows) * row * sizeof(T), 0);
+        const std::size_t n = std::min<std::size_t>(chunk_rows, dims[0] - offset[0]) * row;
+        std::memcpy(rows.data(), data.data() + offset[0] * row, n * sizeof(T));
+        EXPECT_EQ(hdf5::filtered_chunk(rows, sizeof(T), 1), stored) << name << " chunk " << c;
+    }
+    H5Dclose(ds);
+    H5Pclose(plist);
+    H5Sclose(space);
+}
+
+TEST(ChunkFilters, StoredBytesAreThoseOfHdf5sOwnFilters) {
+    const test_support::ScratchDir dir("chunk_filters_hdf5");
+    const hid_t file = H5Fcreate((dir.path() / "f.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    std::mt19937_64 g(11);
+    std::vector<std::uint64_t> counts(100003 * 2);  // sparse, as a room's back sides
+    for (std::uint64_t& x : counts) x = g() % 7 == 0 ? g() % 1000 : 0;
+    std::vector<double> vertices(50001 * 3);
+    for (double& x : vertices) x = std::uniform_real_distribution<double>(-5.0, 5.0)(g);
+    std::vector<std::uint32_t> indices(70001 * 3);
+    for (std::uint32_t& x : indices) x = static_cast<std::uint32_t>(g() % 5000000);
+    expect_hdf5_stores_what_we_make(file, "counts", {100003, 2, 1}, 32768, H5T_NATIVE_UINT64, counts);
+    expect_hdf5_stores_what_we_make(file, "vertices", {50001, 3}, 21845, H5T_NATIVE_DOUBLE, vertices);
+    expect_hdf5_stores_what_we_make(file, "indices", {70001, 3}, 21845, H5T_NATIVE_UINT32, indices);
+    H5Fclose(file);
 }
 
 // HDF5 checks every chunk's checksum and undoes deflate and shuffle as it reads. A box of

@@ -113,12 +113,15 @@ TEST_F(Loader, BvhQualityIsAutoUnlessGivenAndRefusesOtherNames) {
                {"key 'bvh_quality'", "expected \"auto\", \"low\", \"medium\" or \"high\""});
 }
 
-// "auto" builds a large scene fast (LOW) and a small one well (HIGH); a name given wins.
-TEST(BvhOptions, AutoIsLowFromTheThresholdAndAGivenQualityWins) {
+// "auto" builds a large scene without spatial splits (MEDIUM) and a small one with them
+// (HIGH); a name given wins.
+TEST(BvhOptions, AutoIsMediumFromTheThresholdAndAGivenQualityWins) {
     Scene scene;
-    scene.triangles.resize(BvhOptions::kLowBvhTriangles - 1);
+    scene.triangles.resize(BvhOptions::kMediumBvhTriangles - 1);
     EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_HIGH);
     scene.triangles.emplace_back(0u);
+    EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_MEDIUM);
+    scene.run.bvh_quality = "low";
     EXPECT_EQ(BvhOptions::of(scene).quality, RTC_BUILD_QUALITY_LOW);
     EXPECT_EQ(BvhOptions::of(scene).geometry_quality, RTC_BUILD_QUALITY_LOW);
     scene.run.bvh_quality = "high";

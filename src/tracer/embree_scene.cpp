@@ -15,9 +15,9 @@ namespace luxtrace {
 BvhOptions BvhOptions::of(const Scene& scene) {
     const std::string& q = scene.run.bvh_quality;
     BvhOptions o;
-    if (q == "low" || (q == "auto" && scene.triangle_count() >= kLowBvhTriangles))
-        o.quality = o.geometry_quality = RTC_BUILD_QUALITY_LOW;
-    else if (q == "medium") o.quality = RTC_BUILD_QUALITY_MEDIUM;
+    if (q == "low") o.quality = o.geometry_quality = RTC_BUILD_QUALITY_LOW;
+    else if (q == "medium" || (q == "auto" && scene.triangle_count() >= kMediumBvhTriangles))
+        o.quality = RTC_BUILD_QUALITY_MEDIUM;
     return o;
 }
 

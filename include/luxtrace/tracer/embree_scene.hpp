@@ -21,10 +21,11 @@ struct Scene;
 // Embree's build settings. docs/SCALING.md "Setup time of ten million triangles" measures
 // each against the build time and the photon rate it gives.
 struct BvhOptions {
-    // Scenes of this many triangles or more are built at RTC_BUILD_QUALITY_LOW by "auto":
-    // there the build takes seconds, and saves more than the slower rays cost in a run of a
-    // minute or two (docs/SCALING.md).
-    static constexpr std::size_t kLowBvhTriangles = std::size_t{1} << 22;
+    // Scenes of this many triangles or more are built at RTC_BUILD_QUALITY_MEDIUM by "auto":
+    // there HIGH's spatial splits take seconds and give the rays nothing; LOW's faster build
+    // costs 10-15 % of the photon rate, more than it saves once tracing lasts about 15 s
+    // (docs/SCALING.md, "Setup time of ten million triangles").
+    static constexpr std::size_t kMediumBvhTriangles = std::size_t{1} << 22;
     // The options of the scene's [run] bvh_quality.
     static BvhOptions of(const Scene& scene);
 

@@ -1,23 +1,14 @@
 // The result's mesh and surface map (/mesh, /global).
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace luxtrace::result_parts {
 
 using namespace hdf5;
 
 namespace {
-// Calls f(t) for every triangle, on every core (each writes its own elements).
-template <class F>
-void for_each_triangle(std::size_t triangles, F&& f) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t t = r.begin(); t != r.end(); ++t) f(t);
-                      });
-}
+constexpr std::size_t kTriangleGrain = 4096;  // triangles per task
 }  // namespace
 
 void write_mesh(hid_t file, const Scene& scene) {
@@ -53,14 +44,14 @@ void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, std
                                                                       {"direct_even", TallyLayout::kDirectEven}};
     std::vector<std::uint64_t> buf(T * kS * B);
     for (const auto& [name, slot] : slots) {
-        for_each_triangle(T, [&](std::size_t t) {
+        for_each_index(T, kTriangleGrain, [&](std::size_t t) {
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b) buf[(t * kS + side) * B + b] = slot_of(t, side, b, slot);
         });
         dataset(g, name, dims, buf.data());
     }
     // Sum over photons of (arrivals on the side)^2 = arrivals + repeats (tally.hpp).
-    for_each_triangle(T, [&](std::size_t t) {
+    for_each_index(T, kTriangleGrain, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side)
             for (std::size_t b = 0; b < B; ++b)
                 buf[(t * kS + side) * B + b] = slot_of(t, side, b, TallyLayout::kCountOdd) +
@@ -71,7 +62,7 @@ void write_surface_counts(hid_t g, const Scene& scene, const TallyLayout& L, std
     if (const std::size_t R = L.replicates(); R > 0) {
         // sobol: each side's arrivals per replicate.
         std::vector<std::uint64_t> rep(T * kS * B * R, 0);
-        for_each_triangle(T, [&](std::size_t t) {
+        for_each_index(T, kTriangleGrain, [&](std::size_t t) {
             for (std::size_t side = 0; side < kS; ++side)
                 for (std::size_t b = 0; b < B; ++b)
                     for (std::size_t lg = first_group; lg < last_group; ++lg)

@@ -1,13 +1,12 @@
 #include "luxtrace/stats/estimates.hpp"
 
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/stats/global_sums.hpp"
 #include "luxtrace/tally/message_packing.hpp"
 #include "side_terms.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,21 +18,13 @@ namespace {
 using namespace side_terms;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Calls f(t) for every triangle, on every core: each writes its own elements, so the maps
-// have the same bits on any core count (a result of ten million triangles, issue 26).
-template <class F>
-void for_each_triangle(std::size_t triangles, F&& f) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t t = r.begin(); t != r.end(); ++t) f(t);
-                      });
-}
+constexpr std::size_t kTriangleGrain = 4096;  // triangles per task (core/parallel.hpp)
 }  // namespace
 
 std::vector<double> side_illuminance_lx(const WeightedTallies& w, std::span<const double> area, double e0) {
     const TallyLayout& L = w.layout();
     std::vector<double> e(L.sides());
-    for_each_triangle(L.triangles(), [&](std::size_t t) {
+    for_each_index(L.triangles(), kTriangleGrain, [&](std::size_t t) {
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
             e[t * TallyLayout::kSides + side] = side_count(w, L.side_index(t, side)) * e0 / area[t];
     });
@@ -46,7 +37,7 @@ std::vector<double> side_sigma_lx(const WeightedTallies& w, std::span<const doub
     std::vector<double> sigma(L.sides(), kNaN);
     if (photons == 0) return sigma;
     const double n = static_cast<double>(photons);
-    for_each_triangle(L.triangles(), [&](std::size_t t) {
+    for_each_index(L.triangles(), kTriangleGrain, [&](std::size_t t) {
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side) {
             const std::size_t i = L.side_index(t, side);
             sigma[t * TallyLayout::kSides + side] = side_sigma_counts(side_count(w, i), side_sumsq(w, i), n) * e0 /
@@ -65,7 +56,7 @@ std::vector<double> side_replicate_sigma_lx(const WeightedTallies& w, std::span<
     const double n = static_cast<double>(photons);
     const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
     tbb::enumerable_thread_specific<std::vector<double>> scratch(L.replicates());
-    for_each_triangle(L.triangles(), [&](std::size_t t) {
+    for_each_index(L.triangles(), kTriangleGrain, [&](std::size_t t) {
         std::vector<double>& sums = scratch.local();
         for (std::size_t side = 0; side < TallyLayout::kSides; ++side)
             sigma[t * TallyLayout::kSides + side] =
@@ -84,7 +75,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
     SurfaceMaps m;
     m.illuminance_lx.resize(T * kS * B);
     m.illuminance_direct_lx.resize(T * kS * B);
-    for_each_triangle(T, [&](std::size_t t) {
+    for_each_index(T, kTriangleGrain, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side)
             for (std::size_t b = 0; b < B; ++b) {
                 const double k = e0 / area[t];
@@ -96,7 +87,7 @@ SurfaceMaps surface_maps(const WeightedTallies& w, std::span<const double> area,
             }
     });
     m.odd_even_difference_lx.resize(T * kS);
-    for_each_triangle(T, [&](std::size_t t) {
+    for_each_index(T, kTriangleGrain, [&](std::size_t t) {
         for (std::size_t side = 0; side < kS; ++side) {
             double d = 0.0;
             for (std::size_t b = 0; b < B; ++b)

@@ -1,10 +1,8 @@
 #include "luxtrace/tracer/surface_table.hpp"
 
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 
@@ -25,11 +23,7 @@ void SurfaceTable::fill(const Scene& scene, const EmbreeScene& embree, std::size
 
 SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree)
     : triangles_(new TriangleRecord[scene.triangle_count()]), bands_(scene.band_count()) {
-    constexpr std::size_t kGrain = 16384;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.triangle_count(), kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t t = range.begin(); t != range.end(); ++t) fill(scene, embree, t);
-                      });
+    for_each_index(scene.triangle_count(), 16384, [&](std::size_t t) { fill(scene, embree, t); });
     for (const Material& m : scene.materials)
         for (int b = 0; b < bands_; ++b) models_.push_back(scatter_model(m, b));
 }

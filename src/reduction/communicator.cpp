@@ -12,11 +12,6 @@
 namespace luxtrace {
 
 namespace {
-// A plain `./luxtrace` is an MPI singleton: one rank, no peers, so no network transport
-// is needed, yet Open MPI probes UCX and libfabric first, which takes about 0.2 s of a
-// 0.45 s start here (README, "Running on a cluster"). Without any launcher's variables in
-// the environment, default the transports to the in-process ones; a user's own OMPI_MCA_*
-// settings win, and a rank started by mpirun, srun or another PMI launcher is left alone.
 // Waits for `requests` without spinning: a rank's main thread waits for rank 0's decision
 // while its tracing threads keep every core busy, and Open MPI's blocking calls poll
 // (measured: two ranks over shared memory took a quarter more CPU time than one rank;
@@ -31,6 +26,11 @@ void wait_politely(std::vector<MPI_Request>& requests) {
     requests.clear();
 }
 
+// A plain `./luxtrace` is an MPI singleton: one rank, no peers, so no network transport
+// is needed, yet Open MPI probes UCX and libfabric first, which takes about 0.2 s of a
+// 0.45 s start here (README, "Running on a cluster"). Without any launcher's variables in
+// the environment, default the transports to the in-process ones; a user's own OMPI_MCA_*
+// settings win, and a rank started by mpirun, srun or another PMI launcher is left alone.
 bool launched_by_a_launcher() {
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "PMI_FD", "SLURM_STEP_NUM_TASKS",
                           "MPI_LOCALNRANKS", "HYDRA_CONTROL_FD"})

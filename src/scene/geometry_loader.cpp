@@ -1,6 +1,7 @@
 // [[material]], [[mesh]] and [[shape]] -> the scene's materials and triangles
 // (docs/REFERENCE.md §2).
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/scene/mesh_loader.hpp"
 #include "luxtrace/scene/shapes.hpp"
 #include "scene_loader.hpp"
@@ -350,19 +351,17 @@ std::vector<std::int64_t> add_mesh_triangles(SceneLoad& load, const TriangleMesh
     scene.triangle_normal.resize(first + n);
     std::vector<std::uint8_t> keep(n);
     constexpr std::size_t kGrain = 1 << 14;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t t = r.begin(); t < r.end(); ++t) {
-            const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
-            const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
-            const Vec3 cr = glm::cross(b - a, c - a);
-            const double area = 0.5 * glm::length(cr);
-            keep[t] = material[t] != kLeaveOutTriangle && area > 0.0;
-            const std::size_t i = first + t;
-            scene.triangles[i] = tri;
-            scene.triangle_material[i] = material[t];
-            scene.triangle_area_m2[i] = area;
-            scene.triangle_normal[i] = keep[t] ? cr / (2.0 * area) : Vec3(0.0);
-        }
+    for_each_index(n, kGrain, [&](std::size_t t) {
+        const glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(base);
+        const Vec3 a(scene.vertices[tri.x]), b(scene.vertices[tri.y]), c(scene.vertices[tri.z]);
+        const Vec3 cr = glm::cross(b - a, c - a);
+        const double area = 0.5 * glm::length(cr);
+        keep[t] = material[t] != kLeaveOutTriangle && area > 0.0;
+        const std::size_t i = first + t;
+        scene.triangles[i] = tri;
+        scene.triangle_material[i] = material[t];
+        scene.triangle_area_m2[i] = area;
+        scene.triangle_normal[i] = keep[t] ? cr / (2.0 * area) : Vec3(0.0);
     });
     std::vector<std::int64_t> placed(n, -1);
     std::size_t next = first;

@@ -1,10 +1,8 @@
 #include "luxtrace/tracer/embree_scene.hpp"
 
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <stdexcept>
@@ -44,18 +42,12 @@ EmbreeScene::EmbreeScene(const Scene& scene, const BvhOptions& options)
     margin_.resize(scene.triangles.size());
     // Element by element, so the threads' split changes no value.
     constexpr std::size_t kGrain = 1 << 14;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.vertices.size(), kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) v[i] = to_local(scene.vertices[i]);
-                      });
+    for_each_index(scene.vertices.size(), kGrain, [&](std::size_t i) { v[i] = to_local(scene.vertices[i]); });
     vertices_ = v;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.triangles.size(), kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                              const glm::uvec3 t = scene.triangles[i];
-                              margin_[i] = luxtrace::self_hit_margin(v[t.x], v[t.y], v[t.z]);
-                          }
-                      });
+    for_each_index(scene.triangles.size(), kGrain, [&](std::size_t i) {
+        const glm::uvec3 t = scene.triangles[i];
+        margin_[i] = luxtrace::self_hit_margin(v[t.x], v[t.y], v[t.z]);
+    });
     rtcCommitGeometry(geom);
     rtcAttachGeometry(scene_, geom);
     rtcReleaseGeometry(geom);  // the scene keeps it, and with it the vertex buffer

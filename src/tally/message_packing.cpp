@@ -10,6 +10,14 @@ namespace luxtrace {
 namespace {
 
 bool bit(std::span<const std::uint64_t> mask, std::size_t i) { return ((mask[i / 64] >> (i % 64)) & 1u) != 0; }
+void set_bit(std::span<std::uint64_t> mask, std::size_t i) { mask[i / 64] |= std::uint64_t{1} << (i % 64); }
+
+// The OR of `count` words from `words`: zero exactly when they all are.
+std::uint64_t or_of(const std::uint64_t* words, std::size_t count) {
+    std::uint64_t any = 0;
+    for (std::size_t k = 0; k < count; ++k) any |= words[k];
+    return any;
+}
 
 std::size_t tail_blocks(const TallyLayout& L, std::size_t message_words) {
     return (message_words - L.surface_end() + kMessageBlockWords - 1) / kMessageBlockWords;
@@ -127,28 +135,20 @@ std::vector<std::uint64_t> message_mask(const TallyLayout& L, std::span<const st
     const std::size_t n = run_length(L, 0);
     std::uint64_t bits = 0;
     for_each_side(L, part, [&](std::size_t i) {
-        const std::uint64_t* s = message.data() + L.counts_begin(i);
-        std::uint64_t any = 0;
-        for (std::size_t k = 0; k < n; ++k) any |= s[k];
+        const std::uint64_t any = or_of(message.data() + L.counts_begin(i), n);
         if (any == 0) return;
-        mask[i / 64] |= std::uint64_t{1} << (i % 64);
+        set_bit(mask, i);
         if (map_bits == nullptr) return;
         bits |= any;
-        for (int run = 1; run < kRuns; ++run) {
-            const std::uint64_t* w = message.data() + run_begin(L, run, i);
-            for (std::size_t k = 0; k < run_length(L, run); ++k) bits |= w[k];
-        }
+        for (int run = 1; run < kRuns; ++run) bits |= or_of(message.data() + run_begin(L, run, i), run_length(L, run));
     });
     if (map_bits != nullptr) *map_bits = bits;
     if (!part.head_and_tail) return mask;
-    std::uint64_t* blocks = mask.data() + mask_side_words(L);
+    const std::span<std::uint64_t> blocks = std::span(mask).subspan(mask_side_words(L));
     const std::size_t tail = L.surface_end();
     for (std::size_t b = 0; b < tail_blocks(L, message.size()); ++b) {
         const std::size_t from = tail + b * kMessageBlockWords;
-        const std::size_t to = std::min(message.size(), from + kMessageBlockWords);
-        std::uint64_t any = 0;
-        for (std::size_t k = from; k < to; ++k) any |= message[k];
-        if (any != 0) blocks[b / 64] |= std::uint64_t{1} << (b % 64);
+        if (or_of(message.data() + from, std::min(message.size() - from, kMessageBlockWords)) != 0) set_bit(blocks, b);
     }
     return mask;
 }
@@ -242,19 +242,14 @@ void add_and_clear(const TallyLayout& L, std::span<std::uint64_t> from, std::spa
     };
     move(0, L.counts_begin(0));
     const std::size_t n = run_length(L, 0);
-    for (std::size_t i = 0; i < L.sides(); ++i) {
-        const std::uint64_t* s = from.data() + L.counts_begin(i);
-        std::uint64_t any = 0;
-        for (std::size_t k = 0; k < n; ++k) any |= s[k];
-        if (any == 0) continue;
-        lit[i / 64] |= std::uint64_t{1} << (i % 64);
+    for_each_side(L, MessagePart::whole(L), [&](std::size_t i) {
+        if (or_of(from.data() + L.counts_begin(i), n) == 0) return;
+        set_bit(lit, i);
         for (int run = 0; run < kRuns; ++run) move(run_begin(L, run, i), run_length(L, run));
-    }
+    });
     for (std::size_t b = L.surface_end(); b < from.size(); b += kMessageBlockWords) {
-        const std::size_t e = std::min(from.size(), b + kMessageBlockWords);
-        std::uint64_t any = 0;
-        for (std::size_t k = b; k < e; ++k) any |= from[k];
-        if (any != 0) move(b, e - b);
+        const std::size_t count = std::min(from.size() - b, kMessageBlockWords);
+        if (or_of(from.data() + b, count) != 0) move(b, count);
     }
 }
 

@@ -53,7 +53,7 @@ struct RunInfo {
     double reduction_wait_s = 0.0;              // main thread's wait for reductions (tracing goes on)
     double reduction_work_s = 0.0;              // main thread's packing, summing and estimating (max over ranks)
     double gather_s = 0.0;                      // the map gathered on rank 0 for the result
-    double tracing_busy = 0.0;                  // tracing threads' CPU time / lifetime, least busy rank
+    double tracing_busy = 0.0;                  // tracing threads' CPU time / tracing time, least busy rank
     std::uint64_t reduction_message_words = 0;  // the longest message a rank sent in a reduction (0: one rank)
     std::uint64_t reduction_message_bytes = 0;  // their bytes (the map's words are 32-bit while they fit)
     std::vector<std::string> target_labels;

@@ -16,7 +16,7 @@ void print_report(const Measurements& m, const MeasurePlan& plan, std::size_t fl
                 static_cast<unsigned long long>(m.tally_checksum), thread_counts.size() * plan.repeats);
     // tracer/replay: ratio of the medians; paired: median of the ratios measured back to
     // back. busy: CPU / (wall x threads) of replay runs, and of the tracer runs' tracing
-    // threads over their lifetime (RunSummary::tracing_busy).
+    // threads over their tracing time (RunSummary::tracing_busy).
     std::printf("threads | replay Mrays/s          | cosine Mrays/s | tracer Mrays/s          | tracer/replay | paired "
                 "| busy\n");
     std::printf("--------+-------------------------+----------------+-------------------------+---------------+--------"

@@ -30,8 +30,21 @@ void check(herr_t status, const std::string& what) {
     if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
 }
 
+namespace {
+
+// A creation property list without the object's modification time: a file's bytes then
+// depend on its content alone, not on the second it was written.
+Id untimed(hid_t plist_class) {
+    Id plist(H5Pcreate(plist_class), H5Pclose, "property list");
+    check(H5Pset_obj_track_times(plist, 0), "object times");
+    return plist;
+}
+
+}  // namespace
+
 Id create_group(hid_t parent, const std::string& name, const std::string& what) {
-    return Id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, what);
+    const Id gcpl = untimed(H5P_GROUP_CREATE);
+    return Id(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose, what);
 }
 
 namespace {
@@ -81,7 +94,7 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<hsiz
                    hid_t mem_type, const void* data) {
     Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "dataspace");
     // Large maps are chunked and compressed: counts compress well.
-    Id plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "property list");
+    Id plist = untimed(H5P_DATASET_CREATE);
     hsize_t total = 1;
     for (hsize_t d : dims) total *= d;
     hsize_t chunk_rows = 0;
@@ -123,7 +136,8 @@ void string_dataset(hid_t parent, const std::string& name, const std::vector<std
     const Id type = utf8_string_type();
     const hsize_t n = values.size();
     Id space(H5Screate_simple(1, &n, nullptr), H5Sclose, "space");
-    Id ds(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose, name);
+    const Id dcpl = untimed(H5P_DATASET_CREATE);
+    Id ds(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose, name);
     const std::vector<const char*> ptrs = c_strings(values);
     check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), name);
 }
@@ -194,30 +208,40 @@ struct MemoryImage {
     }
 };
 
-// Length of the HDF5 file in `image`: the user block plus the "end of file address" of
-// its version 2/3 superblock (HDF5 File Format Specification, section II.A), which
-// H5F_LIBVER_V18 selects: signature (8 bytes), versions and sizes (4), base address (8),
-// extension address (8), end of file address (8, little-endian, from the superblock on).
+// Length of the HDF5 file in `image`: the "end of file address" of its version 2/3
+// superblock (HDF5 File Format Specification, section II.A), which H5F_LIBVER_V18 selects:
+// signature (8 bytes), versions and sizes (4), base address (8), extension address (8),
+// end of file address (8, little-endian). HDF5 stores it as an absolute address, its
+// relative end of allocated space plus the base address, which is the user block's size
+// (H5F__cache_superblock_serialize): the user block is in it already. Issue 35: adding it
+// again asked for 512 bytes past the file, which the driver's buffer held (zeros) except
+// when the file ended in the last 512 bytes before a multiple of its increment.
 std::size_t file_length(const std::vector<char>& image, std::size_t userblock) {
     const char* sb = image.data() + userblock;
     if (image.size() < userblock + 48 || std::memcmp(sb, kHdf5Signature, 8) != 0 || (sb[8] != 2 && sb[8] != 3) ||
         sb[9] != 8)
         throw std::runtime_error("HDF5: unexpected superblock in the in-memory file image");
-    std::uint64_t eof = 0;
-    for (int i = 7; i >= 0; --i) eof = (eof << 8) | static_cast<unsigned char>(sb[28 + i]);
-    if (eof < 48 || eof > image.size() - userblock)
-        throw std::runtime_error("HDF5: the in-memory file image is incomplete");
-    return userblock + static_cast<std::size_t>(eof);
+    auto address = [&](int at) {
+        std::uint64_t a = 0;
+        for (int i = 7; i >= 0; --i) a = (a << 8) | static_cast<unsigned char>(sb[at + i]);
+        return a;
+    };
+    const std::uint64_t base = address(12), eof = address(28);
+    if (base != userblock || eof < userblock + 48 || eof > (std::uint64_t{1} << 62))
+        throw std::runtime_error("HDF5: the in-memory file image's superblock gives base address " +
+                                 std::to_string(base) + " and end of file " + std::to_string(eof) + " with a " +
+                                 std::to_string(userblock) + "-byte user block");
+    return static_cast<std::size_t>(eof);
 }
 
 }  // namespace
 
 std::vector<char> file_image(const std::filesystem::path& name, std::size_t userblock,
-                             const std::function<void(hid_t file)>& fill) {
+                             const std::function<void(hid_t file)>& fill, std::size_t increment) {
     std::vector<char> image;
     H5E_BEGIN_TRY {
         Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access list");
-        check(H5Pset_fapl_core(fapl, 1 << 20, 0), "core driver");
+        check(H5Pset_fapl_core(fapl, increment, 0), "core driver");
         // The image is taken when HDF5 frees it at close, after the superblock is final
         // (H5Fget_file_image on an open file has stale checksums in this format).
         MemoryImage captured;
@@ -226,14 +250,19 @@ std::vector<char> file_image(const std::filesystem::path& name, std::size_t user
         // Format of HDF5 1.8 and later: every metadata block carries a checksum, so a
         // damaged file is refused by the reader instead of being misread.
         check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST), "format bounds");
-        Id fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation list");
+        Id fcpl = untimed(H5P_FILE_CREATE);  // the root group's header too
         check(H5Pset_userblock(fcpl, userblock), "user block");
         Id file(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
         fill(file);
         check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
         file.close();
         image = std::move(captured.bytes);
-        image.resize(file_length(image, userblock));  // the driver's buffer grows in whole increments
+        // The driver's buffer is the bytes written, rounded up to a whole increment: the
+        // file is its first file_length bytes. Should HDF5 leave allocated space unwritten
+        // at the end, the file on disk has zeros there (HDF5 extends it to its end of file
+        // when it closes it, which the core driver skips without a backing store): so
+        // does the image (FileImage.IsTheFileHdf5WritesToDisk).
+        image.resize(file_length(image, userblock), 0);
     }
     H5E_END_TRY;
     return image;

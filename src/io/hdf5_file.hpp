@@ -79,11 +79,14 @@ void attr(hid_t obj, const std::string& name, const std::string& value);
 void attr(hid_t obj, const std::string& name, const char* value);
 
 // Builds an HDF5 file in memory (core driver, no backing store) with a user block of
-// `userblock` bytes, lets `fill` write its content, and returns the file's bytes. HDF5
-// never touches the disk, so writing the bytes is plain POSIX I/O whose errors name the
-// OS's reason, and HDF5's own error stack stays silent. `name` only names the file.
+// `userblock` bytes, lets `fill` write its content, and returns the file's bytes: those
+// HDF5 writes to disk from the same content. HDF5 never touches the disk, so writing the
+// bytes is plain POSIX I/O whose errors name the OS's reason, and HDF5's own error stack
+// stays silent. `name` only names the file; `increment`, the core driver's buffer's
+// growth step, changes nothing in the bytes (tests sweep it).
+inline constexpr std::size_t kCoreIncrement = std::size_t{1} << 20;
 std::vector<char> file_image(const std::filesystem::path& name, std::size_t userblock,
-                             const std::function<void(hid_t file)>& fill);
+                             const std::function<void(hid_t file)>& fill, std::size_t increment = kCoreIncrement);
 
 // ---- Reading (errors are InputError naming the file: a damaged file is bad input) ----
 

@@ -79,5 +79,13 @@ void write_history(hid_t file, const std::vector<HistoryRow>& history, const Run
 // /checkpoint: the state a restart continues from.
 void write_checkpoint(hid_t file, const TallyLayout& layout, const CheckpointData& checkpoint);
 
+// Every part of a result (with `checkpoint`, a checkpoint) in the file's order.
+void write_all(hid_t file, const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> tallies,
+               const RunInfo& info, const ResultEstimates& estimates, const std::vector<HistoryRow>& history,
+               const CheckpointData* checkpoint);
+// A tally checkpoint's parts: the root attributes, /history and /checkpoint.
+void write_tally_checkpoint(hid_t file, const Scene& scene, const TallyLayout& layout, const RunInfo& info,
+                            const std::vector<HistoryRow>& history, const CheckpointData& checkpoint);
+
 }  // namespace result_parts
 }  // namespace luxtrace

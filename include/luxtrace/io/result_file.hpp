@@ -83,9 +83,23 @@ struct CheckpointState {
     std::vector<HistoryRow> history;
 };
 
-// Writes `path` atomically (a temporary file in the same directory, then rename):
-// `tallies` rearranged into the file's arrays, and `estimates` (estimate_result on the same
-// tallies) as they are.
+// The sealed bytes of a result file (with `checkpoint`, a checkpoint): `tallies`
+// rearranged into the file's arrays, and `estimates` (estimate_result on the same tallies)
+// as they are. `path` only names the file in messages.
+std::vector<char> result_image(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
+                               std::span<const std::uint64_t> tallies, const RunInfo& info,
+                               const ResultEstimates& estimates, const std::vector<HistoryRow>& history,
+                               const CheckpointData* checkpoint = nullptr);
+
+// The sealed bytes of a tally checkpoint: the root attributes, /history and /checkpoint
+// alone, nothing computed from the tallies. What a run keeps when its result or full
+// checkpoint could not be made (docs/RELIABILITY.md); `--restart` continues from it.
+std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, const Scene& scene,
+                                         const TallyLayout& layout, const RunInfo& info,
+                                         const std::vector<HistoryRow>& history, const CheckpointData& checkpoint);
+
+// result_image written to `path` atomically (a temporary file in the same directory,
+// then rename).
 void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
                   std::span<const std::uint64_t> tallies, const RunInfo& info, const ResultEstimates& estimates,
                   const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# I/O faults lose nothing and say why (docs/RELIABILITY.md). On a 1 MB tmpfs that the
+# I/O faults lose nothing and say why (docs/RELIABILITY.md). On a 256 kB tmpfs that the
 # result does not fit on, a read-only file system, a read-only result file and (run as an
 # unprivileged user) a directory without write permission:
 #   - one message naming the file and the operating system's reason, never HDF5's
@@ -24,13 +24,14 @@ full=$work/full ro=$work/ro
 mkdir -p "$full" "$ro"
 cleanup() { umount "$full" 2>/dev/null; umount "$ro" 2>/dev/null; }
 trap cleanup EXIT
-if ! mount -t tmpfs -o size=1m tmpfs "$full" 2>"$work/mount.err"; then
+if ! mount -t tmpfs -o size=256k tmpfs "$full" 2>"$work/mount.err"; then
     echo "SKIP: cannot mount a tmpfs here ($(cat "$work/mount.err")); run as root to test full disks"
     exit 77
 fi
 mount -t tmpfs -o ro,size=1m tmpfs "$ro" || { echo "SKIP: cannot mount a read-only tmpfs"; exit 77; }
 
-# 307,200 triangles: the result (mesh and maps) is a few MB, more than the tmpfs holds.
+# 307,200 triangles: the result (mesh and maps) is a few MB and its tallies alone about
+# 460 kB, more than the tmpfs holds.
 cat >"$work/big.toml" <<'EOF'
 [[material]]
 name = "grey"
@@ -87,6 +88,21 @@ code=$?
 grep -q "checkpoint was not written either.*No space left on device" "$work/c.log" ||
     fail "C: the message should say that the checkpoint failed too: $(cat "$work/c.log")"
 no_diag "$work/c.log" C
+
+# G. The result cannot be made (an internal fault injected in its HDF5 image) and the
+#    checkpoint's disk is full: the tallies alone are kept beside the result (issue 35).
+"$lux" run "$scene" "${common[@]}" --quiet --output "$work/g.h5" --checkpoint "$full/g.ck.h5" \
+    --inject-fault result:image >"$work/g.log" 2>&1
+code=$?
+cat "$work/g.log"
+[ $code -eq 1 ] || fail "G: exit 1 expected, got $code"
+grep -q "are kept in the checkpoint $work/g.h5.checkpoint.h5" "$work/g.log" ||
+    fail "G: the tallies should be kept beside the result"
+no_diag "$work/g.log" G
+[ -z "$(ls -A "$full" | grep -v '^out.h5$')" ] || fail "G: litter left on the full disk: $(ls -A "$full")"
+"$lux" run "$scene" --quiet --restart "$work/g.h5.checkpoint.h5" --output "$work/g.h5" >"$work/g2.log" 2>&1 ||
+    fail "G: the result could not be made from the tallies: $(cat "$work/g2.log")"
+"$cmp" "$work/ref.h5" "$work/g.h5" >/dev/null || fail "G: the result made from the tallies differs"
 
 # D. A read-only file system, E. a read-only result file: refused before tracing, exit 2.
 "$lux" run "$scene" "${common[@]}" --quiet --output "$ro/d.h5" >"$work/d.log" 2>&1

@@ -39,7 +39,10 @@ void print_options(const CLI::App& app, std::ostream& os, bool with_help) {
     // Positionals first, in order, then options as declared.
     for (bool positional : {true, false})
         for (const CLI::Option* opt : app.get_options()) {
-            if (opt->nonpositional() == positional || (!with_help && opt == app.get_help_ptr())) continue;
+            // Hidden options (group "") are for tests, not users.
+            if (opt->nonpositional() == positional || (!with_help && opt == app.get_help_ptr()) ||
+                opt->get_group().empty())
+                continue;
             std::string value = opt->get_type_size() == 0 ? "" : opt->get_type_name();
             if (opt->get_required()) value += value.empty() ? "required" : ", required";
             if (opt->get_expected_max() > 1) value += ", repeatable";

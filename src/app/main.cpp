@@ -11,6 +11,7 @@
 #include "luxtrace/io/xdmf.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
+#include "luxtrace/run/write_steps.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
@@ -104,6 +105,7 @@ struct RunArgs {
     std::optional<int> threads;
     std::optional<std::int64_t> replicates;
     std::string output, checkpoint, restart, sampler;
+    std::string inject_fault;  // tests (hidden): run/write_steps.hpp
     bool quiet = false;
 };
 
@@ -192,6 +194,12 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     opt.quiet = a.quiet;
     opt.load_s = load_s;
     opt.restart = a.restart;
+    opt.scene_args = a.scene.command_line();
+    if (!a.inject_fault.empty()) {
+        if (const std::string why = injected_fault_invalid(a.inject_fault); !why.empty())
+            throw InputError("--inject-fault: " + why);
+        opt.inject_fault = a.inject_fault;
+    }
     opt.signal = &g_stop_signal;
     std::signal(SIGTERM, on_stop_signal);
     std::signal(SIGUSR1, on_stop_signal);
@@ -208,7 +216,7 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     if (s.failed) {
         // Raised after parsing, inside a tracing thread: the rank that saw it says what.
         if (!s.error.empty()) {
-            if (s.exit_code == kExitBadInput || s.exit_code == kExitWriteFailed)
+            if (s.exit_code == kExitBadInput || s.exit_code == kExitWriteFailed || s.write_failed)
                 std::cerr << "luxtrace: error: " << s.error << '\n';
             else std::cerr << "luxtrace: internal error on rank " << comm.rank() << ": " << s.error << '\n';
         }
@@ -226,8 +234,14 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
         } catch (const std::exception& e) {
             std::cerr << "luxtrace: warning: " << xdmf_path.string() << " not written: " << e.what() << '\n';
         }
+        // The result is written: a summary that cannot be read back only warns.
         if (!a.quiet) {
-            print_result_summary(ResultFile(s.output), std::cout);
+            try {
+                print_result_summary(ResultFile(s.output), std::cout);
+            } catch (const std::exception& e) {
+                std::cerr << "luxtrace: warning: the summary of " << s.output << " could not be printed: " << e.what()
+                          << '\n';
+            }
         }
         if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
         std::cout << "result: " << fs::absolute(s.output).string() << " (written in " << std::fixed
@@ -290,6 +304,9 @@ int main(int argc, char** argv) {
     run->add_option("--sampler", ra.sampler, "random (Philox) | sobol (Owen-scrambled, docs/QMC.md)");
     run->add_option("--replicates", ra.replicates, "sobol: independent randomisations R, even (default 8)");
     run->add_flag("--quiet", ra.quiet, "no progress output");
+    // Hidden (group ""): tests make one step of a write after tracing fail (docs/RELIABILITY.md).
+    run->add_option("--inject-fault", ra.inject_fault, "FILE:STEP of a write after tracing that fails (tests)")
+        ->group("");
     std::string info_path;
     SceneArgs check_args;
     auto* check = app.add_subcommand("check", "parse and validate a scene, print a summary");

@@ -93,7 +93,8 @@ void check_writable(const fs::path& path, const std::string& what) {
     ::unlink(probe.c_str());
 }
 
-void write_file_atomically(const fs::path& path, std::span<const char> bytes) {
+void write_file_atomically(const fs::path& path, std::span<const char> bytes,
+                           const std::function<void()>& before_rename) {
     remove_stale_temporaries(path);
     const fs::path tmp_path = temporary_for(path, ::getpid());
     const int fd = ::open(tmp_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -111,6 +112,7 @@ void write_file_atomically(const fs::path& path, std::span<const char> bytes) {
     // Data on disk before the rename: a crash leaves either the old file or the new one.
     if (::fsync(tmp.fd()) != 0) throw IoError(path.string() + ": cannot write (fsync): " + reason(errno));
     if (tmp.close() != 0) throw IoError(path.string() + ": cannot write (close): " + reason(errno));
+    if (before_rename) before_rename();
     if (::rename(tmp_path.c_str(), path.c_str()) != 0)
         throw IoError(path.string() + ": cannot replace the file: " + reason(errno));
     tmp.release();

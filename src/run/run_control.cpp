@@ -72,7 +72,10 @@ Decision RunController::decide(const ReductionInput& in) {
         row.target_forecast_photons.push_back(f.valid ? f.photons_needed : std::nan(""));
     }
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
-    history_.push_back(row);
+    // A restart that adds no photons (it writes the result a checkpoint holds, issue 35)
+    // adds no row: the history is the one the interrupted run would have written.
+    const bool nothing_new = in.photons == photon_offset_ && !history_.empty() && history_.back().photons == in.photons;
+    if (!nothing_new) history_.push_back(row);
 
     // Keep the tracing time reductions take under 1% of the run (issue 26). A stall can be
     // inflated by a descheduled thread on a busy machine: use the median of the last five.

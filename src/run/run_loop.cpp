@@ -5,6 +5,7 @@
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/sensor_table.hpp"
 #include "luxtrace/run/reduction_message.hpp"
+#include "luxtrace/run/write_steps.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/global_sums.hpp"
@@ -348,9 +349,9 @@ void RunLoop::checkpoint(const Decision& d) {
     gather_map();
     if (comm_.is_root()) {
         // A failed periodic checkpoint leaves the previous one intact: warn, go on.
-        if (const std::string err = attempt_write(checkpoint_path_, decided_elapsed_s_, "checkpoint", true);
-            !err.empty())
-            std::cerr << "luxtrace: warning: checkpoint not written: " << err << "; " << latest_checkpoint_note()
+        const std::string before = latest_checkpoint_note();
+        if (const WriteOutcome w = keep_checkpoint(decided_elapsed_s_, "checkpoint", false); !w.ok())
+            std::cerr << "luxtrace: warning: checkpoint not written: " << w.error << "; " << before
                       << "; the run goes on\n"
                       << std::flush;
         write_s_ = comm_.wtime() - w0;
@@ -366,35 +367,54 @@ Decision RunLoop::broadcast(const Decision& decision) {
     return d;
 }
 
-void RunLoop::write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint) {
-    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
-    const std::uint64_t n = count_photons(done);
-    const std::span<const std::uint64_t> tallies = totals_.span();
-    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
-    ResultEstimates est = estimate_result(scene_, layout_, tallies, e0, n);
-    // The annual metrics' errors take a few dozen replicate years: the final result only.
-    if (scene_.annual)
-        est.annual = estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates);
+RunInfo RunLoop::final_info(std::uint64_t photons, double e0, double elapsed_s, const std::string& reason) const {
     RunInfo i = info_;
-    i.photons = n;
+    i.photons = photons;
     i.flux_per_photon_lm = e0;
     i.elapsed_s = restored_.elapsed_s + elapsed_s;
     i.stop_reason = reason;
     control_->fill_run_info(i);
+    return i;
+}
+
+CheckpointData RunLoop::checkpoint_data(const std::vector<PhotonRange>& done) const {
     CheckpointData ck;
-    if (as_checkpoint) {
-        ck.tallies.assign(tallies.begin(), tallies.end());
-        for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
-        ck.budget = run_.photons;
-    }
-    write_result(path, scene_, layout_, tallies, i, est, control_->history(), as_checkpoint ? &ck : nullptr);
+    const std::span<const std::uint64_t> tallies = totals_.span();
+    ck.tallies.assign(tallies.begin(), tallies.end());
+    for (const PhotonRange& r : done) ck.done.insert(ck.done.end(), {r.begin, r.end});
+    ck.budget = run_.photons;
+    return ck;
+}
+
+void RunLoop::write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint) {
+    const WriteSteps steps(as_checkpoint ? "checkpoint" : "result", opt_.inject_fault);
+    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
+    const std::uint64_t n = count_photons(done);
+    const std::span<const std::uint64_t> tallies = totals_.span();
+    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
+    ResultEstimates est = steps.run("estimates", [&] { return estimate_result(scene_, layout_, tallies, e0, n); });
+    // The annual metrics' errors take a few dozen replicate years: the final result only.
+    if (scene_.annual)
+        est.annual = steps.run("annual", [&] {
+            return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates);
+        });
+    const RunInfo i = final_info(n, e0, elapsed_s, reason);
+    const CheckpointData ck = as_checkpoint ? checkpoint_data(done) : CheckpointData{};
+    const std::vector<char> image = steps.run("image", [&] {
+        return result_image(path, scene_, layout_, tallies, i, est, control_->history(), as_checkpoint ? &ck : nullptr);
+    });
+    steps.run("rename", [&] { write_file_atomically(path, image, steps.before_rename(path)); });
+    if (!as_checkpoint) result_on_disk_ = true;
     if (!as_checkpoint && scene_.annual && scene_.annual->options.write_ladybug) {
         const std::filesystem::path folder = ladybug_folder_for(scene_, path);
         try {
-            write_annual_ladybug(folder, scene_, est.annual);
+            steps.run("ladybug", [&] { write_annual_ladybug(folder, scene_, est.annual); });
         } catch (const IoError& e) {
             throw IoError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
                           " was not: " + e.what());
+        } catch (const WriteStepError& e) {
+            throw WriteStepError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
+                                 " was not: " + e.what());
         }
     }
     // Each points detector's table beside the final result (not beside checkpoints). The
@@ -402,8 +422,12 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     if (!as_checkpoint) {
         std::vector<std::string> failures;
         summary_.sensor_tables.clear();
-        for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n, failures))
-            summary_.sensor_tables.push_back(table.string());
+        try {
+            for (const std::filesystem::path& table : write_sensor_tables(path, scene_, est, n, failures))
+                summary_.sensor_tables.push_back(table.string());
+        } catch (const std::exception& e) {
+            failures.push_back(e.what());
+        }
         for (const std::string& f : failures)
             std::cerr << "luxtrace: warning: sensor table not written: " << f << "; the result " << path
                       << " holds its numbers (Python: luxtrace.sensor_table)\n"
@@ -414,17 +438,66 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     summary_.detectors = std::move(est.detectors);
 }
 
-std::string RunLoop::attempt_write(const std::string& path, double elapsed_s, const std::string& reason,
-                                   bool as_checkpoint) {
+void RunLoop::write_tally_checkpoint(const std::string& path, double elapsed_s, const std::string& reason) {
+    const WriteSteps steps("tallies", opt_.inject_fault);
+    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
+    const std::uint64_t n = count_photons(done);
+    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
+    const RunInfo i = final_info(n, e0, elapsed_s, reason);
+    const CheckpointData ck = checkpoint_data(done);
+    const std::vector<char> image = steps.run("image", [&] {
+        return tally_checkpoint_image(path, scene_, layout_, i, control_->history(), ck);
+    });
+    steps.run("rename", [&] { write_file_atomically(path, image, steps.before_rename(path)); });
+    summary_.photons = n;
+}
+
+WriteOutcome RunLoop::attempt(const std::function<void()>& write) {
     try {
-        write_file(path, elapsed_s, reason, as_checkpoint);
+        write();
+        return {};
     } catch (const IoError& e) {
-        return e.what();
+        return {e.what(), false};
+    } catch (const WriteStepError& e) {
+        return {e.what(), true};
+    } catch (const std::exception& e) {
+        return {std::string("internal error: ") + e.what(), true};
+    } catch (...) {
+        return {"internal error: an unknown exception", true};
     }
-    if (as_checkpoint) {
-        latest_checkpoint_ = path;
-        latest_checkpoint_photons_ = summary_.photons;
+}
+
+WriteOutcome RunLoop::attempt_write(const std::string& path, double elapsed_s, const std::string& reason,
+                                    bool as_checkpoint) {
+    return attempt([&] { write_file(path, elapsed_s, reason, as_checkpoint); });
+}
+
+WriteOutcome RunLoop::keep_checkpoint(double elapsed_s, const std::string& reason, bool beside_result) {
+    WriteOutcome full = attempt_write(checkpoint_path_, elapsed_s, reason, true);
+    std::string written = full.ok() ? checkpoint_path_ : std::string{};
+    // The tallies alone, where the checkpoint goes and then beside the result: no
+    // estimates, no maps, the fewest steps that can fail.
+    WriteOutcome tallies;
+    std::vector<std::string> places{checkpoint_path_};
+    if (const std::string beside = run_.output + ".checkpoint.h5"; beside_result && beside != checkpoint_path_)
+        places.push_back(beside);
+    for (const std::string& path : places) {
+        if (!written.empty()) break;
+        tallies = attempt([&] { write_tally_checkpoint(path, elapsed_s, reason); });
+        if (tallies.ok()) written = path;
     }
+    if (written.empty()) {
+        WriteOutcome out = full;
+        if (tallies.error != full.error) out.error += "; nor the tallies alone: " + tallies.error;
+        out.internal = full.internal && tallies.internal;
+        return out;
+    }
+    latest_checkpoint_ = written;
+    latest_checkpoint_photons_ = summary_.photons;
+    if (!full.ok())
+        std::cerr << "luxtrace: warning: the checkpoint " << checkpoint_path_ << " could not be made whole ("
+                  << full.error << "); the run's tallies alone are kept in " << written << "\n"
+                  << std::flush;
     return {};
 }
 
@@ -434,22 +507,29 @@ std::string RunLoop::latest_checkpoint_note() const {
            " photons) is kept";
 }
 
-void RunLoop::explain_failed_writes(const std::string& result_err, const std::string& checkpoint_err) {
-    summary_.exit_code = kExitWriteFailed;
+std::string RunLoop::recover_command(const std::string& checkpoint) const {
+    const std::string scene = opt_.scene_args.empty() ? scene_.file.string() : opt_.scene_args;
+    return "luxtrace run " + scene + " --restart " + checkpoint + " --output " + run_.output;
+}
+
+void RunLoop::explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint) {
+    summary_.exit_code = result.internal || checkpoint.internal ? kExitInternal : kExitWriteFailed;
     summary_.failed = true;
-    const std::string restart = "luxtrace run " + scene_.file.string() + " --restart ";
-    if (!result_err.empty()) {
-        summary_.error = "the result was not written: " + result_err + "\n";
-        if (checkpoint_err.empty())
+    summary_.write_failed = true;
+    if (!result.ok()) {
+        // A failure after the result's rename (the Ladybug folder) says so itself.
+        summary_.error =
+            (result_on_disk_ ? result.error : "the result " + run_.output + " was not written: " + result.error) + "\n";
+        if (checkpoint.ok())
             summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
-                              " photons) are kept in the checkpoint " + checkpoint_path_ +
-                              "; write the result from it with: " + restart + checkpoint_path_ + " [--output OTHER.h5]";
+                              " photons) are kept in the checkpoint " + latest_checkpoint_ +
+                              "; write the result from it with: " + recover_command(latest_checkpoint_);
         else
-            summary_.error += "luxtrace: the checkpoint was not written either: " + checkpoint_err +
+            summary_.error += "luxtrace: the checkpoint was not written either: " + checkpoint.error +
                               "\nluxtrace: " + latest_checkpoint_note();
     } else {
         summary_.error = "the result " + run_.output +
-                         " was written, but the checkpoint to continue from was not: " + checkpoint_err +
+                         " was written, but the checkpoint to continue from was not: " + checkpoint.error +
                          "\nluxtrace: " + latest_checkpoint_note();
     }
 }
@@ -492,21 +572,21 @@ RunSummary RunLoop::write(const Decision& decision) {
                 summary_.rays += totals_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
                                  totals_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
         const double w0 = comm_.wtime();
-        const std::string result_err = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
+        const WriteOutcome result = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
         summary_.result_write_s = comm_.wtime() - w0;
         // A result that cannot be written: keep the tallies in a checkpoint instead.
-        const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint ||
-                                     !result_err.empty();
-        std::string checkpoint_err;
-        if (want_checkpoint) checkpoint_err = attempt_write(checkpoint_path_, elapsed, summary_.stop_reason, true);
-        if (want_checkpoint && checkpoint_err.empty()) summary_.checkpoint = checkpoint_path_;
-        if (!result_err.empty() || !checkpoint_err.empty()) explain_failed_writes(result_err, checkpoint_err);
+        const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint || !result.ok();
+        WriteOutcome checkpoint;
+        if (want_checkpoint) checkpoint = keep_checkpoint(elapsed, summary_.stop_reason, true);
+        if (want_checkpoint && checkpoint.ok()) summary_.checkpoint = latest_checkpoint_;
+        if (!result.ok() || !checkpoint.ok()) explain_failed_writes(result, checkpoint);
         final_code[0] = summary_.exit_code;
     }
     // Every rank ends with rank 0's verdict on the writes.
     comm_.broadcast(final_code);
     summary_.exit_code = static_cast<int>(final_code[0]);
-    summary_.failed = summary_.failed || summary_.exit_code == kExitWriteFailed;
+    summary_.failed = summary_.failed || summary_.exit_code == kExitWriteFailed || summary_.write_failed ||
+                      summary_.exit_code == kExitInternal;
     return summary_;
 }
 

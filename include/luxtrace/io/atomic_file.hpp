@@ -6,12 +6,16 @@
 // file and the directory are then as they were (the temporary is removed). Both calls
 // first remove the temporaries of writers that died before their rename.
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 
 namespace luxtrace {
 
-void write_file_atomically(const std::filesystem::path& path, std::span<const char> bytes);
+// `before_rename`, if given, runs when the temporary is complete and synced, just before
+// the rename (tests throw from it to fail the rename's step: docs/RELIABILITY.md).
+void write_file_atomically(const std::filesystem::path& path, std::span<const char> bytes,
+                           const std::function<void()>& before_rename = {});
 
 // Throws IoError unless a file can be created in `path`'s directory and an existing
 // `path` may be replaced (a file without any write permission bit is kept as the

@@ -32,12 +32,21 @@
 #include "luxtrace/tracer/surface_table.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace luxtrace {
+
+// How a file's write after tracing went: `error` empty when written; `internal` when a
+// step failed other than by the file system.
+struct WriteOutcome {
+    std::string error;
+    bool internal = false;
+    bool ok() const { return error.empty(); }
+};
 
 class RunLoop {
 public:
@@ -75,12 +84,25 @@ private:
     void estimate_owned_sides();
     // Rank 0's totals_ get every rank's sides (for the result and checkpoints).
     void gather_map();
-    // Rank 0: the result or a checkpoint from the reduced message; a failure to write the
-    // file comes back as its message (empty: written).
-    std::string attempt_write(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint);
+    // Rank 0 writes the result or a checkpoint from the reduced message, in named steps
+    // (write_steps.hpp); a failure of any kind comes back as its outcome, never as an
+    // exception: a run that has traced keeps its tallies (docs/RELIABILITY.md).
+    WriteOutcome attempt_write(const std::string& path, double elapsed_s, const std::string& reason,
+                               bool as_checkpoint);
     void write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint);
+    // The tallies alone (tally_checkpoint_image), when a whole checkpoint cannot be made.
+    void write_tally_checkpoint(const std::string& path, double elapsed_s, const std::string& reason);
+    static WriteOutcome attempt(const std::function<void()>& write);
+    // A checkpoint of the run: whole at the checkpoint's path, else the tallies alone
+    // there, else (`beside_result`: the run's last chance) beside the result;
+    // latest_checkpoint_ names it.
+    WriteOutcome keep_checkpoint(double elapsed_s, const std::string& reason, bool beside_result);
+    RunInfo final_info(std::uint64_t photons, double e0, double elapsed_s, const std::string& reason) const;
+    CheckpointData checkpoint_data(const std::vector<PhotonRange>& done) const;
     std::string latest_checkpoint_note() const;
-    void explain_failed_writes(const std::string& result_err, const std::string& checkpoint_err);
+    // The command that writes the result from `checkpoint`.
+    std::string recover_command(const std::string& checkpoint) const;
+    void explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint);
 
     const Scene& scene_;
     const RunConfig& run_;
@@ -152,6 +174,7 @@ private:
 
     // write: the latest checkpoint this run wrote (rank 0), for messages after a failed write.
     std::string latest_checkpoint_;
+    bool result_on_disk_ = false;  // the final result's file is written (what follows may fail)
     std::uint64_t latest_checkpoint_photons_ = 0;
 
     // Last: its threads use the store, the work and the BVH, and stop before them.

@@ -32,14 +32,23 @@ struct RunOptions {
     // bound; 0: 2^32 / ranks, so that their sum fits too. Tests lower it to take the
     // 64-bit way.
     std::uint64_t narrow_word_bound = 0;
+    // The scene as the command line named it (a TOML file, or Radiance files with their
+    // options), for the command a message after a failed write gives; empty: the scene file.
+    std::string scene_args;
+    // Tests: steps of writing a file after tracing that fail on purpose, "FILE:STEP" items
+    // separated by commas (run/write_steps.hpp); empty: none.
+    std::string inject_fault;
 };
 
 struct RunSummary {
     // 0 finished, 3 stopped early after writing a checkpoint; 2 or 1 when tracing failed
-    // on some rank (an InputError, or an internal fault): then nothing was written.
+    // on some rank (an InputError, or an internal fault): then nothing was written. After
+    // tracing, 4 when a file could not be written and 1 when a write step failed
+    // otherwise: `error` then says which, and where the run's tallies are kept.
     int exit_code = 0;
     bool failed = false;
-    std::string error;  // this rank's failure, empty if this rank traced fine
+    bool write_failed = false;  // the failure came after tracing, writing (rank 0)
+    std::string error;          // this rank's failure, empty if this rank traced fine
     std::string stop_reason;
     std::string checkpoint;  // written checkpoint, if any
     std::string output;

@@ -1,0 +1,60 @@
+#pragma once
+// The steps a run takes after tracing to write a file (the result, a checkpoint, or the
+// tally checkpoint it falls back on), each named in the message when it fails, and each
+// one a test can make fail on purpose (RunOptions::inject_fault; the hidden option
+// `--inject-fault FILE:STEP[,FILE:STEP...]`; docs/RELIABILITY.md "Nothing traced is lost").
+//
+//   FILE  result | checkpoint (periodic or final) | tallies (the tally checkpoint)
+//   STEP  estimates | annual | image | rename | ladybug
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace luxtrace {
+
+// Empty when `spec` is a comma-separated list of FILE:STEP as above; otherwise what is
+// wrong with it.
+std::string injected_fault_invalid(const std::string& spec);
+
+// A write step that failed other than by the file system (an IoError): a bug of ours or a
+// library's. Its message names the step.
+struct WriteStepError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class WriteSteps {
+public:
+    // Steps of writing `file` (result, checkpoint or tallies); `inject` as RunOptions has it.
+    WriteSteps(std::string file, std::string inject) : file_(std::move(file)), inject_(std::move(inject)) {}
+
+    // Runs `step`: an IoError passes as it is (it names the file and the system's reason),
+    // any other exception comes out as a WriteStepError naming the step; an injected fault
+    // of the step throws before it runs.
+    template <class F>
+    decltype(auto) run(std::string_view step, F&& f) const {
+        try {
+            fail_if_injected(step);
+            return std::forward<F>(f)();
+        } catch (const std::exception& e) {
+            rethrow_named(step, e);
+        } catch (...) {
+            rethrow_named(step, std::runtime_error("an unknown exception"));
+        }
+        throw;  // not reached: rethrow_named always throws
+    }
+
+    // What write_file_atomically runs before its rename: an injected fault of the step
+    // "rename" fails there, as a rename the file system refuses (an IoError).
+    std::function<void()> before_rename(const std::string& path) const;
+
+private:
+    void fail_if_injected(std::string_view step) const;
+    [[noreturn]] void rethrow_named(std::string_view step, const std::exception& e) const;
+    bool injected(std::string_view step) const;
+
+    std::string file_, inject_;
+};
+
+}  // namespace luxtrace

@@ -3,7 +3,7 @@
 # is lost"). Each step of writing after tracing is made to fail on purpose (the hidden
 # option --inject-fault FILE:STEP): the estimates, the annual metrics, the HDF5 image, the
 # rename, the Ladybug folder; then also the whole checkpoint it falls back on, leaving
-# the tallies alone. Each time:
+# the tallies alone; and rank 0's decision after a reduction. Each time:
 #   - one message names the step and says where the tallies are and the command that
 #     writes the result from them; the exit code is 4 for the file system's refusal, 1
 #     for anything else; no MPI_ABORT, no temporary left, an old result file kept;
@@ -80,10 +80,30 @@ grep -q "the result ladybug.h5 was written, the Ladybug results folder .* was no
 check tallies 1 result:image,checkpoint:estimates ref
 grep -q "could not be made whole.*the run's tallies alone are kept in tallies.h5.checkpoint.h5" tallies.log ||
     fail "tallies: no word of the tally checkpoint"
+"$lux" info tallies.h5.checkpoint.h5 >tallies.info 2>&1 && grep -q "^tallies only" tallies.info ||
+    fail "tallies: info on the tally checkpoint: $(cat tallies.info)"
 # Two ranks: rank 0 fails, both end with its verdict, nothing aborts. (The history of a run
 # on two ranks has a reduction more than on one: its reference runs on two.)
 "${mpi[@]}" "$lux" run "$scene" "${common[@]}" --output ref2.h5 >ref2.log 2>&1 || fail "2-rank reference: $(cat ref2.log)"
 check mpi 1 result:image ref2 "${mpi[@]}"
+
+# Rank 0's decision after the first reduction fails (a bug between reductions): every rank
+# stops, the tallies are kept, and the printed command continues the run to the same
+# tallies as the undisturbed run's.
+"$lux" run "$scene" "${common[@]}" --output decide.h5 --inject-fault run:decide >decide.log 2>&1
+code=$?
+cat decide.log
+[ $code -eq 1 ] || fail "decide: exit $code, expected 1"
+grep -q "internal error while deciding after a reduction" decide.log || fail "decide: step not named"
+grep -q "MPI_ABORT" decide.log && fail "decide: the run aborted"
+printed=$(sed -n 's/.*continue with: luxtrace run //p' decide.log)
+if [ -n "$printed" ]; then
+    # shellcheck disable=SC2086
+    "$lux" run $printed --quiet >decide.recover 2>&1 || fail "decide: the printed command failed: $(cat decide.recover)"
+    "$cmp" ref.h5 decide.h5 >/dev/null || fail "decide: the continued run's tallies differ"
+else
+    fail "decide: no command to continue"
+fi
 
 # Nothing can be kept: exit 1, and the message says so.
 echo precious >none.h5
@@ -109,6 +129,12 @@ grep -q "could not be made whole" periodic.log || fail "periodic: no warning"
 "$lux" run "$scene" --photons 60000 --seed 3 --threads 2 --report-every-photons 10000 --quiet \
     --output ref60.h5 >/dev/null 2>&1 || fail "reference run to 60k"
 "$cmp" ref60.h5 continued.h5 >/dev/null || fail "periodic: the continued run's tallies differ"
+
+# A fault that names no step is bad input: exit 2 before tracing, nothing written.
+"$lux" run "$scene" "${common[@]}" --output bad.h5 --inject-fault result:nothing >bad.log 2>&1
+code=$?
+[ $code -eq 2 ] && grep -q "inject-fault: 'result:nothing' is not FILE:STEP" bad.log && [ ! -e bad.h5 ] ||
+    fail "bad fault: exit $code, $(cat bad.log)"
 
 [ $status -eq 0 ] && echo "write faults: passed"
 exit $status

@@ -181,6 +181,31 @@ std::atomic<int> g_stop_signal{0};
 
 extern "C" void on_stop_signal(int sig) { g_stop_signal.store(sig); }
 
+// Rank 0, once the result is written: its companion, its summary and where it all is.
+void report_result(const RunSummary& s, const RunArgs& a) {
+    // The ParaView/VisIt companion (here, not in luxtrace_run, which does not link the
+    // render library). The result is written already: a failure only warns.
+    fs::path xdmf_path = fs::path(s.output).replace_extension(".xdmf");
+    if (xdmf_path == fs::path(s.output)) xdmf_path += ".xdmf";  // never over the result
+    bool xdmf_written = false;
+    try {
+        write_xdmf(s.output, xdmf_path);
+        xdmf_written = true;
+    } catch (const std::exception& e) {
+        std::cerr << "luxtrace: warning: " << xdmf_path.string() << " not written: " << e.what() << '\n';
+    }
+    if (!a.quiet) print_result_summary(ResultFile(s.output), std::cout);
+    if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
+    std::cout << "result: " << fs::absolute(s.output).string() << " (written in " << std::fixed << std::setprecision(2)
+              << s.result_write_s << " s)" << std::defaultfloat << '\n';
+    for (const std::string& table : s.sensor_tables)
+        std::cout << "sensor table: " << fs::absolute(table).string() << '\n';
+    if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';
+    if (s.exit_code == 3)
+        std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run " << a.scene.command_line()
+                  << " --restart " << s.checkpoint << '\n';
+}
+
 int cmd_run(const Communicator& comm, const RunArgs& a) {
     SceneArgs scene_args = a.scene;
     scene_args.sensors_target = a.target;  // a Radiance model's sensors are what --target is about
@@ -222,36 +247,14 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
         }
         return s.exit_code;
     }
+    // The result is written: what follows only reports it, and a failure there warns.
     if (comm.is_root()) {
-        // The ParaView/VisIt companion (here, not in luxtrace_run, which does not link the
-        // render library). The result is written already: a failure only warns.
-        fs::path xdmf_path = fs::path(s.output).replace_extension(".xdmf");
-        if (xdmf_path == fs::path(s.output)) xdmf_path += ".xdmf";  // never over the result
-        bool xdmf_written = false;
         try {
-            write_xdmf(s.output, xdmf_path);
-            xdmf_written = true;
+            report_result(s, a);
         } catch (const std::exception& e) {
-            std::cerr << "luxtrace: warning: " << xdmf_path.string() << " not written: " << e.what() << '\n';
+            std::cerr << "luxtrace: warning: the result " << s.output
+                      << " is written, but reporting it failed: " << e.what() << '\n';
         }
-        // The result is written: a summary that cannot be read back only warns.
-        if (!a.quiet) {
-            try {
-                print_result_summary(ResultFile(s.output), std::cout);
-            } catch (const std::exception& e) {
-                std::cerr << "luxtrace: warning: the summary of " << s.output << " could not be printed: " << e.what()
-                          << '\n';
-            }
-        }
-        if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
-        std::cout << "result: " << fs::absolute(s.output).string() << " (written in " << std::fixed
-                  << std::setprecision(2) << s.result_write_s << " s)" << std::defaultfloat << '\n';
-        for (const std::string& table : s.sensor_tables)
-            std::cout << "sensor table: " << fs::absolute(table).string() << '\n';
-        if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';
-        if (s.exit_code == 3)
-            std::cout << "stopped early (" << s.stop_reason << "); continue with: luxtrace run "
-                      << a.scene.command_line() << " --restart " << s.checkpoint << '\n';
     }
     return s.exit_code;
 }

@@ -145,6 +145,13 @@ void print_result_summary(const ResultFile& file, std::ostream& out) {
     out << std::defaultfloat << std::setprecision(6);
     out << "flux           " << r.attr_f64("/", "total_flux_lm") << " lm, " << r.attr_f64("/", "flux_per_photon_lm")
         << " lm per photon\n";
+    // A tally checkpoint (a failed write kept the tallies alone, docs/RELIABILITY.md §8)
+    // has no estimates: a restart from it writes them.
+    if (r.has("/checkpoint") && !r.has("/global")) {
+        out << "tallies only   no maps or estimates: luxtrace run SCENE --restart " << r.path().string()
+            << " writes the result\n";
+        return;
+    }
     out << std::fixed << std::setprecision(2);
     // Format 2 (issue 13) adds the second-moment estimate and says which one targets use.
     const bool moment = r.has_attr("/global", "moment_sigma_lx");

@@ -14,6 +14,15 @@ Decision Decision::fault(bool internal) {
     return d;
 }
 
+Decision Decision::decision_fault() {
+    Decision d;
+    d.stop = true;
+    d.checkpoint = true;
+    d.exit_code = kExitInternal;
+    d.reason = "error";
+    return d;
+}
+
 std::vector<double> Decision::encode() const {
     return {stop ? 1.0 : 0.0, checkpoint ? 1.0 : 0.0, static_cast<double>(exit_code), next_period_s,
             result_is_snapshot ? 1.0 : 0.0};

@@ -334,7 +334,17 @@ Decision RunLoop::decide() {
     in.stall_s = stall_s_;
     in.work_s = work_s_;
     in.write_s = write_s_;
-    const Decision d = control_->after_reduction(in);
+    Decision d;
+    try {
+        d = WriteSteps("run", opt_.inject_fault).run("decide", [&] { return control_->after_reduction(in); });
+    } catch (const std::exception& e) {
+        // Rank 0's own fault: the tallies are whole, every rank stops and keeps them (write).
+        decide_error_ = e.what();
+        d = Decision::decision_fault();
+        summary_.stop_reason = d.reason;
+        decided_elapsed_s_ = in.elapsed_s;
+        return d;
+    }
     if (show_) out_ << (tty_ ? "\r" : "") << control_->progress_line() << (tty_ ? "\033[K" : "\n") << std::flush;
     summary_.stop_reason = d.reason;
     decided_elapsed_s_ = in.elapsed_s;
@@ -540,7 +550,9 @@ RunSummary RunLoop::write(const Decision& decision) {
     pool_->stop();
     summary_.tracing_s = comm_.allreduce_max(pool_->tracing_s());
     summary_.tracing_busy = info_.tracing_busy = 1.0 - comm_.allreduce_max(1.0 - pool_->busy_fraction());
-    if (decision.exit_code == kExitInternal || decision.exit_code == kExitBadInput) {
+    // A tracing fault (a rank's thread failed: its counts cannot be trusted) writes nothing;
+    // a fault of rank 0's decision keeps the tallies (below).
+    if (decision.exit_code == kExitBadInput || (decision.exit_code == kExitInternal && !decision.checkpoint)) {
         summary_.exit_code = decision.exit_code;
         summary_.failed = true;
         if (pool_->failed()) summary_.error = describe(pool_->error());
@@ -571,15 +583,8 @@ RunSummary RunLoop::write(const Decision& decision) {
             for (std::size_t c = 0; c < layout_.map_columns(); ++c)
                 summary_.rays += totals_[layout_.map_slot(i, c, TallyLayout::kCountOdd)] +
                                  totals_[layout_.map_slot(i, c, TallyLayout::kCountEven)];
-        const double w0 = comm_.wtime();
-        const WriteOutcome result = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
-        summary_.result_write_s = comm_.wtime() - w0;
-        // A result that cannot be written: keep the tallies in a checkpoint instead.
-        const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint || !result.ok();
-        WriteOutcome checkpoint;
-        if (want_checkpoint) checkpoint = keep_checkpoint(elapsed, summary_.stop_reason, true);
-        if (want_checkpoint && checkpoint.ok()) summary_.checkpoint = latest_checkpoint_;
-        if (!result.ok() || !checkpoint.ok()) explain_failed_writes(result, checkpoint);
+        if (decision.exit_code == kExitInternal) keep_after_decision_fault(elapsed);
+        else write_result_and_checkpoint(decision, elapsed);
         final_code[0] = summary_.exit_code;
     }
     // Every rank ends with rank 0's verdict on the writes.
@@ -588,6 +593,33 @@ RunSummary RunLoop::write(const Decision& decision) {
     summary_.failed = summary_.failed || summary_.exit_code == kExitWriteFailed || summary_.write_failed ||
                       summary_.exit_code == kExitInternal;
     return summary_;
+}
+
+void RunLoop::keep_after_decision_fault(double elapsed) {
+    const WriteOutcome ck = keep_checkpoint(elapsed, summary_.stop_reason, true);
+    summary_.exit_code = kExitInternal;
+    summary_.failed = summary_.write_failed = true;
+    summary_.error = decide_error_ + "\n";
+    if (ck.ok()) {
+        summary_.checkpoint = latest_checkpoint_;
+        summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
+                          " photons) are kept in the checkpoint " + latest_checkpoint_ +
+                          "; continue with: " + recover_command(latest_checkpoint_);
+    } else
+        summary_.error += "luxtrace: the checkpoint was not written: " + ck.error +
+                          "\nluxtrace: " + latest_checkpoint_note();
+}
+
+void RunLoop::write_result_and_checkpoint(const Decision& decision, double elapsed) {
+    const double w0 = comm_.wtime();
+    const WriteOutcome result = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
+    summary_.result_write_s = comm_.wtime() - w0;
+    // A result that cannot be written: keep the tallies in a checkpoint instead.
+    const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint || !result.ok();
+    WriteOutcome checkpoint;
+    if (want_checkpoint) checkpoint = keep_checkpoint(elapsed, summary_.stop_reason, true);
+    if (want_checkpoint && checkpoint.ok()) summary_.checkpoint = latest_checkpoint_;
+    if (!result.ok() || !checkpoint.ok()) explain_failed_writes(result, checkpoint);
 }
 
 }  // namespace luxtrace

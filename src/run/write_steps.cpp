@@ -9,17 +9,18 @@ namespace luxtrace {
 
 namespace {
 
-constexpr std::array<std::string_view, 3> kFiles{"result", "checkpoint", "tallies"};
+constexpr std::array<std::string_view, 4> kFiles{"result", "checkpoint", "tallies", "run"};
 
 // Each step with the words a message says it with.
 struct Step {
     std::string_view name, doing;
 };
-constexpr std::array<Step, 5> kSteps{{{"estimates", "computing the estimates"},
+constexpr std::array<Step, 6> kSteps{{{"estimates", "computing the estimates"},
                                       {"annual", "computing the annual metrics"},
                                       {"image", "making the HDF5 file"},
                                       {"rename", "writing the file"},
-                                      {"ladybug", "writing the Ladybug results folder"}}};
+                                      {"ladybug", "writing the Ladybug results folder"},
+                                      {"decide", "deciding after a reduction"}}};
 
 std::string_view doing(std::string_view step) {
     for (const Step& s : kSteps)
@@ -52,10 +53,15 @@ std::string injected_fault_invalid(const std::string& spec) {
         bool file_ok = false, step_ok = false;
         for (std::string_view f : kFiles) file_ok = file_ok || f == file;
         for (const Step& s : kSteps) step_ok = step_ok || s.name == step;
-        if (!file_ok || !step_ok)
-            return "'" + std::string(item) +
-                   "' is not FILE:STEP with FILE result, checkpoint or tallies and STEP estimates, annual, image, "
-                   "rename or ladybug";
+        if (!file_ok || !step_ok) {
+            // Appended to, not built with "'" + ...: GCC 12 warns falsely on that (-Wrestrict,
+            // its bug 105329).
+            std::string why(1, '\'');
+            why += item;
+            why += "' is not FILE:STEP with FILE result, checkpoint, tallies or run and STEP estimates, annual, "
+                   "image, rename, ladybug or decide";
+            return why;
+        }
     }
     return {};
 }

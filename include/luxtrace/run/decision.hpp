@@ -23,6 +23,9 @@ struct Decision {
     // A rank could not trace: its tallies are incomplete, nothing is written (exit 1 for an
     // internal fault, 2 for bad input).
     static Decision fault(bool internal);
+    // Rank 0 failed to decide (a bug between reductions): every rank's tallies are whole,
+    // so the run stops and keeps them in a checkpoint (exit 1).
+    static Decision decision_fault();
 
     static constexpr std::size_t kWords = 5;
     std::vector<double> encode() const;

@@ -103,6 +103,10 @@ private:
     // The command that writes the result from `checkpoint`.
     std::string recover_command(const std::string& checkpoint) const;
     void explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint);
+    // Rank 0, after the final reduction: the result and the checkpoint the decision asks
+    // for; or, when rank 0's decision failed, the tallies alone in a checkpoint.
+    void write_result_and_checkpoint(const Decision& decision, double elapsed);
+    void keep_after_decision_fault(double elapsed);
 
     const Scene& scene_;
     const RunConfig& run_;
@@ -174,6 +178,7 @@ private:
 
     // write: the latest checkpoint this run wrote (rank 0), for messages after a failed write.
     std::string latest_checkpoint_;
+    std::string decide_error_;     // rank 0's failed decision, if one failed
     bool result_on_disk_ = false;  // the final result's file is written (what follows may fail)
     std::uint64_t latest_checkpoint_photons_ = 0;
 

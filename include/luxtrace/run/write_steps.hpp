@@ -6,6 +6,8 @@
 //
 //   FILE  result | checkpoint (periodic or final) | tallies (the tally checkpoint)
 //   STEP  estimates | annual | image | rename | ladybug
+// and run:decide, rank 0's decision after a reduction (the run then stops and keeps its
+// tallies).
 #include <functional>
 #include <stdexcept>
 #include <string>

@@ -698,6 +698,10 @@ def _read(f, path):
     version = int(attrs.get("format_version", 1))
     if not 1 <= version <= NEWEST_FORMAT_VERSION:
         raise ResultError(f"{path}: format_version {version}; this package reads 1 to {NEWEST_FORMAT_VERSION}")
+    if attrs.get("format") == "luxtrace-checkpoint" and "checkpoint" in f and "mesh" not in f and "global" not in f:
+        # A tally checkpoint: what a run keeps when its write failed (docs/RELIABILITY.md §8).
+        raise ResultError(f"{path}: a tally checkpoint (the run's tallies alone, no maps or estimates): write the "
+                          f"result from it with: luxtrace run SCENE --restart {path}")
     for g in ("mesh", "global"):
         if g not in f:
             raise ResultError(f"{path}: damaged result: no /{g} group")

@@ -275,3 +275,20 @@ def test_points_detector(binary, tmp_path):
     r3 = luxtrace.open(run_luxtrace(binary, scene, tmp_path / "r3.h5", "--photons", "20k", "--seed", "3"))
     with pytest.raises(luxtrace.MismatchError, match="other sensor positions"):
         luxtrace.combine([r, r3])
+
+
+def test_a_tally_checkpoint_says_what_it_is(binary, tmp_path):
+    """A run whose result and whole checkpoint both failed keeps the tallies alone (issue
+    35): the package refuses such a file with the command that writes its result, rather
+    than calling it damaged."""
+    import subprocess
+    scene = os.path.join(REPO, "tests", "data", "run", "room.toml")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    out = tmp_path / "r.h5"
+    p = subprocess.run([binary, "run", scene, "--output", str(out), "--quiet", "--threads", "1", "--photons", "20k",
+                        "--inject-fault", "result:image,checkpoint:estimates"], env=env, capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == 1, p.stdout + p.stderr
+    kept = str(out) + ".checkpoint.h5"
+    with pytest.raises(luxtrace.ResultError, match="a tally checkpoint .* --restart " + kept):
+        luxtrace.open(kept)

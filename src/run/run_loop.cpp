@@ -523,6 +523,9 @@ std::string RunLoop::recover_command(const std::string& checkpoint) const {
 }
 
 void RunLoop::explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint) {
+    // A run stopped early continues from its checkpoint; a finished one only writes.
+    const std::string then = summary_.exit_code == kExitStoppedEarly ? "; continue with: "
+                                                                     : "; write the result from it with: ";
     summary_.exit_code = result.internal || checkpoint.internal ? kExitInternal : kExitWriteFailed;
     summary_.failed = true;
     summary_.write_failed = true;
@@ -532,8 +535,8 @@ void RunLoop::explain_failed_writes(const WriteOutcome& result, const WriteOutco
             (result_on_disk_ ? result.error : "the result " + run_.output + " was not written: " + result.error) + "\n";
         if (checkpoint.ok())
             summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
-                              " photons) are kept in the checkpoint " + latest_checkpoint_ +
-                              "; write the result from it with: " + recover_command(latest_checkpoint_);
+                              " photons) are kept in the checkpoint " + latest_checkpoint_ + then +
+                              recover_command(latest_checkpoint_);
         else
             summary_.error += "luxtrace: the checkpoint was not written either: " + checkpoint.error +
                               "\nluxtrace: " + latest_checkpoint_note();

@@ -197,41 +197,11 @@ const Content& office() {
     return *c;
 }
 
-// A small room with a grid: a result of few objects, for sweeps of thousands of files.
+// The run-control tests' small room (two detectors): a result of few objects, for sweeps
+// of thousands of files.
 const Content& small_room() {
     static const test_support::ScratchDir dir("file_image_small");
-    static const std::unique_ptr<Content> c = [] {
-        const fs::path scene = dir.path() / "room.toml";
-        std::ofstream(scene) << R"([scene]
-name = "small room"
-
-[[material]]
-name = "wall"
-reflectance = 0.5
-
-[[shape]]
-type = "box"
-center = [1, 1, 1]
-size = [2, 2, 2]
-inward = true
-material = "wall"
-
-[[light]]
-type = "point"
-position = [0.5, 1, 1.5]
-flux_lm = 1000
-
-[[detector]]
-name = "floor"
-type = "illuminance"
-center = [1, 1, 0.8]
-normal = [0, 0, 1]
-up = [0, 1, 0]
-size = [1.5, 1.5]
-cells = [6, 6]
-)";
-        return content_of(scene, "20000", "5000", dir, "s");
-    }();
+    static const std::unique_ptr<Content> c = content_of(kData / "run" / "room.toml", "20000", "5000", dir, "s");
     return *c;
 }
 

@@ -239,7 +239,8 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
         for (const std::string& w : scene.warnings) std::cerr << "luxtrace: warning: " << w << '\n';
     const RunSummary s = run_simulation(scene, comm, opt, std::cout);
     if (s.failed) {
-        // Raised after parsing, inside a tracing thread: the rank that saw it says what.
+        // Raised inside a tracing thread (the rank that saw it says what), or while writing
+        // after tracing (rank 0 says what, and where the tallies are).
         if (!s.error.empty()) {
             if (s.exit_code == kExitBadInput || s.exit_code == kExitWriteFailed || s.write_failed)
                 std::cerr << "luxtrace: error: " << s.error << '\n';

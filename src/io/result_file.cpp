@@ -1,6 +1,5 @@
 #include "luxtrace/io/result_file.hpp"
 
-#include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
@@ -61,12 +60,6 @@ std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, cons
     return sealed_image(path, [&](hid_t file) {
         result_parts::write_tally_checkpoint(file, scene, layout, info, history, checkpoint);
     });
-}
-
-void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  std::span<const std::uint64_t> tallies, const RunInfo& info, const ResultEstimates& estimates,
-                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint) {
-    write_file_atomically(path, result_image(path, scene, layout, tallies, info, estimates, history, checkpoint));
 }
 
 }  // namespace luxtrace

@@ -15,11 +15,8 @@ Decision Decision::fault(bool internal) {
 }
 
 Decision Decision::decision_fault() {
-    Decision d;
-    d.stop = true;
-    d.checkpoint = true;
-    d.exit_code = kExitInternal;
-    d.reason = "error";
+    Decision d = fault(true);
+    d.checkpoint = true;  // unlike a tracing fault's, the tallies are whole
     return d;
 }
 

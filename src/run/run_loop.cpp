@@ -377,10 +377,18 @@ Decision RunLoop::broadcast(const Decision& decision) {
     return d;
 }
 
-RunInfo RunLoop::final_info(std::uint64_t photons, double e0, double elapsed_s, const std::string& reason) const {
+RunLoop::Traced RunLoop::traced() const {
+    Traced t;
+    t.done = plan_.done_ranges(summed_header_.progress);
+    t.photons = count_photons(t.done);
+    t.e0 = t.photons > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(t.photons) : 0.0;
+    return t;
+}
+
+RunInfo RunLoop::final_info(const Traced& t, double elapsed_s, const std::string& reason) const {
     RunInfo i = info_;
-    i.photons = photons;
-    i.flux_per_photon_lm = e0;
+    i.photons = t.photons;
+    i.flux_per_photon_lm = t.e0;
     i.elapsed_s = restored_.elapsed_s + elapsed_s;
     i.stop_reason = reason;
     control_->fill_run_info(i);
@@ -398,18 +406,18 @@ CheckpointData RunLoop::checkpoint_data(const std::vector<PhotonRange>& done) co
 
 void RunLoop::write_file(const std::string& path, double elapsed_s, const std::string& reason, bool as_checkpoint) {
     const WriteSteps steps(as_checkpoint ? "checkpoint" : "result", opt_.inject_fault);
-    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
-    const std::uint64_t n = count_photons(done);
+    const Traced t = traced();
+    const std::uint64_t n = t.photons;
+    const double e0 = t.e0;
     const std::span<const std::uint64_t> tallies = totals_.span();
-    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
     ResultEstimates est = steps.run("estimates", [&] { return estimate_result(scene_, layout_, tallies, e0, n); });
     // The annual metrics' errors take a few dozen replicate years: the final result only.
     if (scene_.annual)
         est.annual = steps.run("annual", [&] {
             return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates);
         });
-    const RunInfo i = final_info(n, e0, elapsed_s, reason);
-    const CheckpointData ck = as_checkpoint ? checkpoint_data(done) : CheckpointData{};
+    const RunInfo i = final_info(t, elapsed_s, reason);
+    const CheckpointData ck = as_checkpoint ? checkpoint_data(t.done) : CheckpointData{};
     const std::vector<char> image = steps.run("image", [&] {
         return result_image(path, scene_, layout_, tallies, i, est, control_->history(), as_checkpoint ? &ck : nullptr);
     });
@@ -450,16 +458,14 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
 
 void RunLoop::write_tally_checkpoint(const std::string& path, double elapsed_s, const std::string& reason) {
     const WriteSteps steps("tallies", opt_.inject_fault);
-    const std::vector<PhotonRange> done = plan_.done_ranges(summed_header_.progress);
-    const std::uint64_t n = count_photons(done);
-    const double e0 = n > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(n) : 0.0;
-    const RunInfo i = final_info(n, e0, elapsed_s, reason);
-    const CheckpointData ck = checkpoint_data(done);
+    const Traced t = traced();
+    const RunInfo i = final_info(t, elapsed_s, reason);
+    const CheckpointData ck = checkpoint_data(t.done);
     const std::vector<char> image = steps.run("image", [&] {
         return tally_checkpoint_image(path, scene_, layout_, i, control_->history(), ck);
     });
     steps.run("rename", [&] { write_file_atomically(path, image, steps.before_rename(path)); });
-    summary_.photons = n;
+    summary_.photons = t.photons;
 }
 
 WriteOutcome RunLoop::attempt(const std::function<void()>& write) {
@@ -517,15 +523,17 @@ std::string RunLoop::latest_checkpoint_note() const {
            " photons) is kept";
 }
 
-std::string RunLoop::recover_command(const std::string& checkpoint) const {
+std::string RunLoop::tallies_kept_note(const std::string& then) const {
     const std::string scene = opt_.scene_args.empty() ? scene_.file.string() : opt_.scene_args;
-    return "luxtrace run " + scene + " --restart " + checkpoint + " --output " + run_.output;
+    return "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
+           " photons) are kept in the checkpoint " + latest_checkpoint_ + "; " + then + ": luxtrace run " + scene +
+           " --restart " + latest_checkpoint_ + " --output " + run_.output;
 }
 
 void RunLoop::explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint) {
     // A run stopped early continues from its checkpoint; a finished one only writes.
-    const std::string then = summary_.exit_code == kExitStoppedEarly ? "; continue with: "
-                                                                     : "; write the result from it with: ";
+    const std::string then = summary_.exit_code == kExitStoppedEarly ? "continue with"
+                                                                     : "write the result from it with";
     summary_.exit_code = result.internal || checkpoint.internal ? kExitInternal : kExitWriteFailed;
     summary_.failed = true;
     summary_.write_failed = true;
@@ -533,10 +541,7 @@ void RunLoop::explain_failed_writes(const WriteOutcome& result, const WriteOutco
         // A failure after the result's rename (the Ladybug folder) says so itself.
         summary_.error =
             (result_on_disk_ ? result.error : "the result " + run_.output + " was not written: " + result.error) + "\n";
-        if (checkpoint.ok())
-            summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
-                              " photons) are kept in the checkpoint " + latest_checkpoint_ + then +
-                              recover_command(latest_checkpoint_);
+        if (checkpoint.ok()) summary_.error += tallies_kept_note(then);
         else
             summary_.error += "luxtrace: the checkpoint was not written either: " + checkpoint.error +
                               "\nluxtrace: " + latest_checkpoint_note();
@@ -593,8 +598,7 @@ RunSummary RunLoop::write(const Decision& decision) {
     // Every rank ends with rank 0's verdict on the writes.
     comm_.broadcast(final_code);
     summary_.exit_code = static_cast<int>(final_code[0]);
-    summary_.failed = summary_.failed || summary_.exit_code == kExitWriteFailed || summary_.write_failed ||
-                      summary_.exit_code == kExitInternal;
+    summary_.failed = summary_.failed || (summary_.exit_code != kExitOk && summary_.exit_code != kExitStoppedEarly);
     return summary_;
 }
 
@@ -605,9 +609,7 @@ void RunLoop::keep_after_decision_fault(double elapsed) {
     summary_.error = decide_error_ + "\n";
     if (ck.ok()) {
         summary_.checkpoint = latest_checkpoint_;
-        summary_.error += "luxtrace: the run's tallies (" + std::to_string(summary_.photons) +
-                          " photons) are kept in the checkpoint " + latest_checkpoint_ +
-                          "; continue with: " + recover_command(latest_checkpoint_);
+        summary_.error += tallies_kept_note("continue with");
     } else
         summary_.error += "luxtrace: the checkpoint was not written: " + ck.error +
                           "\nluxtrace: " + latest_checkpoint_note();

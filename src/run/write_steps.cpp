@@ -28,10 +28,6 @@ std::string_view doing(std::string_view step) {
     return step;
 }
 
-}  // namespace
-
-namespace {
-
 // The FILE:STEP items of a comma-separated list.
 std::vector<std::string_view> items(std::string_view list) {
     std::vector<std::string_view> out;

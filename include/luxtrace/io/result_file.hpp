@@ -98,12 +98,6 @@ std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, cons
                                          const TallyLayout& layout, const RunInfo& info,
                                          const std::vector<HistoryRow>& history, const CheckpointData& checkpoint);
 
-// result_image written to `path` atomically (a temporary file in the same directory,
-// then rename).
-void write_result(const std::filesystem::path& path, const Scene& scene, const TallyLayout& layout,
-                  std::span<const std::uint64_t> tallies, const RunInfo& info, const ResultEstimates& estimates,
-                  const std::vector<HistoryRow>& history, const CheckpointData* checkpoint = nullptr);
-
 // Reads a checkpoint written by write_result with CheckpointData; throws InputError.
 CheckpointState read_checkpoint(const std::filesystem::path& path);
 

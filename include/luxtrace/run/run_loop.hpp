@@ -97,11 +97,18 @@ private:
     // there, else (`beside_result`: the run's last chance) beside the result;
     // latest_checkpoint_ names it.
     WriteOutcome keep_checkpoint(double elapsed_s, const std::string& reason, bool beside_result);
-    RunInfo final_info(std::uint64_t photons, double e0, double elapsed_s, const std::string& reason) const;
+    // What the run has traced: its photon ranges, their count and each photon's flux.
+    struct Traced {
+        std::vector<PhotonRange> done;
+        std::uint64_t photons = 0;
+        double e0 = 0.0;
+    };
+    Traced traced() const;
+    RunInfo final_info(const Traced& t, double elapsed_s, const std::string& reason) const;
     CheckpointData checkpoint_data(const std::vector<PhotonRange>& done) const;
     std::string latest_checkpoint_note() const;
-    // The command that writes the result from `checkpoint`.
-    std::string recover_command(const std::string& checkpoint) const;
+    // "the run's tallies are kept in the checkpoint ...; THEN: luxtrace run ... --restart ...".
+    std::string tallies_kept_note(const std::string& then) const;
     void explain_failed_writes(const WriteOutcome& result, const WriteOutcome& checkpoint);
     // Rank 0, after the final reduction: the result and the checkpoint the decision asks
     // for; or, when rank 0's decision failed, the tallies alone in a checkpoint.

@@ -50,17 +50,17 @@ TEST_F(Loader, AnnualScenesLightsAreThePatchesTheGroundAndEverySunHour) {
     // Each light emits the year's sum: a patch's flux is Y_p Omega_p pi R^2 on the beam disk.
     double sun_lx_h = 0.0;
     for (const Light& l : s.lights.lights()) {
-        if (l.type == LightType::sky_patch) {
+        if (const SkyPatchLight* k = l.as<SkyPatchLight>()) {
             const std::size_t p = l.group - a.first_patch_group;
-            EXPECT_DOUBLE_EQ(l.patch_luminance_cd_m2, sky.yearly_luminance()[p]);
-            EXPECT_NEAR(l.patch.solid_angle_sr(), sky.patches().solid_angle_sr(p), 1e-12);
+            EXPECT_DOUBLE_EQ(k->luminance_cd_m2, sky.yearly_luminance()[p]);
+            EXPECT_NEAR(k->patch.solid_angle_sr(), sky.patches().solid_angle_sr(p), 1e-12);
             EXPECT_NEAR(l.flux_lm,
-                        l.patch_luminance_cd_m2 * l.patch.solid_angle_sr() * kPi * l.beam_radius * l.beam_radius,
+                        k->luminance_cd_m2 * k->patch.solid_angle_sr() * kPi * k->beam.radius * k->beam.radius,
                         1e-9 * l.flux_lm);
-        } else if (l.type == LightType::sun) {
-            const std::size_t sun = l.group - a.first_sun_group;
-            EXPECT_EQ(l.illuminance_lx, sky.hours()[sky.suns()[sun]].direct_normal_lx);
-            sun_lx_h += l.illuminance_lx;
+        } else if (const SunLight* sun = l.as<SunLight>()) {
+            const std::size_t i = l.group - a.first_sun_group;
+            EXPECT_EQ(sun->illuminance_lx, sky.hours()[sky.suns()[i]].direct_normal_lx);
+            sun_lx_h += sun->illuminance_lx;
         }
     }
     EXPECT_NEAR(sun_lx_h, sky.sum_direct_normal_lx_h(), 1e-9 * sun_lx_h);
@@ -98,12 +98,14 @@ TEST_F(Loader, AnnualPortalDropsPatchesBehindTheOpening) {
     const Scene s = load(kAnnual + kMat + kFloor + window + kGrid);
     std::size_t patches = 0;
     for (const Light& l : s.lights.lights()) {
-        if (l.type != LightType::sky_patch) continue;
+        const PortalLight* through = l.as<PortalLight>();
+        ASSERT_TRUE(through != nullptr) << l.label;
+        const SkyPatchLight* k = std::get_if<SkyPatchLight>(&through->source);
+        if (k == nullptr) continue;
         ++patches;
-        ASSERT_TRUE(l.portal);
         // Some of the patch faces the opening's outside (within the check's 0.1 margin).
-        const double mid_az = l.patch.az_lo_rad + 0.5 * l.patch.az_width_rad;
-        EXPECT_FALSE(std::cos(mid_az) > 0.5 && l.patch.mu_hi < 0.5) << l.label << " looks north";
+        const double mid_az = k->patch.az_lo_rad + 0.5 * k->patch.az_width_rad;
+        EXPECT_FALSE(std::cos(mid_az) > 0.5 && k->patch.mu_hi < 0.5) << l.label << " looks north";
     }
     EXPECT_GT(patches, 50u);
     EXPECT_LT(patches, 120u);

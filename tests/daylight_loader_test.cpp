@@ -34,16 +34,17 @@ double deg(double d) { return d * kPi / 180.0; }
 TEST_F(Loader, SunFromTheSiteIsSpasTestCase) {
     // The report's example through the scene file: zenith 50.111622, azimuth 194.340241.
     const Scene s = load(kSite + kMat + kFloor + kSun);
-    const Light& sun = s.lights.lights().at(0);
-    EXPECT_EQ(sun.type, LightType::sun);
+    const Light& light = s.lights.lights().at(0);
+    ASSERT_TRUE(light.is<SunLight>());
+    const SunLight& sun = *light.as<SunLight>();
     EXPECT_NEAR(sun.sun_altitude_deg, 90.0 - 50.111622, 1e-5);
     EXPECT_NEAR(sun.sun_azimuth_deg, 194.340241, 1e-5);
     // Travelling away from the sun: north +y, east +x, so from SSW towards NNE and down.
     const Vec3 to_sun(std::sin(deg(50.111622)) * std::sin(deg(194.340241)),
                       std::sin(deg(50.111622)) * std::cos(deg(194.340241)), std::cos(deg(50.111622)));
     expect_vec(sun.aim, -to_sun, 1e-6);
-    EXPECT_NEAR(sun.unobstructed_horizontal_lx, 80000.0 * std::cos(deg(50.111622)), 1e-3);
-    EXPECT_NEAR(sun.flux_lm, 80000.0 * kPi * sun.beam_radius * sun.beam_radius, 1e-9 * sun.flux_lm);
+    EXPECT_NEAR(light.unobstructed_horizontal_lx, 80000.0 * std::cos(deg(50.111622)), 1e-3);
+    EXPECT_NEAR(light.flux_lm, 80000.0 * kPi * sun.beam.radius * sun.beam.radius, 1e-9 * light.flux_lm);
     EXPECT_NEAR(sun.cos_half_angle, std::cos(deg(0.533 / 2.0)), 1e-12);
 }
 
@@ -52,7 +53,7 @@ TEST_F(Loader, NorthTurnsTheSky) {
     const Scene s = load("[site]\nnorth = [2, 0, 0]\n" + kMat + kFloor +
                          "[[light]]\ntype = \"sun\"\ndirect_normal_lx = 1\nsun_altitude_deg = 0.5\n"
                          "sun_azimuth_deg = 90\n");
-    const Light& sun = s.lights.lights().at(0);
+    const SunLight& sun = *s.lights.lights().at(0).as<SunLight>();
     expect_vec(sun.aim, Vec3(0, std::cos(deg(0.5)), -std::sin(deg(0.5))), 1e-12);
     expect_vec(sun.horizon.to_world(Vec3(0, 1, 0)), Vec3(1, 0, 0), 1e-15);  // north
 }
@@ -64,22 +65,22 @@ TEST_F(Loader, SkyFluxIsWhatCrossesItsDiskAndGroundGlowIsItsOwnEmitter) {
                          "sun_altitude_deg = 30\nsun_azimuth_deg = 180\ngroup = \"sun\"\n");
     const auto& L = s.lights.lights();
     ASSERT_EQ(L.size(), 3u);
-    const Light& sky = L[0];
-    EXPECT_EQ(sky.type, LightType::sky);
-    EXPECT_DOUBLE_EQ(sky.unobstructed_horizontal_lx, 10000.0);
+    ASSERT_TRUE(L[0].is<SkyLight>());
+    const SkyLight& sky = *L[0].as<SkyLight>();
+    EXPECT_DOUBLE_EQ(L[0].unobstructed_horizontal_lx, 10000.0);
     const double lz = 10000.0 / SkyModel::cie(16, 0, 0).horizontal_illuminance_per_zenith_luminance_sr();
     // The overcast sky's integral of L over the hemisphere: L_z 2 pi (1/3 + 2/3 x 1/2),
     // plus the ground glow 2 pi x 0.2 x 10000 / pi.
     const double integral = lz * 2.0 * kPi * (1.0 / 3.0 + 1.0 / 3.0) + 2.0 * 0.2 * 10000.0;
     EXPECT_NEAR(sky.sky->luminance_integral_cd_m2_sr() / integral, 1.0, 1e-6);
-    EXPECT_NEAR(sky.flux_lm, kPi * sky.beam_radius * sky.beam_radius * sky.sky->luminance_integral_cd_m2_sr(),
-                1e-9 * sky.flux_lm);
+    EXPECT_NEAR(L[0].flux_lm, kPi * sky.beam.radius * sky.beam.radius * sky.sky->luminance_integral_cd_m2_sr(),
+                1e-9 * L[0].flux_lm);
     const Light& glow = L[2];
-    EXPECT_EQ(glow.type, LightType::sky);
+    ASSERT_TRUE(glow.is<SkyLight>());
     EXPECT_EQ(glow.label, "light 2 (sun) ground glow");
     EXPECT_EQ(s.light_groups.at(glow.group), "sun");
     EXPECT_EQ(glow.unobstructed_horizontal_lx, 0.0);
-    EXPECT_NEAR(glow.sky->luminance_integral_cd_m2_sr(), 2.0 * 0.2 * 80000.0 * 0.5, 1e-6);
+    EXPECT_NEAR(glow.as<SkyLight>()->sky->luminance_integral_cd_m2_sr(), 2.0 * 0.2 * 80000.0 * 0.5, 1e-6);
     EXPECT_NEAR(L[1].unobstructed_horizontal_lx, 40000.0, 1e-9);
 }
 
@@ -88,9 +89,9 @@ TEST_F(Loader, BeamsCoverEveryDetector) {
     const Scene s = load(kMat + kFloor + kOvercast +
                          "[[detector]]\nname = \"far\"\ntype = \"illuminance\"\ncenter = [40, 0, 0]\n"
                          "normal = [0, 0, 1]\nup = [0, 1, 0]\nsize = [2, 2]\ncells = [1, 1]\n");
-    const Light& sky = s.lights.lights().at(0);
+    const SkyLight& sky = *s.lights.lights().at(0).as<SkyLight>();
     for (const double x : {39.0, 41.0})
-        for (const double y : {-1.0, 1.0}) EXPECT_LE(glm::length(Vec3(x, y, 0) - sky.beam_center), sky.beam_radius);
+        for (const double y : {-1.0, 1.0}) EXPECT_LE(glm::length(Vec3(x, y, 0) - sky.beam.center), sky.beam.radius);
 }
 
 TEST_F(Loader, SunBelowTheHorizonEmitsNothingAndSaysSo) {
@@ -156,7 +157,8 @@ TEST_F(Loader, PerezSkyGivesItsDiffuseIlluminance) {
     const PerezSky perez(in);
     EXPECT_NEAR(l.unobstructed_horizontal_lx, 0.5 * perez.diffuse_horizontal_illuminance_lx(),
                 1e-9 * l.unobstructed_horizontal_lx);
-    EXPECT_NE(l.sky_description.find("Perez (epsilon"), std::string::npos) << l.sky_description;
+    const std::string& description = l.as<SkyLight>()->description;
+    EXPECT_NE(description.find("Perez (epsilon"), std::string::npos) << description;
     EXPECT_TRUE(s.warnings.empty());
     // A sky too thin for the fitted range (Delta < 0.01) is modelled at its edge, with a warning.
     std::string thin = kPerez;

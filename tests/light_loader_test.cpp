@@ -26,8 +26,8 @@ using namespace test_support;
 TEST_F(EveryKey, Lights) {
     const auto& L = s().lights.lights();
     ASSERT_EQ(L.size(), 5u);
-    EXPECT_EQ(L[0].type, LightType::point);
-    expect_vec(L[0].position, Vec3(0, 0, 2.5));
+    ASSERT_TRUE(L[0].is<PointLight>());
+    expect_vec(L[0].as<PointLight>()->position, Vec3(0, 0, 2.5));
     EXPECT_EQ(L[0].flux_lm, 1200.0);
     ASSERT_EQ(L[0].band_share.size(), 3u);  // colour [2,1,1], normalised
     EXPECT_NEAR(L[0].band_share[0], 0.5, 1e-15);
@@ -35,38 +35,39 @@ TEST_F(EveryKey, Lights) {
     EXPECT_NEAR(L[0].band_share[2], 0.25, 1e-15);
 
     // IES: the flux is the file's times the multiplier; +z of the frame is the aim.
-    ASSERT_NE(L[1].distribution, nullptr);
+    const PointLight& ies = *L[1].as<PointLight>();
+    ASSERT_NE(ies.distribution, nullptr);
     const double file_flux = load_ies(data("ies/cosine.ies")).flux_lm();
     EXPECT_NEAR(L[1].flux_lm, 2.5 * file_flux, 1e-12 * file_flux);
-    expect_vec(L[1].aim, Vec3(0, 0.6, -0.8));
-    expect_vec(L[1].frame.n, Vec3(0, 0.6, -0.8));
-    expect_vec(L[1].frame.t, Vec3(1, 0, 0));  // C0 plane: scene +x, already normal to the aim
+    expect_vec(ies.frame.n, Vec3(0, 0.6, -0.8));
+    expect_vec(ies.frame.t, Vec3(1, 0, 0));  // C0 plane: scene +x, already normal to the aim
 
-    EXPECT_EQ(L[2].type, LightType::spot);
+    ASSERT_TRUE(L[2].is<SpotLight>());
     EXPECT_EQ(L[2].flux_lm, 800.0);
-    expect_vec(L[2].aim, Vec3(0, 0, -1));  // direction [0,0,-2], normalised
-    EXPECT_NEAR(L[2].cos_half_angle, std::cos(30.0 * kPi / 180.0), 1e-15);
+    expect_vec(L[2].as<SpotLight>()->frame.n, Vec3(0, 0, -1));  // direction [0,0,-2], normalised
+    EXPECT_NEAR(L[2].as<SpotLight>()->cos_half_angle, std::cos(30.0 * kPi / 180.0), 1e-15);
 
-    EXPECT_EQ(L[3].type, LightType::area);
+    ASSERT_TRUE(L[3].is<AreaLight>());
     EXPECT_EQ(L[3].flux_lm, 3000.0);
-    EXPECT_NEAR(L[3].surface.area_m2, 0.18, 1e-6);
-    for (const Vec3& n : L[3].surface.normal) expect_vec(n, Vec3(0, 0, -1), 1e-6);
+    const EmitterSurface& surface = L[3].as<AreaLight>()->surface;
+    EXPECT_NEAR(surface.area_m2, 0.18, 1e-6);
+    for (const Vec3& n : surface.normal) expect_vec(n, Vec3(0, 0, -1), 1e-6);
     const std::uint32_t mixed = material_id(s(), "mixed");
-    for (int t : L[3].surface.scene_triangle) EXPECT_EQ(s().triangle_material[t], mixed);
+    for (int t : surface.scene_triangle) EXPECT_EQ(s().triangle_material[t], mixed);
     for (double share : L[3].band_share) EXPECT_NEAR(share, 1.0 / 3.0, 1e-15);
 
     // Directional: flux = E * pi R^2 of a beam that covers every vertex of the scene.
-    const Light& d = L[4];
-    EXPECT_EQ(d.type, LightType::directional);
+    ASSERT_TRUE(L[4].is<DirectionalLight>());
+    const DirectionalLight& d = *L[4].as<DirectionalLight>();
     expect_vec(d.aim, glm::normalize(Vec3(1, 0, -1)));
     EXPECT_EQ(d.illuminance_lx, 100.0);
-    EXPECT_NEAR(d.flux_lm, 100.0 * kPi * d.beam_radius * d.beam_radius, 1e-9 * d.flux_lm);
+    EXPECT_NEAR(L[4].flux_lm, 100.0 * kPi * d.beam.radius * d.beam.radius, 1e-9 * L[4].flux_lm);
     for (const Vec3& v : s().vertices) {
-        const Vec3 r = v - d.beam_center;
+        const Vec3 r = v - d.beam.center;
         EXPECT_GT(glm::dot(r, d.aim), 0.0);
-        EXPECT_LE(glm::length(r - glm::dot(r, d.aim) * d.aim), d.beam_radius);
+        EXPECT_LE(glm::length(r - glm::dot(r, d.aim) * d.aim), d.beam.radius);
     }
-    EXPECT_NEAR(s().lights.total_flux_lm(), 1200 + L[1].flux_lm + 800 + 3000 + d.flux_lm, 1e-9);
+    EXPECT_NEAR(s().lights.total_flux_lm(), 1200 + L[1].flux_lm + 800 + 3000 + L[4].flux_lm, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------
@@ -139,7 +140,7 @@ TEST_F(Loader, IesBeamNarrowerThanTheSamplingGrid) {
     for (std::uint64_t k = 0; k < 1000; ++k) {
         u.start_photon(k);
         const double a = u.next(), b = u.next();
-        EXPECT_GE(l.distribution->sample(a, b).z, std::cos(0.1 * kPi / 180.0) - 1e-12);
+        EXPECT_GE(l.as<PointLight>()->distribution->sample(a, b).z, std::cos(0.1 * kPi / 180.0) - 1e-12);
     }
 }
 

@@ -660,8 +660,9 @@ TEST_F(SceneLights, ArraysShareOnePhotometry) {
     const Scene s = scene("type = \"point\"\nphotometry = \"" + f +
                           "\"\ngrid = { first = [1, 1, 2.8], spacing = [2, 1.5], count = [3, 2] }\n");
     ASSERT_EQ(s.lights.lights().size(), 6u);
-    EXPECT_EQ(s.lights.lights()[0].photometry.get(), s.lights.lights()[5].photometry.get());
-    EXPECT_NEAR(glm::distance(s.lights.lights()[5].position, Vec3(5, 2.5, 2.8)), 0.0, 1e-12);
+    EXPECT_EQ(s.lights.lights()[0].as<PointLight>()->photometry.get(),
+              s.lights.lights()[5].as<PointLight>()->photometry.get());
+    EXPECT_NEAR(glm::distance(s.lights.lights()[5].as<PointLight>()->position, Vec3(5, 2.5, 2.8)), 0.0, 1e-12);
     EXPECT_NEAR(s.lights.total_flux_lm(), 6.0 * s.lights.lights()[0].flux_lm, 1e-6);
     const Scene l = scene("type = \"point\"\nies = \"" + f + "\"\npositions = [[0, 0, 3], [1, 0, 3]]\n");
     EXPECT_EQ(l.lights.lights().size(), 2u);
@@ -675,7 +676,7 @@ TEST_F(SceneLights, FactorsAndTiltMultiplier) {
     const Scene s = scene("type = \"point\"\nies = \"t.ies\"\nposition = [0, 0, 3]\ntilt_deg = 30\nmultiplier = 2\n"
                           "dimming = 0.5\nlamp_factor = 0.9\nmaintenance_factor = 0.8\n");
     const Light& l = s.lights.lights()[0];
-    EXPECT_NEAR(l.tilt_factor, 0.8, 1e-12);
+    EXPECT_NEAR(l.as<PointLight>()->tilt_factor, 0.8, 1e-12);
     EXPECT_NEAR(l.flux_lm, file * 2.0 * 0.5 * 0.9 * 0.8, 1e-9);
     EXPECT_DOUBLE_EQ(l.maintenance_factor, 0.8);
     expect_bad_scene("type = \"point\"\nflux_lm = 100\nposition = [0, 0, 3]\ndimming = 1.5\n", "'dimming'");
@@ -690,15 +691,16 @@ TEST_F(SceneLights, EmissionStartsOnTheOpeningUnlessPoint) {
     const Scene a = scene("type = \"point\"\nies = \"" + f + "\"\nposition = [0, 0, 3]\nrotation_deg = 30\n");
     const Scene p = scene("type = \"point\"\nies = \"" + f + "\"\nposition = [0, 0, 3]\nemission = \"point\"\n");
     const Light& la = a.lights.lights()[0];
-    EXPECT_EQ(la.opening.shape, LuminousOpening::Shape::rectangle);
+    const LuminousOpening& opening = la.as<PointLight>()->opening;
+    EXPECT_EQ(opening.shape, LuminousOpening::Shape::rectangle);
     double max_off = 0.0;
     for (int k = 0; k < 1000; ++k) {
         const EmittedRay r = la.emit((k % 31) / 31.0, (k % 37) / 37.0, 0.3, 0.6);
         EXPECT_NEAR(r.origin.z, 3.0, 1e-12);
         // Inside the turned square.
         const Vec3 q = rz(r.origin - Vec3(0, 0, 3), -30.0);
-        EXPECT_LE(std::abs(q.x), 0.5 * la.opening.length_m + 1e-12);
-        EXPECT_LE(std::abs(q.y), 0.5 * la.opening.width_m + 1e-12);
+        EXPECT_LE(std::abs(q.x), 0.5 * opening.length_m + 1e-12);
+        EXPECT_LE(std::abs(q.y), 0.5 * opening.width_m + 1e-12);
         max_off = std::max(max_off, glm::length(q));
     }
     EXPECT_GT(max_off, 0.2);

@@ -127,22 +127,22 @@ TEST_F(Loader, PortalsSplitEverySunAndSkyLightAndKeepTheSkysEhOnce) {
     const double lz = 10000.0 / (7.0 * kPi / 9.0), rho_eh_sky = 0.2 * 10000.0, en = 60000.0;
     const double sun_eh = en * std::sin(deg(30.0));
     for (const Light& l : s.lights.lights()) {
-        if (l.type == LightType::point) {
-            EXPECT_EQ(l.portal, nullptr);
-            continue;
-        }
-        ASSERT_NE(l.portal, nullptr) << l.label;
-        const bool window = l.portal->name == "window";
+        if (l.is<PointLight>()) continue;  // the lamp: no portal
+        const PortalLight* through = l.as<PortalLight>();
+        ASSERT_NE(through, nullptr) << l.label;
+        const Portal& portal = *through->portal;
+        const bool window = portal.name == "window";
         const double area = window ? 2.0 : 1.0;
-        EXPECT_NEAR(l.portal->surface.area_m2, area, 1e-12);
+        EXPECT_NEAR(portal.surface.area_m2, area, 1e-12);
         // The window faces south (outward -y), the roof opening up.
-        expect_vec(l.portal->outward, window ? Vec3(0, -1, 0) : Vec3(0, 0, 1), 1e-12);
+        expect_vec(portal.outward, window ? Vec3(0, -1, 0) : Vec3(0, 0, 1), 1e-12);
         double e = 0.0;  // the plane's illuminance from this light
-        if (l.type == LightType::sun) {
+        const SkyLight* sky = std::get_if<SkyLight>(&through->source);
+        if (std::holds_alternative<SunLight>(through->source)) {
             const Vec3 to_sun(std::cos(deg(30.0)) * std::sin(deg(160.0)), std::cos(deg(30.0)) * std::cos(deg(160.0)),
                               std::sin(deg(30.0)));
-            e = en * std::max(0.0, glm::dot(to_sun, l.portal->outward));
-        } else if (l.sky_description.rfind("ground glow", 0) == 0) {
+            e = en * std::max(0.0, glm::dot(to_sun, portal.outward));
+        } else if (sky->description.rfind("ground glow", 0) == 0) {
             e = window ? 0.2 * sun_eh / 2.0 : 0.0;  // half the ground; a roof sees none
         } else {
             e = window ? lz * (kPi / 6.0 + 4.0 / 9.0) + rho_eh_sky / 2.0 : 10000.0;
@@ -153,7 +153,7 @@ TEST_F(Loader, PortalsSplitEverySunAndSkyLightAndKeepTheSkysEhOnce) {
 
 TEST_F(Loader, PortalFlipTurnsTheOpeningRound) {
     const Scene s = load(kWindowRoom + kOvercast + "[[portal]]\nshape = \"window\"\nflip = true\n");
-    expect_vec(s.lights.lights().at(0).portal->outward, Vec3(0, 1, 0), 1e-12);
+    expect_vec(s.lights.lights().at(0).as<PortalLight>()->portal->outward, Vec3(0, 1, 0), 1e-12);
 }
 
 TEST_F(Loader, BadPortalsNameFileLineAndKey) {

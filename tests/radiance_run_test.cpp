@@ -210,7 +210,8 @@ black polygon floor 0 0 12 -30 -30 -2  30 -30 -2  30 30 -2  -30 30 -2
     write_pts(dir.path() / "floor.pts", sensors);
     const Scene scene = load_scene(dir.path() / "scene.toml");
     ASSERT_EQ(scene.lights.lights().size(), 1u);
-    const Light& lum = scene.lights.lights()[0];
+    ASSERT_TRUE(scene.lights.lights()[0].is<PointLight>());
+    const PointLight& lum = *scene.lights.lights()[0].as<PointLight>();
     ASSERT_TRUE(lum.photometry);
     EXPECT_NEAR(lum.position.z, 2.999, 1e-3);  // the fixture's face, as its xform put it
     const fs::path out = dir.path() / "lum.h5";
@@ -318,8 +319,8 @@ black polygon ground 0 0 12 -5 -5 0  5 -5 0  5 5 0  -5 5 0
     int skies = 0, suns = 0;
     for (const Light& l : scene.lights.lights()) {
         horizontal += l.unobstructed_horizontal_lx;
-        skies += l.type == LightType::sky && l.unobstructed_horizontal_lx > 0.0;
-        suns += l.type == LightType::sun;
+        skies += l.is<SkyLight>() && l.unobstructed_horizontal_lx > 0.0;
+        suns += l.is<SunLight>();
     }
     EXPECT_EQ(skies, 1);
     EXPECT_EQ(suns, 1);

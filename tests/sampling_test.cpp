@@ -4,8 +4,9 @@
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/light/alias_table.hpp"
 #include "luxtrace/light/ies.hpp"
-#include "luxtrace/light/light.hpp"
+#include "luxtrace/light/light_set.hpp"
 #include "luxtrace/light/photometry_distribution.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
 #include "luxtrace/sampler/sampler.hpp"
@@ -161,14 +162,15 @@ TEST(Sampling, UniformConeInsideOnly) {
 TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
     // A whole spot light, aimed off-axis, framed as the scene loader frames it.
     for (const double half_deg : {25.0, 120.0}) {
+        SpotLight spot;
+        spot.position = Vec3(1.0, 2.0, 3.0);
+        const Vec3 aim = glm::normalize(Vec3(1.0, 2.0, -3.0));
+        spot.cos_half_angle = std::cos(half_deg * kDeg);
+        spot.frame = Frame::around(aim);
         Light l;
-        l.type = LightType::spot;
         l.flux_lm = 100.0;
-        l.position = Vec3(1.0, 2.0, 3.0);
-        l.aim = glm::normalize(Vec3(1.0, 2.0, -3.0));
-        l.cos_half_angle = std::cos(half_deg * kDeg);
-        l.frame = Frame::around(l.aim);
-        const Basis axis(l.aim);
+        l.kind = spot;
+        const Basis axis(aim);
         constexpr int nc = 20, nphi = 12, N = 120000;
         PhiloxSampler s(half_deg < 90.0 ? 14 : 114);
         std::vector<std::int64_t> obs(nc * nphi + 1, 0);
@@ -177,11 +179,12 @@ TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
             s.start_photon(k);
             const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
             const EmittedRay r = l.emit(a, b, c, d);
-            off_origin += glm::length(r.origin - l.position) > 0.0;
+            off_origin += glm::length(r.origin - spot.position) > 0.0;
             const double cz = glm::dot(r.direction, axis.n);
-            if (cz < l.cos_half_angle - 1e-12) obs.back()++;
+            if (cz < spot.cos_half_angle - 1e-12) obs.back()++;
             else
-                obs[bin_of((1.0 - cz) / (1.0 - l.cos_half_angle), nc) * nphi + bin_of(axis.phi01(r.direction), nphi)]++;
+                obs[bin_of((1.0 - cz) / (1.0 - spot.cos_half_angle), nc) * nphi +
+                    bin_of(axis.phi01(r.direction), nphi)]++;
         }
         EXPECT_EQ(off_origin, 0);
         std::vector<double> w(obs.size(), 1.0);
@@ -192,21 +195,22 @@ TEST(Sampling, SpotLightEmitsInsideItsConeOnly) {
 
 TEST(Sampling, IesPointLightFollowsIntensity) {
     const Photometry p = load_ies(std::filesystem::path(LUXTRACE_EXAMPLES_DIR) / "office" / "fixture.ies");
-    Light l;
-    l.type = LightType::point;
-    l.position = Vec3(2.0, 2.0, 2.8);
+    PointLight point;
+    point.position = Vec3(2.0, 2.0, 2.8);
     // Tilted so far that Frame::around(aim) would put C0 27 deg away from the loader's
     // C0: a light that ignored its frame would rotate the quadrant pattern visibly.
-    l.aim = glm::normalize(Vec3(0.6, 0.6, -0.3));
+    const Vec3 aim = glm::normalize(Vec3(0.6, 0.6, -0.3));
     auto dist = std::make_shared<PhotometryDistribution>(p);
-    l.flux_lm = dist->flux_lm();
-    l.distribution = dist;
+    point.distribution = dist;
     // The loader's frame: +z = nadir (aim), +x = C0 = scene +x projected off the aim
     // (the loader uses +y instead when |aim.x| >= 0.9, not the case here).
-    ASSERT_LT(std::abs(l.aim.x), 0.9);
-    const Vec3 c0 = glm::normalize(Vec3(1, 0, 0) - l.aim.x * l.aim);
-    const Vec3 c90 = glm::cross(l.aim, c0);
-    l.frame = Frame{c0, c90, l.aim};
+    ASSERT_LT(std::abs(aim.x), 0.9);
+    const Vec3 c0 = glm::normalize(Vec3(1, 0, 0) - aim.x * aim);
+    const Vec3 c90 = glm::cross(aim, c0);
+    point.frame = Frame{c0, c90, aim};
+    Light l;
+    l.flux_lm = dist->flux_lm();
+    l.kind = point;
 
     // Bins 5 deg in gamma over the whole sphere (the file stops at 90: the upper half
     // must stay dark) and 22.5 deg in C, both aligned with the file's angles so the
@@ -235,7 +239,7 @@ TEST(Sampling, IesPointLightFollowsIntensity) {
         s.start_photon(k);
         const double a = s.next(), b = s.next(), c = s.next(), d = s.next();
         const Vec3 dir = l.emit(a, b, c, d).direction;
-        const double g = std::acos(std::clamp(glm::dot(dir, l.aim), -1.0, 1.0));
+        const double g = std::acos(std::clamp(glm::dot(dir, aim), -1.0, 1.0));
         double cp = std::atan2(glm::dot(dir, c90), glm::dot(dir, c0));
         if (cp < 0.0) cp += 2.0 * kPi;
         obs[bin_of(g / kPi, ng) * ncp + bin_of(cp / (2.0 * kPi), ncp)]++;
@@ -250,10 +254,8 @@ TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
     };
     const std::vector<Tri> tris = {{Vec3(0, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0)},
                                    {Vec3(3, 0, 0), Vec3(0, 3, 0), Vec3(0.5, 0, 1)}};
-    Light l;
-    l.type = LightType::area;
-    l.flux_lm = 500.0;
-    EmitterSurface& surf = l.surface;
+    AreaLight emitter;
+    EmitterSurface& surf = emitter.surface;
     std::vector<double> area;
     for (std::size_t t = 0; t < tris.size(); ++t) {
         const Vec3 cr = glm::cross(tris[t].e1, tris[t].e2);
@@ -268,6 +270,9 @@ TEST(Sampling, AreaEmitterUniformByAreaAndLambertian) {
     }
     for (double& c : surf.cdf) c /= surf.area_m2;
     ASSERT_GT(std::abs(area[0] - area[1]), 0.5);
+    Light l;
+    l.flux_lm = 500.0;
+    l.kind = emitter;
 
     // Position bins: each triangle cut into m^2 equal sub-triangles in barycentric
     // coordinates (cell (i,j), lower or upper half); cells past the hypotenuse are

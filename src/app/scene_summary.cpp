@@ -102,29 +102,7 @@ void print_scene_summary(const Scene& s, const std::vector<std::string>& warning
                                                    : std::span<const Light>(s.lights.lights());
     for (const Light& l : listed) {
         out << "  " << std::left << std::setw(24) << l.label << std::right << "  " << l.flux_lm << " lm";
-        if (l.photometry) {
-            const Photometry& p = *l.photometry;
-            out << " (" << p.format << ", " << shape_name(l.opening.shape) << "): table " << p.flux_lm() << " lm";
-            if (p.stated_flux_lm > 0.0) out << ", file states " << p.stated_flux_lm << " lm (lamps x LORL)";
-            else if (p.lamp_flux_lm > 0.0) out << ", lamps rated " << p.lamp_flux_lm << " lm";
-            else out << ", absolute photometry";
-            if (l.multiplier != 1.0) out << ", x multiplier " << l.multiplier;
-            if (l.lamp_factor != 1.0) out << ", x lamp factor " << l.lamp_factor;
-            if (l.tilt_factor != 1.0) out << ", x tilt " << l.tilt_factor;
-        }
-        if (l.dimming != 1.0) out << ", dimmed to " << l.dimming;
-        if (l.maintenance_factor != 1.0) out << ", MF " << l.maintenance_factor;
-        if (l.type == LightType::area) out << " from " << l.surface.area_m2 << " m^2";
-        if (l.type == LightType::sun || (l.type == LightType::sky && l.unobstructed_horizontal_lx > 0.0)) {
-            if (l.type == LightType::sky) out << ", " << l.sky_description;
-            if (l.type == LightType::sun || l.sky_description != "CIE type 16")
-                out << ", sun at altitude " << std::setprecision(4) << l.sun_altitude_deg << " deg, azimuth "
-                    << l.sun_azimuth_deg << " deg";
-            if (l.type == LightType::sun) out << ", " << std::setprecision(6) << l.illuminance_lx << " lx normal";
-            out << ", " << std::setprecision(6) << l.unobstructed_horizontal_lx << " lx on the horizontal";
-        } else if (l.type == LightType::sky) {
-            out << ", " << l.sky_description;
-        }
+        l.describe(out);
         out << '\n';
     }
     print_light_groups(s, out);

@@ -1,8 +1,7 @@
 #include "luxtrace/glare/observer.hpp"
 
 #include "luxtrace/glare/ugr.hpp"
-#include "luxtrace/light/light.hpp"
-#include "luxtrace/light/luminous_opening.hpp"
+#include "luxtrace/light/light_set.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -29,76 +28,6 @@ std::string fmt(double v) {
     return os.str();
 }
 
-// The luminous area and intensity of one light toward the eye; false when it has none.
-bool luminous_terms(const Light& l, const Vec3& eye, GlareSource& s, std::string& why) {
-    if (l.type == LightType::area) {
-        // Lambertian from the front side: L = flux / (pi A) wherever it is seen; the
-        // triangles turned toward the eye add their projected areas and solid angles.
-        const EmitterSurface& e = l.surface;
-        Vec3 centre(0.0);
-        double area = 0.0, projected = 0.0, omega = 0.0;
-        for (std::size_t t = 0; t < e.p0.size(); ++t) {
-            const double a = 0.5 * glm::length(glm::cross(e.e1[t], e.e2[t]));
-            const Vec3 c = e.p0[t] + (e.e1[t] + e.e2[t]) / 3.0;
-            centre += a * c;
-            area += a;
-            const Vec3 to_eye = eye - c;
-            const double r = glm::length(to_eye);
-            const double cosine = r > 0.0 ? glm::dot(e.normal[t], to_eye) / r : 0.0;
-            if (cosine <= 0.0) continue;
-            projected += a * cosine;
-            omega += a * cosine / (r * r);
-        }
-        s.position = centre / area;
-        s.distance_m = glm::length(eye - s.position);
-        if (!(projected > 0.0)) {
-            why = "its emitting side faces away from the eye";
-            return false;
-        }
-        s.luminance_cd_m2 = l.flux_lm / (kPi * e.area_m2);
-        s.projected_area_m2 = projected;
-        s.intensity_cd = s.luminance_cd_m2 * projected;
-        s.solid_angle_sr = omega;
-        return true;
-    }
-    if (l.beam()) {
-        why = l.type == LightType::directional ? "a directional beam is not a luminaire (CIE 117 rates luminaires)"
-                                               : "daylight is not a luminaire (CIE 117 rates luminaires)";
-        return false;
-    }
-    if (l.type == LightType::spot || !l.photometry) {
-        why = "it has no luminous area (only a point light with a photometric file's luminous opening has one)";
-        return false;
-    }
-    // A photometric file's luminous opening; also when photons start from the point
-    // (emission = "point"): the file still says how large the luminaire looks.
-    const LuminousOpening& opening = l.opening.shape != LuminousOpening::Shape::point ? l.opening
-                                                                                      : l.photometry->opening;
-    if (opening.shape == LuminousOpening::Shape::point) {
-        why = "its photometric file gives no luminous opening";
-        return false;
-    }
-    s.position = l.position;
-    const Vec3 to_eye = eye - l.position;
-    s.distance_m = glm::length(to_eye);
-    if (!(s.distance_m > 0.0)) {
-        why = "the eye is at its photometric centre";
-        return false;
-    }
-    const Vec3 local = l.frame.to_local(to_eye / s.distance_m);
-    s.intensity_cd = l.photometry->intensity_cd(local) * (l.flux_lm / l.photometry->flux_lm());
-    s.projected_area_m2 = projected_area_m2(opening, local);
-    if (!(s.projected_area_m2 > 0.0)) {
-        why = "its luminous opening is seen edge-on";
-        return false;
-    }
-    // The intensity divided by the area seen is the opening's mean luminance toward the
-    // eye (uniform luminance, luminous_opening.hpp); omega is the small-source solid angle.
-    s.luminance_cd_m2 = s.intensity_cd / s.projected_area_m2;
-    s.solid_angle_sr = s.projected_area_m2 / (s.distance_m * s.distance_m);
-    return true;
-}
-
 }  // namespace
 
 std::vector<GlareSource> glare_sources(Observer& o, const LightSet& lights) {
@@ -109,13 +38,20 @@ std::vector<GlareSource> glare_sources(Observer& o, const LightSet& lights) {
         GlareSource s;
         s.light = i;
         s.label = l.label;
-        std::string why;
-        const bool luminous = luminous_terms(l, o.position, s, why);
-        if (!luminous && l.type != LightType::area) {
+        const LuminaireView view = l.view_from(o.position);
+        s.position = view.position;
+        s.distance_m = view.distance_m;
+        s.intensity_cd = view.intensity_cd;
+        s.projected_area_m2 = view.projected_area_m2;
+        s.luminance_cd_m2 = view.luminance_cd_m2;
+        s.solid_angle_sr = view.solid_angle_sr;
+        const bool luminous = view.luminous;
+        const std::string& why = view.why_not;
+        if (!luminous && !view.field_test_when_dark) {
             // Lights that cannot be placed in the field are left out of the sum; say so
             // only for those in front of the eye, the others could not count anyway.
-            const bool behind = glm::dot(l.position - o.position, o.view_direction) <= 0.0;
-            if (!l.beam() && behind) continue;
+            const bool behind = view.placed && glm::dot(view.position - o.position, o.view_direction) <= 0.0;
+            if (behind) continue;
             o.notes.push_back(who + l.label + " is left out of UGR: " + why);
             continue;
         }

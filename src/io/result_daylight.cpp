@@ -15,13 +15,14 @@ void write_daylight(hid_t file, const Scene& scene) {
     const auto& lights = scene.lights.lights();
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
-        if (l.type != LightType::sun && l.type != LightType::sky) continue;
+        const auto reference = l.daylight();
+        if (!reference) continue;
         labels.push_back(l.label);
-        kinds.push_back(l.type == LightType::sun ? "sun" : l.sky_description);
-        altitude.push_back(l.sun_altitude_deg);
-        azimuth.push_back(l.sun_azimuth_deg);
+        kinds.push_back(reference->model);
+        altitude.push_back(reference->sun_altitude_deg);
+        azimuth.push_back(reference->sun_azimuth_deg);
         horizontal.push_back(l.unobstructed_horizontal_lx);
-        normal.push_back(l.type == LightType::sun ? l.illuminance_lx : 0.0);
+        normal.push_back(reference->direct_normal_lx);
         light.push_back(i);
         group.push_back(l.group);
     }

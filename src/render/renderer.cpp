@@ -58,17 +58,41 @@ bool any_positive(const std::vector<double>& v) {
     return std::any_of(v.begin(), v.end(), [](double x) { return x > 0.0; });
 }
 
-// Intensity (cd) of a point or spot light toward unit direction `out` (from the light).
-double intensity_cd(const Light& l, const Vec3& out) {
-    if (l.type == LightType::spot) {
-        if (glm::dot(out, l.aim) < l.cos_half_angle) return 0.0;
-        return l.flux_lm / (2.0 * kPi * (1.0 - l.cos_half_angle));
+// A specular branch of a transparent surface: its per-band factor (empty: k0 alone) and
+// its direction.
+struct SpecularBranch {
+    std::vector<double> k;
+    double k0 = 1.0;
+    Vec3 direction{0.0};
+};
+
+// Glass: Fresnel reflection and the refracted rest (times its transmittance); glazing, a
+// thin pane: the mirror branch and the straight-through branch, per band.
+std::vector<SpecularBranch> transparent_branches(const Material& m, const Vec3& d, const Vec3& n, bool front,
+                                                 int bands) {
+    std::vector<SpecularBranch> out;
+    if (m.type == MaterialType::glass) {
+        const double eta = front ? 1.0 / m.ior : m.ior;  // entering through the front side
+        const double cos_i = -glm::dot(d, n);
+        const double r = fresnel_dielectric(cos_i, eta);
+        out.push_back({{}, r, reflect(d, n)});
+        if (r < 1.0) {
+            const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+            const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
+            out.push_back({m.transmittance, 1.0 - r, glm::normalize(eta * d + (eta * cos_i - cos_t) * n)});
+        }
+        return out;
     }
-    if (!l.distribution) return l.flux_lm / (4.0 * kPi);
-    if (!l.photometry) throw std::logic_error(l.label + ": light without its photometry");
-    // Luminaire frame: +z the photometric axis, +x C0 (photometry.hpp). A luminous
-    // opening is seen as its centre here, in the pictures only.
-    return l.photometry->intensity_cd(l.frame.to_local(out)) * (l.flux_lm / l.photometry->flux_lm());
+    if (!m.glazing) return out;
+    std::vector<double> r(static_cast<std::size_t>(bands)), t(static_cast<std::size_t>(bands));
+    for (std::size_t b = 0; b < r.size(); ++b) {
+        const PaneOptics o = (*m.glazing)[b].at(-glm::dot(d, n));
+        r[b] = o.reflectance;
+        t[b] = o.transmittance;
+    }
+    out.push_back({std::move(r), 1.0, reflect(d, n)});
+    out.push_back({std::move(t), 1.0, d});
+    return out;
 }
 
 }  // namespace
@@ -111,10 +135,12 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
     emitted_radiance_.assign(lights.size() * B, 0.0);
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
-        if (l.type != LightType::area || !(l.surface.area_m2 > 0.0)) continue;
-        for (int t : l.surface.scene_triangle) emitter_of_[static_cast<std::size_t>(t)] = static_cast<int>(i);
+        const AreaLight* area = l.as<AreaLight>();
+        if (area == nullptr || !(area->surface.area_m2 > 0.0)) continue;
+        for (int t : area->surface.scene_triangle) emitter_of_[static_cast<std::size_t>(t)] = static_cast<int>(i);
         for (std::size_t b = 0; b < B; ++b)  // Lambertian: L = M / pi, M = flux / area
-            emitted_radiance_[i * B + b] = light_weight_[i] * l.flux_lm * l.band_share[b] / (kPi * l.surface.area_m2);
+            emitted_radiance_[i * B + b] = light_weight_[i] * l.flux_lm * l.band_share[b] /
+                                           (kPi * area->surface.area_m2);
     }
 }
 
@@ -146,123 +172,42 @@ bool Renderer::passes(const Vec3& o, const Vec3& d, double t_far, double* share)
     return false;
 }
 
-void Renderer::sky_through_portal(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng,
-                                  const RenderOptions& opt, double* share, double* sum) const {
-    // E = integral over the opening of L(w) cos_s cos_p / r^2 dA, w from p to the opening's
-    // point: stratified points uniform in area, each seen through the opening (its pane's
-    // transmittance on the way) and with its sky not blocked beyond (the tracer's ray back out).
-    const Portal& portal = *l.portal;
-    const int count = std::max(1, opt.area_light_samples);
-    std::fill(sum, sum + bands_, 0.0);
-    double beyond[kMaxBands];
-    for (int k = 0; k < count; ++k) {
-        const SurfacePick s = surface_point(portal.surface, (k + rng.next()) / count, rng.next());
-        const Vec3 v = s.point - p;
-        const double d2 = glm::dot(v, v);
-        if (!(d2 > 4.0 * eps_ * eps_)) continue;
-        const double dist = std::sqrt(d2);
-        const Vec3 w = v / dist;
-        const double cos_s = glm::dot(n, w), cos_p = glm::dot(w, portal.outward);
-        if (cos_s <= 0.0 || cos_p <= 0.0) continue;
-        const double lum = l.sky->luminance_cd_m2(l.horizon.to_local(w));
-        if (!(lum > 0.0) || !passes(o, w, dist + eps_, share) ||
-            !passes(s.point + eps_ * portal.outward, w, std::numeric_limits<double>::infinity(), beyond))
-            continue;
-        for (int b = 0; b < bands_; ++b) sum[b] += lum * cos_s * cos_p / d2 * share[b] * beyond[b];
-    }
-    for (int b = 0; b < bands_; ++b) sum[b] *= portal.surface.area_m2 / count;
-}
-
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
     const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
-    constexpr double kFar = std::numeric_limits<double>::infinity();
-    double share[kMaxBands], sum[kMaxBands];
     const auto& lights = scene_.lights.lights();
-    double weight = 1.0;  // the light's in the picture (a light scene's weight of its group)
-    auto add = [&](const Light& l, double ev, const double* per_band) {
-        for (int b = 0; b < bands_; ++b) e[b] += weight * ev * per_band[b] * l.band_share[static_cast<std::size_t>(b)];
-    };
     for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& l = lights[li];
-        weight = light_weight_[li];
-        // A sun split over portals is one light per opening: a picture takes it once (its
-        // shadow rays find the openings); a sky through portals is sampled over each opening.
-        if (weight == 0.0 || (l.type == LightType::sun && l.portal && l.portal_index > 0)) continue;
-        switch (l.type) {
-        case LightType::point:
-        case LightType::spot: {
-            // Geometry at the hit point itself; only the shadow ray starts off the surface.
-            const Vec3 v = l.position - p;
-            const double dist = glm::length(v);
-            if (!(dist > 2.0 * eps_)) break;
-            const Vec3 dir = v / dist;
-            const double cos_s = glm::dot(n, dir);
-            if (cos_s <= 0.0) break;
-            const double i_cd = intensity_cd(l, -dir);
-            if (!(i_cd > 0.0) || !passes(o, dir, glm::length(l.position - o) - eps_, share)) break;
-            add(l, i_cd * cos_s / (dist * dist), share);
-            break;
-        }
-        case LightType::directional:
-        case LightType::sun: {
-            // A sun's disc is stood for by its centre in a picture.
-            const double cos_s = -glm::dot(n, l.aim);
-            if (cos_s <= 0.0 || !passes(o, -l.aim, kFar, share)) break;
-            add(l, l.illuminance_lx * cos_s, share);
-            break;
-        }
-        case LightType::sky_patch: break;  // annual scenes: `render` draws no patch sky
-        case LightType::sky: {
-            if (l.portal) {
-                sky_through_portal(l, p, n, o, rng, opt, share, sum);
-                add(l, 1.0, sum);
-                break;
-            }
-            // Directions drawn in proportion to L: E = (integral of L) x mean of
-            // cos x visibility (sky_directions.hpp).
-            const int count = std::max(1, opt.area_light_samples);
-            std::fill(sum, sum + bands_, 0.0);
-            for (int k = 0; k < count; ++k) {
-                const Vec3 w = l.horizon.to_world(l.sky->sample((k + rng.next()) / count, rng.next()));
-                const double cos_s = glm::dot(n, w);
-                if (cos_s > 0.0 && passes(o, w, kFar, share))
-                    for (int b = 0; b < bands_; ++b) sum[b] += cos_s * share[b];
-            }
-            add(l, l.sky->luminance_integral_cd_m2_sr() / count, sum);
-            break;
-        }
-        case LightType::area: {
-            // Stratified points on the emitter, uniform in area:
-            // E = sum (M/pi) cos_s cos_e / d^2 * A / N over unshadowed points.
-            const EmitterSurface& s = l.surface;
-            const int count = std::max(1, opt.area_light_samples);
-            std::fill(sum, sum + bands_, 0.0);
-            for (int k = 0; k < count; ++k) {
-                const double u = (k + rng.next()) / count;
-                const std::size_t i = sample_cdf(s.cdf, u);
-                const double lo = i == 0 ? 0.0 : s.cdf[i - 1];
-                const double width = s.cdf[i] - lo;
-                double a = width > 0.0 ? std::clamp((u - lo) / width, 0.0, 1.0) : 0.5;
-                double c = rng.next();
-                if (a + c > 1.0) {
-                    a = 1.0 - a;
-                    c = 1.0 - c;
-                }
-                const Vec3 q = s.p0[i] + a * s.e1[i] + c * s.e2[i];
-                const Vec3 v = q - p;
-                const double d2 = glm::dot(v, v);
-                if (!(d2 > 4.0 * eps_ * eps_)) continue;
-                const double dist = std::sqrt(d2);
-                const Vec3 dir = v / dist;
-                const double cos_s = glm::dot(n, dir), cos_e = -glm::dot(s.normal[i], dir);
-                if (cos_s <= 0.0 || cos_e <= 0.0 || !passes(o, dir, glm::length(q - o) - 2.0 * eps_, share)) continue;
-                for (int b = 0; b < bands_; ++b) sum[b] += cos_s * cos_e / d2 * share[b];
-            }
-            add(l, l.flux_lm / kPi / count, sum);  // (F / (pi A)) * A / N * sum
-            break;
-        }
-        }
+        if (light_weight_[li] == 0.0) continue;  // a light scene's weight of its group
+        double sum[kMaxBands];
+        if (!direct_from(l, p, n, o, rng, opt, sum)) continue;
+        for (int b = 0; b < bands_; ++b) e[b] += light_weight_[li] * sum[b] * l.band_share[static_cast<std::size_t>(b)];
     }
+}
+
+bool Renderer::direct_from(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng,
+                           const RenderOptions& opt, double* sum) const {
+    // Stratified samples of the light arriving at p (light.hpp), each times what a shadow
+    // ray lets through: for a light's point, up to it (stopping short of an emitter);
+    // through a portal, also from the opening out to the sky (the tracer's ray back out).
+    const IncidentSampling plan = l.incident_sampling(std::max(1, opt.area_light_samples));
+    if (plan.count == 0) return false;
+    std::fill(sum, sum + bands_, 0.0);
+    double share[kMaxBands], beyond[kMaxBands];
+    for (int k = 0; k < plan.count; ++k) {
+        const double u1 = plan.random ? (k + rng.next()) / plan.count : 0.0;
+        const double u2 = plan.random ? rng.next() : 0.0;
+        IncidentLight in;
+        if (!l.incident(p, n, u1, u2, plan.count, in)) continue;
+        if (!in.distant && !(in.distance_m > 2.0 * eps_)) continue;  // the light's own point
+        const double far = in.distant ? std::numeric_limits<double>::infinity()
+                                      : glm::length(in.end - o) - in.end_margin * eps_;
+        if (!passes(o, in.direction, far, share)) continue;
+        if (in.beyond_opening &&
+            !passes(in.end + eps_ * in.opening_outward, in.direction, std::numeric_limits<double>::infinity(), beyond))
+            continue;
+        for (int b = 0; b < bands_; ++b) sum[b] += in.illuminance_lx * share[b] * (in.beyond_opening ? beyond[b] : 1.0);
+    }
+    return true;
 }
 
 std::vector<double> Renderer::secondary_at(std::size_t tri, std::size_t side, const Vec3& p) const {
@@ -295,13 +240,7 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
                      double* out) const {
     const Hit hit = embree_.intersect(o, d);
     if (!hit.found) {  // leaves the scene: the sky and the ground glow there are, else black
-        const auto& lights = scene_.lights.lights();
-        for (std::size_t li = 0; li < lights.size(); ++li) {
-            const Light& l = lights[li];
-            if (l.type != LightType::sky || light_weight_[li] == 0.0 || (l.portal && l.portal_index > 0)) continue;
-            const double lum = light_weight_[li] * l.sky->luminance_cd_m2(l.horizon.to_local(d));
-            for (int b = 0; b < bands_; ++b) out[b] += weight[b] * lum * l.band_share[static_cast<std::size_t>(b)];
-        }
+        add_sky(d, weight, out);
         return;
     }
     const std::size_t tri = hit.triangle;
@@ -360,32 +299,21 @@ void Renderer::shade(const Vec3& o, const Vec3& d, const double* weight, int dep
         if (any_positive(m.specular_transmittance)) follow(&m.specular_transmittance, 1.0, d);
         break;
     case MaterialType::mirror: glossy(); break;
-    case MaterialType::glass: {
-        const double eta = front ? 1.0 / m.ior : m.ior;  // entering through the front side
-        const double cos_i = -glm::dot(d, n);
-        const double r = fresnel_dielectric(cos_i, eta);
-        follow(nullptr, r, reflect(d, n));
-        if (r < 1.0) {
-            const double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-            const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
-            const Vec3 refracted = glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
-            follow(m.transmittance.empty() ? nullptr : &m.transmittance, 1.0 - r, refracted);
-        }
+    case MaterialType::glass:
+    case MaterialType::glazing:
+        for (const SpecularBranch& branch : transparent_branches(m, d, n, front, bands_))
+            follow(branch.k.empty() ? nullptr : &branch.k, branch.k0, branch.direction);
         break;
     }
-    case MaterialType::glazing: {
-        // A thin pane: the mirror branch and the straight-through branch, per band.
-        if (!m.glazing) break;
-        std::vector<double> r(static_cast<std::size_t>(bands_)), t(static_cast<std::size_t>(bands_));
-        for (int b = 0; b < bands_; ++b) {
-            const PaneOptics o = (*m.glazing)[static_cast<std::size_t>(b)].at(-glm::dot(d, n));
-            r[static_cast<std::size_t>(b)] = o.reflectance;
-            t[static_cast<std::size_t>(b)] = o.transmittance;
-        }
-        follow(&r, 1.0, reflect(d, n));
-        follow(&t, 1.0, d);
-        break;
-    }
+}
+
+void Renderer::add_sky(const Vec3& d, const double* weight, double* out) const {
+    const auto& lights = scene_.lights.lights();
+    for (std::size_t li = 0; li < lights.size(); ++li) {
+        const Light& l = lights[li];
+        if (light_weight_[li] == 0.0) continue;
+        const double lum = light_weight_[li] * l.luminance_seen_cd_m2(d);
+        for (int b = 0; b < bands_; ++b) out[b] += weight[b] * lum * l.band_share[static_cast<std::size_t>(b)];
     }
 }
 

@@ -89,6 +89,84 @@ std::string padded(const char* prefix, std::size_t i, int width) {
     return text;
 }
 
+// Sky patches: Radiance's bin numbers (sky_patches.hpp), 1-based; one group each.
+void add_patch_lights(const AnnualSky& sky, const Frame& horizon, AnnualSetup& setup, std::vector<Light>& lights,
+                      std::vector<std::string>& groups) {
+    const SkyPatches& patches = sky.patches();
+    const std::vector<double>& yearly = sky.yearly_luminance();
+    setup.first_patch_group = 0;
+    for (std::size_t i = 0; i < patches.count(); ++i) {
+        groups.push_back(padded("sky_", i + 1, patches.count() >= 1000 ? 4 : 3));
+        const SkyPatches::Patch& p = patches.patch(i);
+        SkyPatchLight k;
+        k.horizon = horizon;
+        k.patch.mu_lo = std::sin(p.alt_lo_deg * kPi / 180.0);
+        k.patch.mu_hi = std::sin(p.alt_hi_deg * kPi / 180.0);
+        k.patch.az_lo_rad = p.az_lo_deg * kPi / 180.0;
+        k.patch.az_width_rad = (p.az_hi_deg - p.az_lo_deg) * kPi / 180.0;
+        k.luminance_cd_m2 = yearly[i];
+        Light l;
+        l.label = "sky patch " + std::to_string(i + 1);
+        l.group = groups.size() - 1;
+        l.band_share = {1.0};
+        l.kind = std::move(k);
+        if (yearly[i] > 0.0) lights.push_back(std::move(l));
+    }
+}
+
+// The ground below the horizon, a uniform glow of the year's reflected light.
+void add_ground_light(const AnnualSky& sky, const Frame& horizon, AnnualSetup& setup, std::vector<Light>& lights,
+                      std::vector<std::string>& groups) {
+    const std::vector<double>& yearly = sky.yearly_luminance();
+    setup.ground_group = groups.size();
+    groups.push_back("ground");
+    if (const double ground = yearly[sky.ground_entry()]; ground > 0.0) {
+        SkyLight k;
+        k.horizon = horizon;
+        k.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0, ground);
+        k.description = "annual ground glow (reflectance " + fmt_number(setup.options.ground_reflectance) + ")";
+        Light l;
+        l.label = "annual ground";
+        l.group = setup.ground_group;
+        l.band_share = {1.0};
+        l.kind = std::move(k);
+        lights.push_back(std::move(l));
+    }
+}
+
+// One sun per daylit hour with the sun up, in its own group.
+void add_sun_lights(const AnnualSky& sky, const Frame& horizon, AnnualSetup& setup, std::vector<Light>& lights,
+                    std::vector<std::string>& groups) {
+    setup.first_sun_group = groups.size();
+    const double cos_half = std::cos(kSunHalfAngleDeg * kPi / 180.0);
+    for (std::size_t s = 0; s < sky.suns().size(); ++s) {
+        const AnnualHour& h = sky.hours()[sky.suns()[s]];
+        groups.push_back(padded("sun_", sky.suns()[s] + 1, 4));
+        SunLight k;
+        k.illuminance_lx = h.direct_normal_lx;
+        k.sun_altitude_deg = h.sun_altitude_deg;
+        k.sun_azimuth_deg = h.sun_azimuth_deg;
+        k.cos_half_angle = cos_half;
+        k.horizon = horizon;
+        k.aim = -horizon.to_world(sky_direction_deg(h.sun_altitude_deg, h.sun_azimuth_deg));
+        k.frame = Frame::around(k.aim);
+        Light l;
+        l.label = "sun of hour " + std::to_string(sky.suns()[s] + 1);
+        l.group = groups.size() - 1;
+        l.band_share = {1.0};
+        l.kind = std::move(k);
+        lights.push_back(std::move(l));
+    }
+}
+
+void add_annual_lights(const AnnualSky& sky, const Frame& horizon, AnnualSetup& setup, std::vector<Light>& lights,
+                       std::vector<std::string>& groups) {
+    groups.clear();
+    add_patch_lights(sky, horizon, setup, lights, groups);
+    add_ground_light(sky, horizon, setup, lights, groups);
+    add_sun_lights(sky, horizon, setup, lights, groups);
+}
+
 }  // namespace
 
 void read_annual(SceneLoad& load, TableReader& root, std::vector<Light>& lights, std::vector<std::string>& groups) {
@@ -114,60 +192,7 @@ void read_annual(SceneLoad& load, TableReader& root, std::vector<Light>& lights,
     }
     r.finish();
     if (sky->daylit_hours() == 0) r.fail("weather", w.path + " has no hour with the sun up and daylight");
-    const Frame horizon = scene.site.horizon();
-    const SkyPatches& patches = sky->patches();
-    const std::vector<double>& yearly = sky->yearly_luminance();
-    groups.clear();
-    // Sky patches: Radiance's bin numbers (sky_patches.hpp), 1-based.
-    setup.first_patch_group = 0;
-    for (std::size_t i = 0; i < patches.count(); ++i) {
-        groups.push_back(padded("sky_", i + 1, patches.count() >= 1000 ? 4 : 3));
-        const SkyPatches::Patch& p = patches.patch(i);
-        Light l;
-        l.type = LightType::sky_patch;
-        l.label = "sky patch " + std::to_string(i + 1);
-        l.group = groups.size() - 1;
-        l.band_share = {1.0};
-        l.horizon = horizon;
-        l.patch.mu_lo = std::sin(p.alt_lo_deg * kPi / 180.0);
-        l.patch.mu_hi = std::sin(p.alt_hi_deg * kPi / 180.0);
-        l.patch.az_lo_rad = p.az_lo_deg * kPi / 180.0;
-        l.patch.az_width_rad = (p.az_hi_deg - p.az_lo_deg) * kPi / 180.0;
-        l.patch_luminance_cd_m2 = yearly[i];
-        l.sky_description = "annual sky patch";
-        if (yearly[i] > 0.0) lights.push_back(std::move(l));
-    }
-    setup.ground_group = groups.size();
-    groups.push_back("ground");
-    if (const double ground = yearly[sky->ground_entry()]; ground > 0.0) {
-        Light l;
-        l.type = LightType::sky;
-        l.label = "annual ground";
-        l.group = setup.ground_group;
-        l.band_share = {1.0};
-        l.horizon = horizon;
-        l.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0, ground);
-        l.sky_description = "annual ground glow (reflectance " + fmt_number(setup.options.ground_reflectance) + ")";
-        lights.push_back(std::move(l));
-    }
-    setup.first_sun_group = groups.size();
-    const double cos_half = std::cos(kSunHalfAngleDeg * kPi / 180.0);
-    for (std::size_t s = 0; s < sky->suns().size(); ++s) {
-        const AnnualHour& h = sky->hours()[sky->suns()[s]];
-        groups.push_back(padded("sun_", sky->suns()[s] + 1, 4));
-        Light l;
-        l.type = LightType::sun;
-        l.label = "sun of hour " + std::to_string(sky->suns()[s] + 1);
-        l.group = groups.size() - 1;
-        l.band_share = {1.0};
-        l.illuminance_lx = h.direct_normal_lx;
-        l.sun_altitude_deg = h.sun_altitude_deg;
-        l.sun_azimuth_deg = h.sun_azimuth_deg;
-        l.cos_half_angle = cos_half;
-        l.aim = -horizon.to_world(sky_direction_deg(h.sun_altitude_deg, h.sun_azimuth_deg));
-        l.frame = Frame::around(l.aim);
-        lights.push_back(std::move(l));
-    }
+    add_annual_lights(*sky, scene.site.horizon(), setup, lights, groups);
     setup.sky = std::move(sky);
     scene.annual = std::move(setup);
 }

@@ -320,8 +320,9 @@ namespace {
 // alone: electric light in a DF is counted as daylight, which a user rarely means.
 bool daylight_isolated(const Scene& scene) {
     const auto& lights = scene.lights.lights();
-    // Sun and sky lights, their ground glow included, are daylight.
-    auto daylit = [](const Light& l) { return l.type == LightType::sun || l.type == LightType::sky; };
+    // Sun and sky lights, their ground glow included, are daylight: they have a daylight
+    // reference.
+    auto daylit = [](const Light& l) { return l.daylight().has_value(); };
     auto electric = [&](const Light& l) { return !daylit(l) && l.flux_lm > 0.0; };
     if (std::none_of(lights.begin(), lights.end(), electric)) return true;
     for (const LightScene& ls : scene.light_scenes) {

@@ -24,10 +24,9 @@ namespace fs = std::filesystem;
 
 struct LightReader : StepReader {
     using StepReader::StepReader;
-    // By canonical file path and lamp set.
-    std::map<std::string, std::pair<std::shared_ptr<const Photometry>, std::shared_ptr<const PhotometryDistribution>>>
-        photometry_cache;
-    std::vector<std::string> groups;  // in order of first appearance
+    using PhotometryPair = std::pair<std::shared_ptr<const Photometry>, std::shared_ptr<const PhotometryDistribution>>;
+    std::map<std::string, PhotometryPair> photometry_cache;  // by canonical file path and lamp set
+    std::vector<std::string> groups;                         // in order of first appearance
     // The first sky light's ground reflectance, the default of every sun's ground glow, and
     // each sun light's own `ground_reflectance` (by label), applied once all are read.
     std::optional<double> sky_ground_reflectance;
@@ -67,28 +66,29 @@ struct LightReader : StepReader {
         }
     }
 
-    void read_sun(TableReader& r, Light& l) {
-        l.type = LightType::sun;
+    void read_sun(TableReader& r, Light& l, const std::string&) {
+        SunLight k;
         const SunAt s = sun_at(r, "sun");
-        l.sun_altitude_deg = s.altitude_deg;
-        l.sun_azimuth_deg = s.azimuth_deg;
+        k.sun_altitude_deg = s.altitude_deg;
+        k.sun_azimuth_deg = s.azimuth_deg;
         const auto e = r.number("direct_normal_lx");
         if (!e) r.fail_entry("type 'sun' needs 'direct_normal_lx'");
         if (!(*e > 0.0)) r.fail("direct_normal_lx", "must be positive, got " + fmt_number(*e));
-        l.illuminance_lx = *e * l.dimming;
-        l.horizon = scene.site.horizon();
-        l.aim = -l.horizon.to_world(sky_direction_deg(s.altitude_deg, s.azimuth_deg));
-        l.frame = Frame::around(l.aim);
-        l.cos_half_angle = std::cos(kSunHalfAngleDeg * kPi / 180.0);
+        k.illuminance_lx = *e * l.dimming;
+        k.horizon = scene.site.horizon();
+        k.aim = -k.horizon.to_world(sky_direction_deg(s.altitude_deg, s.azimuth_deg));
+        k.frame = Frame::around(k.aim);
+        k.cos_half_angle = std::cos(kSunHalfAngleDeg * kPi / 180.0);
         if (!(s.altitude_deg > 0.0)) {
             scene.warnings.push_back(l.label + ": the sun is below the horizon " + s.when + " (altitude " +
                                      fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
                                      " degrees): it emits nothing");
-            l.illuminance_lx = 0.0;
+            k.illuminance_lx = 0.0;
         }
         // E_n sin(h): the cone's mean direction is the aim, so this is exact for the disc.
-        l.unobstructed_horizontal_lx = l.illuminance_lx * std::max(0.0, std::sin(s.altitude_deg * kPi / 180.0));
+        l.unobstructed_horizontal_lx = k.illuminance_lx * std::max(0.0, std::sin(s.altitude_deg * kPi / 180.0));
         sun_ground_reflectance[l.label] = ground_reflectance(r);
+        l.kind = std::move(k);
     }
 
     std::optional<double> ground_reflectance(TableReader& r) {
@@ -97,8 +97,8 @@ struct LightReader : StepReader {
         return rho;
     }
 
-    void read_sky(TableReader& r, Light& l) {
-        l.type = LightType::sky;
+    void read_sky(TableReader& r, Light& l, const std::string&) {
+        SkyLight k;
         const auto model = r.string("sky");
         if (!model) r.fail_entry("type 'sky' needs 'sky' (\"cie\", \"perez\" or \"uniform\")");
         std::optional<SkyModel> sky;
@@ -109,7 +109,7 @@ struct LightReader : StepReader {
                 r.fail_entry("sky = \"cie\" needs 'cie_type' (1 to 15: the CIE standard general skies; 16: "
                              "the traditional CIE overcast sky)");
             if (*type < 1 || *type > 16) r.fail("cie_type", "must be 1 to 16, got " + std::to_string(*type));
-            l.sky_description = "CIE type " + std::to_string(*type);
+            k.description = "CIE type " + std::to_string(*type);
             if (*type == 16) {
                 sky = SkyModel::cie(16, 0.0, 0.0);
             } else {
@@ -120,18 +120,18 @@ struct LightReader : StepReader {
                                fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
                                " degrees): the CIE general skies (types 1 to 15) are defined for a sun above it; "
                                "use cie_type 16 or sky = \"uniform\"");
-                l.sun_altitude_deg = s.altitude_deg;
-                l.sun_azimuth_deg = s.azimuth_deg;
+                k.sun_altitude_deg = s.altitude_deg;
+                k.sun_azimuth_deg = s.azimuth_deg;
                 sky = SkyModel::cie(static_cast<int>(*type), (90.0 - s.altitude_deg) * kPi / 180.0,
                                     s.azimuth_deg * kPi / 180.0);
             }
         } else if (*model == "perez") {
-            const PerezSky perez = read_perez(r, l);
+            const PerezSky perez = read_perez(r, l.label, k);
             sky = perez.model();
             model_zenith_cd_m2 = perez.zenith_luminance_cd_m2();
         } else if (*model == "uniform") {
             sky = SkyModel::uniform();
-            l.sky_description = "uniform";
+            k.description = "uniform";
         } else {
             r.fail("sky", "must be \"cie\", \"perez\" or \"uniform\", got '" + *model + "'");
         }
@@ -155,21 +155,22 @@ struct LightReader : StepReader {
         const double rho = ground_reflectance(r).value_or(0.0);
         if (!sky_ground_reflectance) sky_ground_reflectance = rho;
         // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h / pi.
-        l.sky = std::make_shared<const SkyDirections>(sky, zenith_cd_m2, rho * l.unobstructed_horizontal_lx / kPi);
-        l.horizon = scene.site.horizon();
+        k.sky = std::make_shared<const SkyDirections>(sky, zenith_cd_m2, rho * l.unobstructed_horizontal_lx / kPi);
+        k.horizon = scene.site.horizon();
+        l.kind = std::move(k);
     }
 
     // sky = "perez": the hour's sky from its irradiances and dew point (perez_sky.hpp); the
     // day of the year from a Radiance gendaylit line, else the [site]'s time, else day 150.
-    PerezSky read_perez(TableReader& r, Light& l) {
+    PerezSky read_perez(TableReader& r, const std::string& label, SkyLight& k) {
         const SunAt s = sun_at(r, "sky");
         if (!(s.altitude_deg > 0.0))
             r.fail(r.has("sun_altitude_deg") ? "sun_altitude_deg" : "sky",
                    "the sun is not above the horizon " + s.when + " (altitude " +
                        fmt_number(std::round(s.altitude_deg * 100.0) / 100.0) +
                        " degrees): the Perez sky is defined for a sun above it");
-        l.sun_altitude_deg = s.altitude_deg;
-        l.sun_azimuth_deg = s.azimuth_deg;
+        k.sun_altitude_deg = s.altitude_deg;
+        k.sun_azimuth_deg = s.azimuth_deg;
         PerezSkyInput in;
         in.sun_zenith_rad = (90.0 - s.altitude_deg) * kPi / 180.0;
         in.sun_azimuth_rad = s.azimuth_deg * kPi / 180.0;
@@ -197,9 +198,9 @@ struct LightReader : StepReader {
         const PerezSky perez(in);
         const std::string condition = "epsilon " + fmt_number(std::round(perez.epsilon() * 1000.0) / 1000.0) +
                                       ", Delta " + fmt_number(std::round(perez.delta() * 1000.0) / 1000.0);
-        l.sky_description = "Perez (" + condition + ")";
+        k.description = "Perez (" + condition + ")";
         if (perez.clamped())
-            scene.warnings.push_back(l.label + ": the Perez sky's " + condition +
+            scene.warnings.push_back(label + ": the Perez sky's " + condition +
                                      " lie outside the fitted range (epsilon 1-12, Delta 0.01-0.6): modelled at the "
                                      "nearest edge");
         return perez;
@@ -211,17 +212,21 @@ struct LightReader : StepReader {
         const std::size_t n = lights.size();
         for (std::size_t i = 0; i < n; ++i) {
             const Light& sun = lights[i];
-            if (sun.type != LightType::sun) continue;
+            const SunLight* disc = sun.as<SunLight>();
+            if (disc == nullptr) continue;
             const double rho = sun_ground_reflectance[sun.label].value_or(sky_ground_reflectance.value_or(0.0));
             if (!(rho > 0.0 && sun.unobstructed_horizontal_lx > 0.0)) continue;
+            SkyLight k;
+            k.description = "ground glow of " + sun.label + " (reflectance " + fmt_number(rho) + ")";
+            k.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0,
+                                                          rho * sun.unobstructed_horizontal_lx / kPi);
+            k.horizon = disc->horizon;
+            k.sun_altitude_deg = disc->sun_altitude_deg;
+            k.sun_azimuth_deg = disc->sun_azimuth_deg;
             Light glow = sun;
-            glow.type = LightType::sky;
             glow.label = sun.label + " ground glow";
-            glow.sky_description = "ground glow of " + sun.label + " (reflectance " + fmt_number(rho) + ")";
-            glow.sky = std::make_shared<const SkyDirections>(std::nullopt, 0.0,
-                                                             rho * sun.unobstructed_horizontal_lx / kPi);
             glow.unobstructed_horizontal_lx = 0.0;
-            glow.illuminance_lx = 0.0;
+            glow.kind = std::move(k);
             lights.push_back(std::move(glow));
         }
     }
@@ -311,6 +316,142 @@ struct LightReader : StepReader {
         return v;
     }
 
+    // A [[light]] type's reader: the kind's own keys into `l`; `type` for messages.
+    using KindReader = void (LightReader::*)(TableReader& r, Light& l, const std::string& type);
+    struct KindEntry {
+        const char* type;
+        KindReader read;
+        bool at_positions;  // copies at `positions` or on a `grid`
+    };
+    // The [[light]] types, one reader each (light.hpp says where a new kind goes).
+    static const KindEntry kKinds[6];
+
+    // `flux_lm` or another positive amount the type needs.
+    double required_positive(TableReader& r, const char* key, const std::string& type) {
+        const auto f = r.number(key);
+        if (!f) r.fail_entry("type '" + type + "' needs '" + key + "'");
+        if (!(*f > 0.0)) r.fail(key, "must be positive, got " + std::to_string(*f));
+        return *f;
+    }
+
+    void read_point(TableReader& r, Light& l, const std::string& type) {
+        PointLight k;
+        k.frame = placement_frame(r, "aim");
+        if (r.has("ies") && r.has("photometry")) r.fail("photometry", "give 'photometry' or 'ies', not both");
+        const std::string file_key = r.has("ies") ? "ies" : "photometry";
+        if (const auto file = r.string(file_key)) {
+            read_photometric(r, file_key, *file, k, l);
+        } else {
+            for (const char* key : {"emission", "lamp_set", "lamp_factor", "multiplier"})
+                if (r.has(key)) r.fail(key, "applies to a light with 'photometry' (or 'ies') only");
+            l.flux_lm = required_positive(r, "flux_lm", type) * l.dimming;
+        }
+        l.kind = std::move(k);
+    }
+
+    // A point light with a luminaire's photometry: the file's flux times the light's factors.
+    void read_photometric(TableReader& r, const std::string& file_key, const std::string& file, PointLight& k,
+                          Light& l) {
+        k.multiplier = r.number("multiplier").value_or(1.0);
+        if (!(k.multiplier > 0.0)) r.fail("multiplier", "must be positive");
+        k.lamp_factor = factor(r, "lamp_factor", 1.0, 100.0);
+        if (r.has("flux_lm"))
+            r.fail("flux_lm", "with '" + file_key + "' the flux comes from the file (use 'multiplier')");
+        const auto set = r.integer("lamp_set").value_or(1);
+        if (set < 1 || set > 20) r.fail("lamp_set", "must lie in [1, 20]");
+        std::tie(k.photometry, k.distribution) = photometry_of(r, file_key, file, static_cast<int>(set));
+        const std::string emission = r.string("emission").value_or("opening");
+        if (emission == "opening") k.opening = k.photometry->opening;
+        else if (emission != "point") r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
+        // The file's own flux (exact for its interpolant), not the sampling table's, with
+        // the lamp's output at this tilt (LM-63 TILT data).
+        if (!k.photometry->tilt.empty()) k.tilt_factor = k.photometry->tilt.at(tilt_from_nadir_deg(k.frame));
+        l.flux_lm = k.photometry->flux_lm() * k.multiplier * k.lamp_factor * l.dimming * k.tilt_factor;
+        if (!(l.flux_lm > 0.0))
+            r.fail(file_key, k.tilt_factor > 0.0 ? "the photometry carries no flux"
+                                                 : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
+                                                       fmt_number(tilt_from_nadir_deg(k.frame)) + " degrees");
+        if (!std::isfinite(l.flux_lm)) r.fail("multiplier", "the flux of the file times the multiplier is too large");
+    }
+
+    // The file's photometry and sampling table. Lights sharing a file share them (about
+    // 1 MB each: one copy keeps it in cache).
+    PhotometryPair photometry_of(TableReader& r, const std::string& file_key, const std::string& file, int set) {
+        const std::string key = fs::weakly_canonical(load.resolve(file)).string() + "#" + std::to_string(set);
+        if (const auto cached = photometry_cache.find(key); cached != photometry_cache.end()) return cached->second;
+        Photometry photometry;
+        try {
+            photometry = load_photometry(load.resolve(file), set);
+        } catch (const InputError& e) {  // say which scene entry named the file
+            r.fail(r.has("lamp_set") && std::string(e.what()).find("lamp set") != std::string::npos ? "lamp_set"
+                                                                                                    : file_key,
+                   e.what());
+        }
+        std::shared_ptr<const PhotometryDistribution> dist;
+        try {
+            dist = std::make_shared<const PhotometryDistribution>(photometry);
+        } catch (const std::invalid_argument&) {  // no light on the sampling grid
+            r.fail(file_key, load.resolve(file).string() +
+                                 ": its light lies in too narrow a beam for the 0.5 degree sampling grid");
+        }
+        for (const std::string& note : photometry.notes) scene.warnings.push_back(note);
+        PhotometryPair pair{std::make_shared<const Photometry>(std::move(photometry)), std::move(dist)};
+        photometry_cache.emplace(key, pair);
+        return pair;
+    }
+
+    void read_spot(TableReader& r, Light& l, const std::string& type) {
+        SpotLight k;
+        l.flux_lm = required_positive(r, "flux_lm", type) * l.dimming;
+        if (r.has("aim") && r.has("direction")) r.fail("aim", "give 'direction' or 'aim', not both");
+        k.frame = placement_frame(r, r.has("aim") ? "aim" : "direction");
+        const auto half = r.number("half_angle_deg");
+        if (!half) r.fail_entry("type 'spot' needs 'half_angle_deg'");
+        if (!(*half > 0.0 && *half <= 180.0)) r.fail("half_angle_deg", "must lie in (0, 180]");
+        k.cos_half_angle = std::cos(*half * kPi / 180.0);
+        l.kind = std::move(k);
+    }
+
+    void read_area(TableReader& r, Light& l, const std::string& type) {
+        AreaLight k;
+        l.flux_lm = required_positive(r, "flux_lm", type) * l.dimming;
+        const auto shape = r.string("shape");
+        if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
+        k.surface = shape_surface(load, r, "shape", *shape);
+        l.kind = std::move(k);
+    }
+
+    void read_directional(TableReader& r, Light& l, const std::string& type) {
+        DirectionalLight k;
+        const auto d = r.vec3("direction");
+        if (!d) r.fail_entry("type 'directional' needs 'direction'");
+        k.aim = unit_vector(r, "direction", *d);
+        k.frame = Frame::around(k.aim);
+        k.illuminance_lx = required_positive(r, "illuminance_lx", type) * l.dimming;
+        l.kind = std::move(k);
+    }
+
+    // `colour`: the light's share per band, normalised (all bands alike without it).
+    std::vector<double> band_shares(TableReader& r, const toml::table& t) {
+        const std::size_t nb = scene.bands.size();
+        std::vector<double> share(nb, 1.0);
+        if (r.has("colour")) {
+            if (t["colour"].is_array()) share = *r.numbers("colour", nb);
+            else share.assign(nb, *r.number("colour"));
+            double sum = 0.0;
+            for (double c : share) {
+                if (!(c >= 0.0)) r.fail("colour", "shares must not be negative");
+                sum += c;
+            }
+            if (!(sum > 0.0)) r.fail("colour", "needs a positive share in some band");
+            if (!std::isfinite(sum)) r.fail("colour", "shares are too large");
+        }
+        double share_sum = 0.0;
+        for (double c : share) share_sum += c;
+        for (double& c : share) c /= share_sum;
+        return share;
+    }
+
     // `label`: the light's name in messages and results, "light i (type)" unless given
     // (a Radiance model's lights are named by their modifier).
     std::vector<Light> parse_light(const toml::table& t, std::size_t i, const std::string& label = "") {
@@ -319,130 +460,25 @@ struct LightReader : StepReader {
         const std::string type = r.string("type").value_or("");
         l.label = label.empty() ? "light " + std::to_string(i + 1) + " (" + type + ")" : label;
         l.group = group_of(r);  // shared by every copy at `positions` or on the `grid`
-        auto flux = [&](const char* key) {
-            const auto f = r.number(key);
-            if (!f) r.fail_entry("type '" + type + "' needs '" + key + "'");
-            if (!(*f > 0.0)) r.fail(key, "must be positive, got " + std::to_string(*f));
-            return *f;
-        };
+        const auto kind = std::find_if(std::begin(kKinds), std::end(kKinds),
+                                       [&](const KindEntry& k) { return type == k.type; });
         std::vector<Vec3> positions{Vec3(0.0)};
-        if (type == "point" || type == "spot") positions = light_positions(r, type);
+        if (kind != std::end(kKinds) && kind->at_positions) positions = light_positions(r, type);
         l.maintenance_factor = factor(r, "maintenance_factor", scene.maintenance_factor, 1.0);
         l.dimming = factor(r, "dimming", 1.0, 1.0);
-        if (type == "point") {
-            l.type = LightType::point;
-            l.frame = placement_frame(r, "aim");
-            l.aim = l.frame.n;
-            if (r.has("ies") && r.has("photometry")) r.fail("photometry", "give 'photometry' or 'ies', not both");
-            const std::string file_key = r.has("ies") ? "ies" : "photometry";
-            if (const auto file = r.string(file_key)) {
-                l.multiplier = r.number("multiplier").value_or(1.0);
-                if (!(l.multiplier > 0.0)) r.fail("multiplier", "must be positive");
-                l.lamp_factor = factor(r, "lamp_factor", 1.0, 100.0);
-                if (r.has("flux_lm"))
-                    r.fail("flux_lm", "with '" + file_key + "' the flux comes from the file (use 'multiplier')");
-                const auto set = r.integer("lamp_set").value_or(1);
-                if (set < 1 || set > 20) r.fail("lamp_set", "must lie in [1, 20]");
-                // Lights sharing a file share its photometry and sampling table (about
-                // 1 MB each: one copy keeps it in cache).
-                const std::string key = fs::weakly_canonical(load.resolve(*file)).string() + "#" + std::to_string(set);
-                auto cached = photometry_cache.find(key);
-                if (cached == photometry_cache.end()) {
-                    Photometry photometry;
-                    try {
-                        photometry = load_photometry(load.resolve(*file), static_cast<int>(set));
-                    } catch (const InputError& e) {  // say which scene entry named the file
-                        r.fail(r.has("lamp_set") && std::string(e.what()).find("lamp set") != std::string::npos
-                                   ? "lamp_set"
-                                   : file_key,
-                               e.what());
-                    }
-                    std::shared_ptr<const PhotometryDistribution> dist;
-                    try {
-                        dist = std::make_shared<const PhotometryDistribution>(photometry);
-                    } catch (const std::invalid_argument&) {  // no light on the sampling grid
-                        r.fail(file_key, load.resolve(*file).string() +
-                                             ": its light lies in too narrow a beam for the 0.5 degree sampling grid");
-                    }
-                    for (const std::string& note : photometry.notes) scene.warnings.push_back(note);
-                    cached = photometry_cache
-                                 .emplace(key, std::make_pair(std::make_shared<const Photometry>(std::move(photometry)),
-                                                              std::move(dist)))
-                                 .first;
-                }
-                l.photometry = cached->second.first;
-                l.distribution = cached->second.second;
-                const std::string emission = r.string("emission").value_or("opening");
-                if (emission == "opening") l.opening = l.photometry->opening;
-                else if (emission != "point")
-                    r.fail("emission", "must be \"opening\" or \"point\", got '" + emission + "'");
-                // The file's own flux (exact for its interpolant), not the sampling table's,
-                // with the lamp's output at this tilt (LM-63 TILT data).
-                if (!l.photometry->tilt.empty()) l.tilt_factor = l.photometry->tilt.at(tilt_from_nadir_deg(l.frame));
-                l.flux_lm = l.photometry->flux_lm() * l.multiplier * l.lamp_factor * l.dimming * l.tilt_factor;
-                if (!(l.flux_lm > 0.0))
-                    r.fail(file_key, l.tilt_factor > 0.0
-                                         ? "the photometry carries no flux"
-                                         : "the file's TILT multiplier is 0 at this luminaire's tilt of " +
-                                               fmt_number(tilt_from_nadir_deg(l.frame)) + " degrees");
-                if (!std::isfinite(l.flux_lm))
-                    r.fail("multiplier", "the flux of the file times the multiplier is too large");
-            } else {
-                for (const char* k : {"emission", "lamp_set", "lamp_factor", "multiplier"})
-                    if (r.has(k)) r.fail(k, "applies to a light with 'photometry' (or 'ies') only");
-                l.flux_lm = flux("flux_lm") * l.dimming;
-            }
-        } else if (type == "spot") {
-            l.type = LightType::spot;
-            l.flux_lm = flux("flux_lm") * l.dimming;
-            if (r.has("aim") && r.has("direction")) r.fail("aim", "give 'direction' or 'aim', not both");
-            l.frame = placement_frame(r, r.has("aim") ? "aim" : "direction");
-            l.aim = l.frame.n;
-            const auto half = r.number("half_angle_deg");
-            if (!half) r.fail_entry("type 'spot' needs 'half_angle_deg'");
-            if (!(*half > 0.0 && *half <= 180.0)) r.fail("half_angle_deg", "must lie in (0, 180]");
-            l.cos_half_angle = std::cos(*half * kPi / 180.0);
-        } else if (type == "area") {
-            l.type = LightType::area;
-            l.flux_lm = flux("flux_lm") * l.dimming;
-            const auto shape = r.string("shape");
-            if (!shape) r.fail_entry("type 'area' needs 'shape' (the name of a [[shape]])");
-            l.surface = shape_surface(load, r, "shape", *shape);
-        } else if (type == "directional") {
-            l.type = LightType::directional;
-            const auto d = r.vec3("direction");
-            if (!d) r.fail_entry("type 'directional' needs 'direction'");
-            l.aim = unit_vector(r, "direction", *d);
-            l.frame = Frame::around(l.aim);
-            l.illuminance_lx = flux("illuminance_lx") * l.dimming;
-        } else if (type == "sun") {
-            read_sun(r, l);
-        } else if (type == "sky") {
-            read_sky(r, l);
-        } else {
+        if (kind == std::end(kKinds))
             r.fail("type", "unknown light type '" + type + "' (expected point, spot, area, directional, sun or sky)");
-        }
-        const std::size_t nb = scene.bands.size();
-        l.band_share.assign(nb, 1.0);
-        if (r.has("colour")) {
-            if (t["colour"].is_array()) l.band_share = *r.numbers("colour", nb);
-            else l.band_share.assign(nb, *r.number("colour"));
-            double sum = 0.0;
-            for (double c : l.band_share) {
-                if (!(c >= 0.0)) r.fail("colour", "shares must not be negative");
-                sum += c;
-            }
-            if (!(sum > 0.0)) r.fail("colour", "needs a positive share in some band");
-            if (!std::isfinite(sum)) r.fail("colour", "shares are too large");
-        }
-        double share_sum = 0.0;  // Light::band_share is normalised
-        for (double c : l.band_share) share_sum += c;
-        for (double& c : l.band_share) c /= share_sum;
+        (this->*kind->read)(r, l, type);
+        l.band_share = band_shares(r, t);
         r.finish();
         std::vector<Light> out;
         for (std::size_t k = 0; k < positions.size(); ++k) {
             Light copy = l;
-            copy.position = positions[k];
+            std::visit(
+                [&](auto& c) {
+                    if constexpr (requires { c.position; }) c.position = positions[k];
+                },
+                copy.kind);
             if (positions.size() > 1) copy.label += " #" + std::to_string(k + 1);
             out.push_back(std::move(copy));
         }
@@ -450,34 +486,17 @@ struct LightReader : StepReader {
     }
 };
 
-// Beams cover the sphere around the box [lo, hi], started just outside it; their flux is
-// what crosses the disk.
+// The [[light]] types, one reader each (light.hpp says where a new kind goes).
+const LightReader::KindEntry LightReader::kKinds[6] = {
+    {"point", &LightReader::read_point, true}, {"spot", &LightReader::read_spot, true},
+    {"area", &LightReader::read_area, false},  {"directional", &LightReader::read_directional, false},
+    {"sun", &LightReader::read_sun, false},    {"sky", &LightReader::read_sky, false},
+};
+
+// Distant lights cover the sphere around the box [lo, hi], started just outside it; their
+// flux is what crosses their disks (a portal's light keeps its opening's).
 void place_beams(Vec3 lo, Vec3 hi, std::vector<Light>& lights) {
-    const Vec3 mid = 0.5 * (lo + hi);
-    const double radius = 0.5 * glm::length(hi - lo) * 1.001 + 1e-6;
-    for (Light& l : lights)
-        if (l.portal) {
-            continue;  // its photons start on the opening, its flux is the opening's
-        } else if (l.type == LightType::directional) {
-            l.beam_radius = radius;
-            l.beam_center = mid - 1.01 * radius * l.aim;
-            l.flux_lm = l.illuminance_lx * kPi * radius * radius;
-        } else if (l.type == LightType::sun) {
-            // Rays up to the disc's half angle off the aim drift sideways by at most
-            // 2.02 r tan(a) before they leave the sphere: the disk is that much larger.
-            const double half = kSunHalfAngleDeg * kPi / 180.0;
-            l.beam_radius = radius * (1.0 + 2.1 * std::tan(half));
-            l.beam_center = mid - 1.01 * radius * l.aim;
-            l.flux_lm = l.illuminance_lx * kPi * l.beam_radius * l.beam_radius;
-        } else if (l.type == LightType::sky) {
-            l.beam_radius = radius;
-            l.beam_center = mid;
-            l.flux_lm = l.sky->luminance_integral_cd_m2_sr() * kPi * radius * radius;
-        } else if (l.type == LightType::sky_patch) {
-            l.beam_radius = radius;
-            l.beam_center = mid;
-            l.flux_lm = l.patch_luminance_cd_m2 * l.patch.solid_angle_sr() * kPi * radius * radius;
-        }
+    for (Light& l : lights) l.place(lo, hi);
 }
 
 // Every light emits a positive, finite flux except a sun below the horizon; the scene's
@@ -488,9 +507,9 @@ void check_fluxes(const std::string& fname, const std::vector<Light>& lights) {
     bool dark_through_portal = false;
     for (const Light& l : lights) {
         total_flux += l.flux_lm;
-        if ((l.type == LightType::sun && l.illuminance_lx == 0.0) || (l.portal && l.flux_lm == 0.0)) {
+        if (l.may_be_dark()) {
             dark = l.label;
-            dark_through_portal = l.portal != nullptr;
+            dark_through_portal = l.is<PortalLight>();
             continue;
         }
         if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)) || !std::isfinite(total_flux))
@@ -594,7 +613,7 @@ void read_lights(SceneLoad& load, TableReader& root) {
 void cover_detectors_with_beams(SceneLoad& load) {
     Scene& scene = load.scene;
     const auto& lights = scene.lights.lights();
-    if (std::none_of(lights.begin(), lights.end(), [](const Light& l) { return l.beam(); })) return;
+    if (std::none_of(lights.begin(), lights.end(), [](const Light& l) { return l.distant(); })) return;
     Vec3 lo = scene.bounds_min, hi = scene.bounds_max;
     for (const Detector& d : scene.detectors) {
         if (d.type == DetectorType::points) {  // every sensor's disc

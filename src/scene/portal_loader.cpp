@@ -101,9 +101,7 @@ void read_portals(SceneLoad& load, TableReader& root) {
                         [&](const std::string& what) { throw InputError(p.where + ": illum surface " + what); }));
     Scene& scene = load.scene;
     const auto& old = scene.lights.lights();
-    if (std::none_of(old.begin(), old.end(), [](const Light& l) {
-            return l.type == LightType::sun || l.type == LightType::sky || l.type == LightType::sky_patch;
-        })) {
+    if (std::none_of(old.begin(), old.end(), [](const Light& l) { return l.enters_portals(); })) {
         if (tables.empty())
             throw InputError(load.radiance_portals[0].where + ": illum surface '" + load.radiance_portals[0].name +
                              "' is a daylight portal, and the scene has no sky or sun (no !gensky or !gendaylit, "
@@ -113,23 +111,18 @@ void read_portals(SceneLoad& load, TableReader& root) {
     }
     std::vector<Light> lights;
     for (const Light& l : old) {
-        if (l.type != LightType::sun && l.type != LightType::sky && l.type != LightType::sky_patch) {
+        if (!l.enters_portals()) {  // electric light
             lights.push_back(l);
             continue;
         }
         for (std::size_t p = 0; p < portals.size(); ++p) {
-            Light through = light_through_portal(l, portals[p]);
-            through.portal_index = p;
-            if (p > 0) through.unobstructed_horizontal_lx = 0.0;  // the sky's E_h,ext, counted once
+            Light through = *l.through_portal(portals[p], p);
             // An annual scene's patches and hourly suns behind an opening are many and
             // expected: they are left out without a word.
             if (scene.annual && !(through.flux_lm > 0.0)) continue;
-            const bool lit = l.type == LightType::sky || l.illuminance_lx > 0.0;
-            if (lit && !(through.flux_lm > 0.0))
-                scene.warnings.push_back(through.label + ": " +
-                                         (l.type == LightType::sun ? "the sun is behind the opening"
-                                                                   : "no sky or ground is seen through the opening") +
-                                         ": no light enters through it");
+            const PortalLight& opening = *through.as<PortalLight>();
+            if (opening.source_lit() && !(through.flux_lm > 0.0))
+                scene.warnings.push_back(through.label + ": " + opening.why_dark() + ": no light enters through it");
             lights.push_back(std::move(through));
         }
     }

@@ -127,8 +127,26 @@ struct RadianceModelReader : StepReader {
         for (std::size_t k = 0; k < m.modifiers.size(); ++k) scene.radiance_modifiers.push_back(describe(k));
         material_of_modifier.assign(m.modifiers.size(), -1);
         const std::string context = fname + ":" + std::to_string(r.line("file")) + ": " + r.context();
-        // ies2rad luminaires are point lights with their photometry; their small emitting
-        // surfaces are left out of the geometry (a photon would start on them).
+        const std::vector<bool> luminaire_triangle = add_luminaires(m, files, named, r.context());
+        const std::vector<std::int64_t> placed = add_mesh_triangles(
+            load, m.mesh,
+            [&](std::size_t tri) {
+                return luminaire_triangle[tri] ? kLeaveOutTriangle
+                                               : material(static_cast<int>(m.triangle_modifier[tri]));
+            },
+            [&](const std::string& what) { throw InputError(context + ": " + what); });
+        add_surface_lights(placed);
+        add_portals(placed);
+        add_sources();
+        add_skies();
+        model = nullptr;
+    }
+
+    // ies2rad luminaires are point lights with their photometry; their small emitting
+    // surfaces are left out of the geometry (a photon would start on them): which mesh
+    // triangles those are. `named`: the entry's `photometry` files by brightdata name.
+    std::vector<bool> add_luminaires(const RadianceModel& m, const std::vector<fs::path>& files,
+                                     std::map<std::string, std::pair<fs::path, int>>& named, const std::string& entry) {
         std::vector<bool> luminaire_triangle(m.mesh.triangles.size(), false);
         const std::vector<std::size_t> luminaires = radiance_luminaire_modifiers(m);
         for (const std::size_t b : luminaires) {
@@ -154,21 +172,10 @@ struct RadianceModelReader : StepReader {
         }
         for (const std::size_t b : luminaires) named.erase(m.modifiers[b].name);
         if (!named.empty())
-            throw InputError(fname + ":" + std::to_string(named.begin()->second.second) + ": " + r.context() +
+            throw InputError(fname + ":" + std::to_string(named.begin()->second.second) + ": " + entry +
                              ": photometry: '" + named.begin()->first +
                              "' is no brightdata luminaire of the model (check lists its modifiers)");
-        const std::vector<std::int64_t> placed = add_mesh_triangles(
-            load, m.mesh,
-            [&](std::size_t tri) {
-                return luminaire_triangle[tri] ? kLeaveOutTriangle
-                                               : material(static_cast<int>(m.triangle_modifier[tri]));
-            },
-            [&](const std::string& what) { throw InputError(context + ": " + what); });
-        add_surface_lights(placed);
-        add_portals(placed);
-        add_sources();
-        add_skies();
-        model = nullptr;
+        return luminaire_triangle;
     }
 
     // check's lines for a luminaire's brightdata and the emitting modifiers it feeds.
@@ -207,21 +214,21 @@ struct RadianceModelReader : StepReader {
         out.label = "radiance luminaire '" + lum.name + "'";
         Light& l = out.light;
         l.label = out.label;
-        l.type = LightType::point;
-        l.position = lum.position_m;
-        l.frame = lum.frame;
-        l.aim = l.frame.n;
+        PointLight k;
+        k.position = lum.position_m;
+        k.frame = lum.frame;
         auto photometry = std::make_shared<const Photometry>(std::move(lum.photometry));
         try {
-            l.distribution = std::make_shared<const PhotometryDistribution>(*photometry);
+            k.distribution = std::make_shared<const PhotometryDistribution>(*photometry);
         } catch (const std::invalid_argument&) {
             throw InputError(model->where(brightdata.at) + ": luminaire '" + lum.name +
                              "': its light lies in too narrow a beam for the 0.5 degree sampling grid");
         }
-        l.photometry = photometry;
-        l.opening = photometry->opening;
-        if (!photometry->tilt.empty()) l.tilt_factor = photometry->tilt.at(tilt_from_nadir_deg(l.frame));
-        l.flux_lm = photometry->flux_lm() * l.tilt_factor;
+        k.photometry = photometry;
+        k.opening = photometry->opening;
+        if (!photometry->tilt.empty()) k.tilt_factor = photometry->tilt.at(tilt_from_nadir_deg(k.frame));
+        l.flux_lm = photometry->flux_lm() * k.tilt_factor;
+        l.kind = std::move(k);
         l.maintenance_factor = scene.maintenance_factor;
         l.band_share.assign(scene.bands.size(), 1.0 / static_cast<double>(scene.bands.size()));
         if (!(l.flux_lm > 0.0 && std::isfinite(l.flux_lm)))
@@ -254,10 +261,11 @@ struct RadianceModelReader : StepReader {
             out.label = "radiance light '" + model->modifiers[index].name + "'";
             Light& l = out.light;
             l.label = out.label;
-            l.type = LightType::area;
-            l.surface = triangles_surface(scene, tris);
+            AreaLight area;
+            area.surface = triangles_surface(scene, tris);
             // Lambertian from the front side: M = pi L, the flux M A.
-            l.flux_lm = kPi * luminance * l.surface.area_m2;
+            l.flux_lm = kPi * luminance * area.surface.area_m2;
+            l.kind = std::move(area);
             l.maintenance_factor = scene.maintenance_factor;
             for (const double x : map.luminance_cd_m2) l.band_share.push_back(x / luminance);
             load.radiance_lights.push_back(std::move(out));
@@ -309,12 +317,13 @@ struct RadianceModelReader : StepReader {
                                  "as a uniform sky; give other skies as !gensky or !gendaylit");
             Light& l = out.light;
             l.label = out.label;
-            l.type = LightType::directional;
-            l.aim = -s.direction;  // the direction the light travels
-            l.frame = Frame::around(l.aim);
+            DirectionalLight beam;
+            beam.aim = -s.direction;  // the direction the light travels
+            beam.frame = Frame::around(beam.aim);
             // E = L Omega, Omega = 2 pi (1 - cos(angle / 2)) the cone's solid angle.
             const double omega_sr = 2.0 * kPi * (1.0 - std::cos(0.5 * s.angle_deg * kPi / 180.0));
-            l.illuminance_lx = luminance * omega_sr;
+            beam.illuminance_lx = luminance * omega_sr;
+            l.kind = std::move(beam);
             l.maintenance_factor = scene.maintenance_factor;
             for (const double x : map.luminance_cd_m2) l.band_share.push_back(x / luminance);
             load.radiance_lights.push_back(std::move(out));

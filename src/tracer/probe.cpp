@@ -90,11 +90,11 @@ std::vector<std::string> probe_scene(const Scene& scene, const EmbreeScene& embr
                           "hit (is it inside a closed black box?)",
                           l.label.c_str());
             warnings.emplace_back(buf);
-        } else if (escaped == rays && !l.beam()) {
+        } else if (escaped == rays && !l.distant()) {
             std::snprintf(buf, sizeof buf, "%s: no probe ray hits any surface: its light leaves the scene",
                           l.label.c_str());
             warnings.emplace_back(buf);
-        } else if (escaped > rays / 2 && !l.beam()) {
+        } else if (escaped > rays / 2 && !l.distant()) {
             std::snprintf(buf, sizeof buf, "%s: %.0f%% of probe rays leave the scene without hitting a surface",
                           l.label.c_str(), 100.0 * escaped / rays);
             warnings.emplace_back(buf);

@@ -312,10 +312,12 @@ void check_scene(const Scene& s) {
         if (l.band_share.size() != s.bands.size()) broken(l.label + ": band shares");
         for (double c : l.band_share)
             if (!(c >= 0.0 && c <= 1.0)) broken(l.label + ": band share " + std::to_string(c));
-        if (l.type == LightType::area && !(l.surface.area_m2 > 0.0 && std::isfinite(l.surface.area_m2)))
-            broken(l.label + ": emitter area " + std::to_string(l.surface.area_m2));
-        if (l.type == LightType::point && l.distribution &&
-            !(l.distribution->flux_lm() > 0.0 && std::isfinite(l.distribution->flux_lm())))
+        const AreaLight* area = l.as<AreaLight>();
+        if (area != nullptr && !(area->surface.area_m2 > 0.0 && std::isfinite(area->surface.area_m2)))
+            broken(l.label + ": emitter area " + std::to_string(area->surface.area_m2));
+        const PointLight* point = l.as<PointLight>();
+        if (point != nullptr && point->distribution &&
+            !(point->distribution->flux_lm() > 0.0 && std::isfinite(point->distribution->flux_lm())))
             broken(l.label + ": sampling table flux");
         // A few emitted rays must be finite.
         for (int k = 0; k < 4; ++k) {

@@ -17,7 +17,7 @@
 // that the sky's horizon crosses (tilted openings) are integrated over 8 x 8 sub-cells.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/direction_table.hpp"
-#include "luxtrace/light/light.hpp"
+#include "luxtrace/light/emitter_surface.hpp"
 #include "luxtrace/light/sky_directions.hpp"
 
 #include <memory>
@@ -52,9 +52,5 @@ private:
     DirectionTable table_;
     double illuminance_lx_ = 0.0;
 };
-
-// `light` (a sun or sky, possibly a ground glow) as it shines through `portal`: the same
-// light with its flux and directions those of the opening.
-Light light_through_portal(const Light& light, const std::shared_ptr<const Portal>& portal);
 
 }  // namespace luxtrace

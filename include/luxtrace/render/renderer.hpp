@@ -65,8 +65,12 @@ private:
     bool passes(const Vec3& o, const Vec3& d, double t_far, double* share) const;
     // Sky light `l` through its portal onto point p (normal n, shadow rays from o): the
     // illuminance per band into sum[] (share[]: scratch).
-    void sky_through_portal(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng,
-                            const RenderOptions& opt, double* share, double* sum) const;
+    // What a ray leaving the scene along d sees: the skies and ground glows.
+    void add_sky(const Vec3& d, const double* weight, double* out) const;
+    // The illuminance one light gives p (normal n) per band, before its band shares; false
+    // if it sends none to a picture (a sky patch, a sun's second portal).
+    bool direct_from(const Light& l, const Vec3& p, const Vec3& n, const Vec3& o, Rng& rng, const RenderOptions& opt,
+                     double* sum) const;
 
     const Scene& scene_;
     const EmbreeScene& embree_;

@@ -6,7 +6,7 @@
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/glare/observer.hpp"
-#include "luxtrace/light/light.hpp"
+#include "luxtrace/light/light_set.hpp"
 #include "luxtrace/light/site.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/scene/run_config.hpp"

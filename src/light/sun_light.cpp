@@ -1,0 +1,47 @@
+#include "luxtrace/light/sun_light.hpp"
+
+#include "luxtrace/light/uniform_sampling.hpp"
+
+#include <cmath>
+#include <iomanip>
+
+namespace luxtrace {
+
+Vec3 SunLight::travel_direction(double u1, double u2) const {
+    return frame.to_world(sample_uniform_cone(cos_half_angle, u1, u2));
+}
+
+EmittedRay SunLight::emit(double up1, double up2, double ud1, double ud2) const {
+    return {beam.center + frame.to_world(disk_point(beam.radius, up1, up2)), travel_direction(ud1, ud2)};
+}
+
+double SunLight::place(const SceneSphere& sphere) {
+    // Rays up to the disc's half angle off the aim drift sideways by at most 2.02 r tan(a)
+    // before they leave the sphere: the disk is that much larger.
+    const double half = kSunHalfAngleDeg * kPi / 180.0;
+    beam.radius = sphere.radius * (1.0 + 2.1 * std::tan(half));
+    beam.center = sphere.center - 1.01 * sphere.radius * aim;
+    return illuminance_lx * kPi * beam.radius * beam.radius;
+}
+
+bool SunLight::incident(const Vec3&, const Vec3& n, double, double, double, int, IncidentLight& in) const {
+    const double cos_s = -glm::dot(n, aim);
+    if (cos_s <= 0.0) return false;
+    in.direction = -aim;
+    in.illuminance_lx = illuminance_lx * cos_s;
+    return true;
+}
+
+LuminaireView SunLight::view_from(const Vec3&, double) const {
+    LuminaireView v;
+    v.why_not = "daylight is not a luminaire (CIE 117 rates luminaires)";
+    return v;
+}
+
+void SunLight::describe(std::ostream& out, double unobstructed_horizontal_lx) const {
+    out << ", sun at altitude " << std::setprecision(4) << sun_altitude_deg << " deg, azimuth " << sun_azimuth_deg
+        << " deg, " << std::setprecision(6) << illuminance_lx << " lx normal, " << std::setprecision(6)
+        << unobstructed_horizontal_lx << " lx on the horizontal";
+}
+
+}  // namespace luxtrace

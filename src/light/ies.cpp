@@ -192,78 +192,106 @@ LuminousOpening opening_of(double w, double l, double h, double unit_m, const st
     return o;
 }
 
-}  // namespace
+// --- The file's parts, in the order LM-63 gives them.
 
-Photometry load_ies(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    const std::vector<std::string> lines = detail::read_lines(file, "IES file");
-    const int last_line = std::max(1, static_cast<int>(lines.size()));
+// The lines before TILT=.
+struct Header {
+    std::string version;         // "1986" (none stated), "1991", "1995", "2002", "2019", ...
+    std::size_t tilt_index = 0;  // the TILT= line
+    std::string tilt;            // its value: NONE, INCLUDE or a file name
+};
 
-    Photometry p;
-    // Header up to the TILT line.
-    std::string version;  // "1986" (none stated), "1991", "1995", "2002", "2019", ...
-    std::size_t tilt = 0;
-    std::optional<std::string_view> tilt_val;
-    for (; tilt < lines.size(); ++tilt) {
-        const std::string_view l = trim(lines[tilt]);
-        if ((tilt_val = tilt_value(l))) break;
-        if (tilt == 0) {
-            if (l.starts_with("IESNA:LM-63-") || l.starts_with("IES:LM-63-"))
-                version = std::string(l.substr(l.rfind('-') + 1));
-            else if (l.starts_with("IESNA91")) version = "1991";
-            else if (l.starts_with("IESNA95")) version = "1995";
-        }
-        if (l.starts_with('[')) {
-            const auto close = l.find(']');
-            if (close == std::string_view::npos) continue;
-            const std::string key(l.substr(1, close - 1));
-            const std::string value(trim(l.substr(close + 1)));
-            if (key == "MORE" && !p.keywords.empty()) p.keywords.back().second += "\n" + value;
-            else p.keywords.emplace_back(key, value);
-        }
+// The version a first line states ("IESNA:LM-63-2002", "IESNA91", ...), "" if none.
+std::string stated_version(std::string_view l) {
+    if (l.starts_with("IESNA:LM-63-") || l.starts_with("IES:LM-63-")) return std::string(l.substr(l.rfind('-') + 1));
+    if (l.starts_with("IESNA91")) return "1991";
+    if (l.starts_with("IESNA95")) return "1995";
+    return "";
+}
+
+// "[KEY] value"; "[MORE]" continues the previous keyword.
+void read_keyword(std::string_view l, std::vector<std::pair<std::string, std::string>>& keywords) {
+    const auto close = l.find(']');
+    if (close == std::string_view::npos) return;
+    const std::string key(l.substr(1, close - 1));
+    const std::string value(trim(l.substr(close + 1)));
+    if (key == "MORE" && !keywords.empty()) keywords.back().second += "\n" + value;
+    else keywords.emplace_back(key, value);
+}
+
+// The version line and the keywords up to the TILT line (other text is ignored); sets the
+// format, the keywords and the luminaire's name.
+Header read_header(const std::vector<std::string>& lines, const std::string& name, int last_line, Photometry& p) {
+    Header h;
+    std::optional<std::string_view> tilt;
+    for (; h.tilt_index < lines.size(); ++h.tilt_index) {
+        const std::string_view l = trim(lines[h.tilt_index]);
+        if ((tilt = tilt_value(l))) break;
+        if (h.tilt_index == 0) h.version = stated_version(l);
+        if (l.starts_with('[')) read_keyword(l, p.keywords);
     }
-    if (!tilt_val) fail_at(name, last_line, "no TILT= line found; is this an IES LM-63 file?");
-    if (version.empty()) version = "1986";
-    p.format = "IES LM-63-" + version;
+    if (!tilt) fail_at(name, last_line, "no TILT= line found; is this an IES LM-63 file?");
+    if (h.version.empty()) h.version = "1986";
+    h.tilt = std::string(*tilt);
+    p.format = "IES LM-63-" + h.version;
     for (const auto& [k, v] : p.keywords)
         if (k == "LUMINAIRE" && p.luminaire.empty()) p.luminaire = v;
-    const int tilt_line = static_cast<int>(tilt) + 1;
-    const std::string tv(*tilt_val);
+    return h;
+}
 
-    Reader rd(name, tokens_of(lines, tilt + 1), last_line);
-    if (iequals(tv, "INCLUDE")) {
-        p.tilt = read_tilt(rd);
-    } else if (!iequals(tv, "NONE")) {
-        // A tilt file is named relative to the IES file. A name the file system cannot
-        // even look up (too long, say) is as absent as a missing file.
-        const std::filesystem::path tilt_file = file.parent_path() / tv;
-        std::error_code ec;
-        if (tv.empty() || !std::filesystem::exists(tilt_file, ec))
-            fail_at(name, tilt_line, "TILT file '" + tv + "' not found");
-        const std::vector<std::string> tl = detail::read_lines(tilt_file, "TILT file");
-        Reader trd(tilt_file.string(), tokens_of(tl, 0), std::max(1, static_cast<int>(tl.size())));
-        p.tilt = read_tilt(trd);
-        if (!trd.done()) trd.fail(trd.line(), "unexpected data after the tilt multipliers");
-    }
+// TILT=NONE: no table; TILT=INCLUDE: the table follows; TILT=<file>: the table is in that
+// file.
+TiltTable read_tilt_block(const Header& h, Reader& rd, const std::filesystem::path& file) {
+    const std::string& tv = h.tilt;
+    if (iequals(tv, "INCLUDE")) return read_tilt(rd);
+    if (iequals(tv, "NONE")) return {};
+    // A tilt file is named relative to the IES file. A name the file system cannot even
+    // look up (too long, say) is as absent as a missing file.
+    const std::filesystem::path tilt_file = file.parent_path() / tv;
+    std::error_code ec;
+    if (tv.empty() || !std::filesystem::exists(tilt_file, ec))
+        fail_at(file.string(), static_cast<int>(h.tilt_index) + 1, "TILT file '" + tv + "' not found");
+    const std::vector<std::string> tl = detail::read_lines(tilt_file, "TILT file");
+    Reader trd(tilt_file.string(), tokens_of(tl, 0), std::max(1, static_cast<int>(tl.size())));
+    TiltTable t = read_tilt(trd);
+    if (!trd.done()) trd.fail(trd.line(), "unexpected data after the tilt multipliers");
+    return t;
+}
 
+// What the numbers before the angles say about the table that follows.
+struct Layout {
+    int n_v = 0, n_h = 0;
+    int counts_line = 0;  // where the angle counts are, for errors in the angles
+    const char* type_name = "";
+    double scale = 1.0;  // candela multiplier times the ballast factors that apply
+};
+
+// Number of lamps and lumens per lamp (-1 = absolute photometry).
+void read_lamps(Reader& rd, Photometry& p) {
     p.num_lamps = rd.integer("number of lamps");
     const double lumens_per_lamp = rd.number("lumens per lamp");
     if (!(lumens_per_lamp > 0.0 || lumens_per_lamp == -1.0))
         rd.fail(rd.prev_line(),
                 "lumens per lamp must be > 0, or -1 for absolute photometry, found " + fmt(lumens_per_lamp));
     p.lamp_flux_lm = lumens_per_lamp > 0.0 ? lumens_per_lamp * std::max(p.num_lamps, 1) : -1.0;
-    const double multiplier = rd.number("candela multiplier");
-    if (multiplier <= 0.0) rd.fail(rd.prev_line(), "candela multiplier must be > 0, found " + fmt(multiplier));
-    const int counts_line = rd.line();
-    const int n_v = rd.integer("number of vertical angles");
-    if (n_v < 2) rd.fail(rd.prev_line(), "need at least 2 vertical angles, found " + fmt(n_v));
-    const int n_h = rd.integer("number of horizontal angles");
-    if (n_h < 1) rd.fail(rd.prev_line(), "need at least 1 horizontal angle, found " + fmt(n_h));
+}
+
+// Numbers of vertical and horizontal angles and the photometric type (1 C, 2 B, 3 A).
+void read_counts_and_type(Reader& rd, Layout& t, Photometry& p) {
+    t.counts_line = rd.line();
+    t.n_v = rd.integer("number of vertical angles");
+    if (t.n_v < 2) rd.fail(rd.prev_line(), "need at least 2 vertical angles, found " + fmt(t.n_v));
+    t.n_h = rd.integer("number of horizontal angles");
+    if (t.n_h < 1) rd.fail(rd.prev_line(), "need at least 1 horizontal angle, found " + fmt(t.n_h));
     const int type = rd.integer("photometric type");
     if (type < 1 || type > 3)
         rd.fail(rd.prev_line(), "photometric type must be 1 (type C), 2 (type B) or 3 (type A), found " + fmt(type));
     p.type = static_cast<PhotometricType>(type);
-    const char* type_name = type == 1 ? "type C" : type == 2 ? "type B" : "type A";
+    t.type_name = type == 1 ? "type C" : type == 2 ? "type B" : "type A";
+}
+
+// Units type (1 feet, 2 metres) and the luminous width, length and height.
+void read_opening(Reader& rd, const std::string& version, const std::string& name, Photometry& p) {
     const int units = rd.integer("units type");
     if (units != 1 && units != 2)
         rd.fail(rd.prev_line(), "units type must be 1 (feet) or 2 (meters), found " + fmt(units));
@@ -271,6 +299,17 @@ Photometry load_ies(const std::filesystem::path& file) {
     const double l = rd.number("luminous length");
     const double h = rd.number("luminous height");
     p.opening = opening_of(w, l, h, units == 1 ? kFoot_m : 1.0, version, p.notes, name);
+}
+
+// Lamps, multiplier, counts and type, opening, ballast factor, ballast-lamp photometric
+// factor and input watts.
+Layout read_layout(Reader& rd, const std::string& version, const std::string& name, Photometry& p) {
+    Layout t;
+    read_lamps(rd, p);
+    const double multiplier = rd.number("candela multiplier");
+    if (multiplier <= 0.0) rd.fail(rd.prev_line(), "candela multiplier must be > 0, found " + fmt(multiplier));
+    read_counts_and_type(rd, t, p);
+    read_opening(rd, version, name, p);
     const double ballast = rd.number("ballast factor");
     if (ballast <= 0.0) rd.fail(rd.prev_line(), "ballast factor must be > 0, found " + fmt(ballast));
     // LM-63-1986 and -1991: the ballast-lamp photometric factor multiplies the candela
@@ -281,21 +320,34 @@ Photometry load_ies(const std::filesystem::path& file) {
     if (blp_applies && blp <= 0.0)
         rd.fail(rd.prev_line(), "ballast-lamp photometric factor must be > 0, found " + fmt(blp));
     p.input_watts = rd.number("input watts");
+    t.scale = multiplier * ballast * (blp_applies ? blp : 1.0);
+    return t;
+}
 
+// The vertical, then the horizontal angles, in the ranges of the type.
+void read_angle_sets(Reader& rd, const Layout& t, Photometry& p) {
     if (p.type == PhotometricType::C) {
-        p.vertical_deg = read_angles(rd, n_v, "vertical", 0.0, 180.0, counts_line, type_name);
-        p.horizontal_deg = read_angles(rd, n_h, "horizontal", 0.0, 360.0, counts_line, type_name);
+        p.vertical_deg = read_angles(rd, t.n_v, "vertical", 0.0, 180.0, t.counts_line, t.type_name);
+        p.horizontal_deg = read_angles(rd, t.n_h, "horizontal", 0.0, 360.0, t.counts_line, t.type_name);
     } else {
-        p.vertical_deg = read_angles(rd, n_v, "vertical", -90.0, 90.0, counts_line, type_name);
-        p.horizontal_deg = read_angles(rd, n_h, "horizontal", -90.0, 90.0, counts_line, type_name);
-        if (n_h < 2)
-            rd.fail(rd.prev_line(), std::string("need at least 2 horizontal angles for ") + type_name + " photometry");
+        p.vertical_deg = read_angles(rd, t.n_v, "vertical", -90.0, 90.0, t.counts_line, t.type_name);
+        p.horizontal_deg = read_angles(rd, t.n_h, "horizontal", -90.0, 90.0, t.counts_line, t.type_name);
+        if (t.n_h < 2)
+            rd.fail(rd.prev_line(),
+                    std::string("need at least 2 horizontal angles for ") + t.type_name + " photometry");
     }
-    const int angles_line = rd.prev_line();
-    // A 0..X table with 180 < X < 360 covers the circle with no symmetry: C360 = C0.
-    auto& hz = p.horizontal_deg;
-    const bool wraps = p.type == PhotometricType::C && hz.size() >= 2 && near(hz.front(), 0.0) &&
-                       hz.back() > 180.0 + kAngleTol && hz.back() < 360.0 - kAngleTol;
+}
+
+// A 0..X table with 180 < X < 360 covers the circle with no symmetry: C360 = C0.
+bool wraps_around(const Photometry& p) {
+    const auto& hz = p.horizontal_deg;
+    return p.type == PhotometricType::C && hz.size() >= 2 && near(hz.front(), 0.0) && hz.back() > 180.0 + kAngleTol &&
+           hz.back() < 360.0 - kAngleTol;
+}
+
+// The horizontal angles must give one of the layouts of the type.
+void check_horizontal_range(const Reader& rd, int angles_line, const Photometry& p, bool wraps, const char* type_name) {
+    const auto& hz = p.horizontal_deg;
     if (p.type == PhotometricType::C && !wraps && !c_plane_symmetry(hz))
         rd.fail(angles_line, "horizontal angles must run 0, 0-90, 0-180, 90-270 or 0-360 (or from 0 to above 180) "
                              "for type C photometry, found " +
@@ -303,76 +355,110 @@ Photometry load_ies(const std::filesystem::path& file) {
     if (p.type != PhotometricType::C && !(near(hz.front(), 0.0) || near(hz.front(), -90.0)))
         rd.fail(angles_line, std::string("horizontal angles must start at -90, or at 0 (lateral symmetry) for ") +
                                  type_name + " photometry, found " + fmt(hz.front()));
+}
 
-    const std::size_t expected = static_cast<std::size_t>(n_v) * static_cast<std::size_t>(n_h);
+// #vertical candela values per horizontal angle, times the file's factors, and nothing
+// after them; false if all are zero.
+bool read_candela(Reader& rd, const Layout& t, Photometry& p) {
+    const std::size_t expected = static_cast<std::size_t>(t.n_v) * static_cast<std::size_t>(t.n_h);
     const auto count_error = [&](int line, std::size_t found) {
-        rd.fail(line, "expected " + std::to_string(expected) + " candela values (" + std::to_string(n_v) +
-                          " vertical x " + std::to_string(n_h) + " horizontal), found " + std::to_string(found));
+        rd.fail(line, "expected " + std::to_string(expected) + " candela values (" + std::to_string(t.n_v) +
+                          " vertical x " + std::to_string(t.n_h) + " horizontal), found " + std::to_string(found));
     };
-    const double scale = multiplier * ballast * (blp_applies ? blp : 1.0);
     bool any_light = false;
-    p.candela_cd.assign(n_h, {});
-    for (int j = 0; j < n_h; ++j) {
-        for (int i = 0; i < n_v; ++i) {
-            if (rd.done()) count_error(rd.line(), static_cast<std::size_t>(j) * n_v + i);
+    p.candela_cd.assign(t.n_h, {});
+    for (int j = 0; j < t.n_h; ++j) {
+        for (int i = 0; i < t.n_v; ++i) {
+            if (rd.done()) count_error(rd.line(), static_cast<std::size_t>(j) * t.n_v + i);
             const double cd = rd.number("candela value");
             if (cd < 0.0) rd.fail(rd.prev_line(), "negative candela value " + fmt(cd));
             any_light = any_light || cd > 0.0;
-            if (!std::isfinite(cd * scale))
+            if (!std::isfinite(cd * t.scale))
                 rd.fail(rd.prev_line(),
-                        "candela value " + fmt(cd) + " times the multipliers (" + fmt(scale) + ") is too large");
-            p.candela_cd[j].push_back(cd * scale);
+                        "candela value " + fmt(cd) + " times the multipliers (" + fmt(t.scale) + ") is too large");
+            p.candela_cd[j].push_back(cd * t.scale);
         }
     }
     // Some 1986 exports close the table with a line "END".
     if (rd.remaining() == 1 && rd.peek_is("END")) rd.skip();
     if (!rd.done()) count_error(rd.line(), expected + rd.remaining());
-    if (!any_light) fail_at(name, last_line, "all candela values are zero");
+    return any_light;
+}
 
-    if (wraps) {
-        p.notes.push_back(name + ": horizontal angles run 0-" + fmt(hz.back()) +
-                          " with no symmetry; C360 is taken as C0");
-        hz.push_back(360.0);
-        p.candela_cd.push_back(p.candela_cd.front());
+// A wrapping table (wraps_around) gets its C360 plane, a copy of C0.
+void close_the_circle(Photometry& p, const std::string& name) {
+    auto& hz = p.horizontal_deg;
+    p.notes.push_back(name + ": horizontal angles run 0-" + fmt(hz.back()) + " with no symmetry; C360 is taken as C0");
+    hz.push_back(360.0);
+    p.candela_cd.push_back(p.candela_cd.front());
+}
+
+// Types B and A from 0 have lateral symmetry: the planes mirrored to -H.
+void mirror_lateral_symmetry(Photometry& p) {
+    auto& hz = p.horizontal_deg;
+    const std::size_t n = hz.size();
+    std::vector<double> angles;
+    std::vector<std::vector<double>> cd;
+    for (std::size_t k = n; k-- > 1;) {
+        angles.push_back(-hz[k]);
+        cd.push_back(p.candela_cd[k]);
     }
-    if (p.type != PhotometricType::C && near(hz.front(), 0.0)) {  // lateral symmetry: mirror to -H
-        const std::size_t n = hz.size();
-        std::vector<double> angles;
-        std::vector<std::vector<double>> cd;
-        for (std::size_t k = n; k-- > 1;) {
-            angles.push_back(-hz[k]);
-            cd.push_back(p.candela_cd[k]);
-        }
-        angles.insert(angles.end(), hz.begin(), hz.end());
-        cd.insert(cd.end(), p.candela_cd.begin(), p.candela_cd.end());
-        hz = std::move(angles);
-        p.candela_cd = std::move(cd);
-    }
-    if (p.type == PhotometricType::C) {
-        // A table that stops short of 90 or 180 degrees with light in its last angle has
-        // cut the distribution off; luxtrace emits nothing beyond it.
-        const double last = p.vertical_deg.back(), first = p.vertical_deg.front();
-        double edge_cd = 0.0;
-        for (const auto& plane : p.candela_cd) edge_cd = std::max(edge_cd, plane.back());
-        if (!near(last, 90.0) && !near(last, 180.0) && edge_cd > 0.0)
-            p.notes.push_back(name + ": vertical angles stop at " + fmt(last) + " degrees with " + fmt(edge_cd) +
-                              " cd there; LM-63 tables end at 90 or 180, and no light is emitted beyond " + fmt(last));
-        if (!near(first, 0.0) && !near(first, 90.0))
-            p.notes.push_back(name + ": vertical angles start at " + fmt(first) +
-                              " degrees; LM-63 tables start at 0 or 90, and no light is emitted below " + fmt(first));
-    }
+    angles.insert(angles.end(), hz.begin(), hz.end());
+    cd.insert(cd.end(), p.candela_cd.begin(), p.candela_cd.end());
+    hz = std::move(angles);
+    p.candela_cd = std::move(cd);
+}
+
+// Type C: a table that stops short of 90 or 180 degrees with light in its last angle has
+// cut the distribution off; luxtrace emits nothing beyond it (nor below its first angle).
+void note_vertical_range(Photometry& p, const std::string& name) {
+    const double last = p.vertical_deg.back(), first = p.vertical_deg.front();
+    double edge_cd = 0.0;
+    for (const auto& plane : p.candela_cd) edge_cd = std::max(edge_cd, plane.back());
+    if (!near(last, 90.0) && !near(last, 180.0) && edge_cd > 0.0)
+        p.notes.push_back(name + ": vertical angles stop at " + fmt(last) + " degrees with " + fmt(edge_cd) +
+                          " cd there; LM-63 tables end at 90 or 180, and no light is emitted beyond " + fmt(last));
+    if (!near(first, 0.0) && !near(first, 90.0))
+        p.notes.push_back(name + ": vertical angles start at " + fmt(first) +
+                          " degrees; LM-63 tables start at 0 or 90, and no light is emitted below " + fmt(first));
+}
+
+// The table's flux must be a positive number, and relative photometry cannot give out more
+// light than its lamps (a few per cent for measurement and interpolation aside).
+void check_flux(Photometry& p, const std::string& name, int last_line) {
     const double flux = p.flux_lm();
     if (!(flux > 0.0 && std::isfinite(flux)))
         fail_at(name, last_line,
                 "the photometry's flux (" + fmt(flux) +
                     " lm) is not a positive number; "
                     "are the angles or the candela values right?");
-    // Relative photometry cannot give out more light than its lamps (a few per cent for
-    // measurement and interpolation aside).
     if (p.lamp_flux_lm > 0.0 && flux > 1.1 * p.lamp_flux_lm)
         p.notes.push_back(name + ": the table carries " + fmt(flux) + " lm, " + fmt(flux / p.lamp_flux_lm) +
                           " times the " + fmt(p.lamp_flux_lm) +
                           " lm of its lamps; check the file's multiplier and values");
+}
+
+}  // namespace
+
+Photometry load_ies(const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const std::vector<std::string> lines = detail::read_lines(file, "IES file");
+    const int last_line = std::max(1, static_cast<int>(lines.size()));
+
+    Photometry p;
+    const Header header = read_header(lines, name, last_line, p);
+    Reader rd(name, tokens_of(lines, header.tilt_index + 1), last_line);
+    p.tilt = read_tilt_block(header, rd, file);
+    const Layout layout = read_layout(rd, header.version, name, p);
+    read_angle_sets(rd, layout, p);
+    const int angles_line = rd.prev_line();
+    const bool wraps = wraps_around(p);
+    check_horizontal_range(rd, angles_line, p, wraps, layout.type_name);
+    if (!read_candela(rd, layout, p)) fail_at(name, last_line, "all candela values are zero");
+    if (wraps) close_the_circle(p, name);
+    if (p.type != PhotometricType::C && near(p.horizontal_deg.front(), 0.0)) mirror_lateral_symmetry(p);
+    if (p.type == PhotometricType::C) note_vertical_range(p, name);
+    check_flux(p, name, last_line);
     return p;
 }
 

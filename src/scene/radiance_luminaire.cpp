@@ -125,17 +125,22 @@ struct DataTable {
     std::vector<double> values;
 };
 
-DataTable read_data(const fs::path& file) {
+std::string read_whole_file(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError("cannot open '" + file.string() + "'");
     std::ostringstream buf;
     buf << in.rdbuf();
-    const std::string text = buf.str();
-    struct Token {
-        std::string_view text;
-        int line;
-    };
-    std::vector<Token> tokens;
+    return buf.str();
+}
+
+// A data file's words with their lines: blanks and commas separate them.
+struct DataToken {
+    std::string_view text;
+    int line;
+};
+
+std::vector<DataToken> data_tokens(std::string_view text) {
+    std::vector<DataToken> tokens;
     int line = 1;
     for (std::size_t i = 0; i < text.size();) {
         const char c = text[i];
@@ -150,68 +155,98 @@ DataTable read_data(const fs::path& file) {
         }
         const std::size_t start = i;
         while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) && text[i] != ',') ++i;
-        tokens.push_back({std::string_view(text).substr(start, i - start), line});
+        tokens.push_back({text.substr(start, i - start), line});
     }
-    const std::string name = file.string();
-    std::size_t next = 0;
-    auto number = [&](const std::string& what) {
-        if (next >= tokens.size())
-            throw InputError(name + ":" + std::to_string(tokens.empty() ? 1 : tokens.back().line) +
-                             ": the file ends where " + what + " was expected");
-        const Token t = tokens[next++];
+    return tokens;
+}
+
+// Hands out a data file's numbers; every error names the file and line.
+class DataReader {
+public:
+    DataReader(std::string name, std::vector<DataToken> tokens) : name_(std::move(name)), tokens_(std::move(tokens)) {}
+
+    [[noreturn]] void fail(int line, const std::string& what) const {
+        throw InputError(name_ + ":" + std::to_string(line) + ": " + what);
+    }
+    bool done() const { return next_ >= tokens_.size(); }
+    int line() const { return tokens_[next_].line; }           // the next word's
+    int prev_line() const { return tokens_[next_ - 1].line; }  // the last word read's
+    std::string prev_text() const { return std::string(tokens_[next_ - 1].text); }
+
+    // The next word as a number, with its line.
+    std::pair<double, int> number(const std::string& what) {
+        if (done()) fail(tokens_.empty() ? 1 : tokens_.back().line, "the file ends where " + what + " was expected");
+        const DataToken t = tokens_[next_++];
         std::string_view s = t.text;
         if (!s.empty() && s.front() == '+') s.remove_prefix(1);
         double v = 0.0;
         const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
         if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-            throw InputError(name + ":" + std::to_string(t.line) + ": " + what + " '" + std::string(t.text) +
-                             "' is not a number");
+            fail(t.line, what + " '" + std::string(t.text) + "' is not a number");
         return std::pair{v, t.line};
-    };
-    auto count = [&](const std::string& what, int lo, int hi) {
+    }
+
+    // The next word as a whole number in [lo, hi].
+    int count(const std::string& what, int lo, int hi) {
         const auto [v, l] = number(what);
         if (v != std::floor(v) || v < lo || v > hi)
-            throw InputError(name + ":" + std::to_string(l) + ": " + what + " must be a whole number in [" +
-                             std::to_string(lo) + ", " + std::to_string(hi) + "], not " +
-                             std::string(tokens[next - 1].text));
+            fail(l, what + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], not " +
+                        prev_text());
         return static_cast<int>(v);
-    };
-    DataTable d;
-    const int n = count("the number of dimensions", 1, 2);
-    std::size_t total = 1;
-    for (int k = 0; k < n; ++k) {
-        const std::string dim = "dimension " + std::to_string(k + 1);
-        const double first = number(dim + "'s first angle").first;
-        const double last = number(dim + "'s last angle").first;
-        const int ne = count(dim + "'s number of angles", 2, 100000);
-        std::vector<double> a(static_cast<std::size_t>(ne));
-        if (first == last) {
-            for (double& x : a) x = number(dim + "'s angle").first;
-        } else {
-            for (int j = 0; j < ne; ++j) a[j] = first + (last - first) * j / (ne - 1);
-        }
-        const int at = tokens[next - 1].line;
-        bool up = true, down = true;
-        for (std::size_t j = 1; j < a.size(); ++j) {
-            up = up && a[j] > a[j - 1];
-            down = down && a[j] < a[j - 1];
-        }
-        if (!up && !down)
-            throw InputError(name + ":" + std::to_string(at) + ": " + dim + "'s angles must increase or decrease");
-        total *= a.size();
-        d.axes.push_back(std::move(a));
-        d.axis_lines.push_back(at);
     }
+
+private:
+    std::string name_;
+    std::vector<DataToken> tokens_;
+    std::size_t next_ = 0;
+};
+
+// Dimension k + 1: `first last count`, the angles listed when first == last, spaced evenly
+// otherwise; they must run one way.
+void read_axis(DataReader& rd, int k, DataTable& d) {
+    const std::string dim = "dimension " + std::to_string(k + 1);
+    const double first = rd.number(dim + "'s first angle").first;
+    const double last = rd.number(dim + "'s last angle").first;
+    const int ne = rd.count(dim + "'s number of angles", 2, 100000);
+    std::vector<double> a(static_cast<std::size_t>(ne));
+    if (first == last) {
+        for (double& x : a) x = rd.number(dim + "'s angle").first;
+    } else {
+        for (int j = 0; j < ne; ++j) a[j] = first + (last - first) * j / (ne - 1);
+    }
+    const int at = rd.prev_line();
+    bool up = true, down = true;
+    for (std::size_t j = 1; j < a.size(); ++j) {
+        up = up && a[j] > a[j - 1];
+        down = down && a[j] < a[j - 1];
+    }
+    if (!up && !down) rd.fail(at, dim + "'s angles must increase or decrease");
+    d.axes.push_back(std::move(a));
+    d.axis_lines.push_back(at);
+}
+
+// `total` values, none negative, and nothing after them.
+void read_values(DataReader& rd, std::size_t total, DataTable& d) {
     d.values.reserve(total);
     for (std::size_t k = 0; k < total; ++k) {
-        const auto [v, l] = number("value " + std::to_string(k + 1) + " of " + std::to_string(total));
-        if (v < 0.0)
-            throw InputError(name + ":" + std::to_string(l) + ": negative value " + std::string(tokens[next - 1].text));
+        const auto [v, l] = rd.number("value " + std::to_string(k + 1) + " of " + std::to_string(total));
+        if (v < 0.0) rd.fail(l, "negative value " + rd.prev_text());
         d.values.push_back(v);
     }
-    if (next < tokens.size())
-        throw InputError(name + ":" + std::to_string(tokens[next].line) + ": more values than the " +
-                         std::to_string(total) + " its dimensions hold");
+    if (!rd.done()) rd.fail(rd.line(), "more values than the " + std::to_string(total) + " its dimensions hold");
+}
+
+DataTable read_data(const fs::path& file) {
+    const std::string text = read_whole_file(file);
+    DataReader rd(file.string(), data_tokens(text));
+    DataTable d;
+    const int n = rd.count("the number of dimensions", 1, 2);
+    std::size_t total = 1;
+    for (int k = 0; k < n; ++k) {
+        read_axis(rd, k, d);
+        total *= d.axes.back().size();
+    }
+    read_values(rd, total, d);
     return d;
 }
 

@@ -77,6 +77,9 @@ std::string inverse_type(const std::string& t) {  // xform -I, Radiance's tinver
     return t;
 }
 
+// Reals i, i+1, i+2 as a point or vector.
+Vec3 point(const std::vector<double>& a, std::size_t i) { return Vec3(a[i], a[i + 1], a[i + 2]); }
+
 // Where a file is read from: the transform of the xforms that included it.
 struct Context {
     glm::dmat4 matrix{1.0};    // file -> model units of the top file
@@ -354,16 +357,20 @@ private:
         define(std::move(m));
     }
 
+    // A surface as written, for its errors: "file:line: TYPE 'NAME': what".
+    struct Written {
+        const std::string& type;
+        const std::string& name;
+        const RadianceLocation& at;
+    };
+    InputError bad(const Written& s, const std::string& what) const {
+        return InputError(model_.where(s.at) + ": " + s.type + " '" + s.name + "': " + what);
+    }
+
     void surface(const std::string& type_in, const std::string& name_in, int modifier, std::vector<double> a,
                  const Context& ctx, const RadianceLocation& at, const Cursor& cur) {
-        const std::size_t want = *surface_reals(type_in);
-        auto bad = [&](const std::string& what) {
-            return InputError(model_.where(at) + ": " + type_in + " '" + name_in + "': " + what);
-        };
-        if (type_in == "polygon" ? (a.size() < 9 || a.size() % 3 != 0) : a.size() != want)
-            throw bad(type_in == "polygon"
-                          ? "takes 3 real arguments per vertex and at least 3 vertices, not " + std::to_string(a.size())
-                          : "takes " + std::to_string(want) + " real arguments, not " + std::to_string(a.size()));
+        const Written written{type_in, name_in, at};
+        check_argument_count(written, a);
         std::string name = ctx.prefix.empty() ? name_in : ctx.prefix + "." + name_in;
         if (!ctx.new_modifier.empty()) modifier = lookup({ctx.new_modifier, at.line}, cur, name);
         const int material = material_of(modifier, cur, at.line, name);
@@ -371,76 +378,121 @@ private:
             warn(at, type_in + " '" + name + "' has no material (void): left out");
             return;
         }
-        const glm::dmat4 world = glm::dmat4(glm::dvec4(options_.scale, 0, 0, 0), glm::dvec4(0, options_.scale, 0, 0),
-                                            glm::dvec4(0, 0, options_.scale, 0), glm::dvec4(0, 0, 0, 1)) *
-                                 ctx.matrix;
+        const glm::dmat4 world = to_world(ctx);
         if (type_in == "source") {
-            const Vec3 d(a[0], a[1], a[2]);
-            if (!(glm::length(d) > 0.0)) throw bad("the direction is zero");
-            if (!(a[3] > 0.0 && a[3] <= 360.0)) throw bad("the angle must be in (0, 360] degrees");
-            const Vec3 dw = glm::normalize(glm::dmat3(world) * d);
-            model_.sources.push_back({name, material, dw, a[3], at});
+            add_source(written, a, std::move(name), material, world);
             return;
         }
         std::string type = type_in;
+        if (!tessellate(written, a, name, type)) return;
+        if (ctx.invert) type = inverse_type(type);
+        add_triangles(written, std::move(name), type, material, ctx, world);
+    }
+
+    void check_argument_count(const Written& s, const std::vector<double>& a) const {
+        const std::size_t want = *surface_reals(s.type);
+        if (s.type == "polygon" ? (a.size() < 9 || a.size() % 3 != 0) : a.size() != want)
+            throw bad(s,
+                      s.type == "polygon"
+                          ? "takes 3 real arguments per vertex and at least 3 vertices, not " + std::to_string(a.size())
+                          : "takes " + std::to_string(want) + " real arguments, not " + std::to_string(a.size()));
+    }
+
+    // File coordinates -> the model's, in metres.
+    glm::dmat4 to_world(const Context& ctx) const {
+        return glm::dmat4(glm::dvec4(options_.scale, 0, 0, 0), glm::dvec4(0, options_.scale, 0, 0),
+                          glm::dvec4(0, 0, options_.scale, 0), glm::dvec4(0, 0, 0, 1)) *
+               ctx.matrix;
+    }
+
+    // A distant source: direction and full angle.
+    void add_source(const Written& s, const std::vector<double>& a, std::string name, int material,
+                    const glm::dmat4& world) {
+        const Vec3 d(a[0], a[1], a[2]);
+        if (!(glm::length(d) > 0.0)) throw bad(s, "the direction is zero");
+        if (!(a[3] > 0.0 && a[3] <= 360.0)) throw bad(s, "the angle must be in (0, 360] degrees");
+        const Vec3 dw = glm::normalize(glm::dmat3(world) * d);
+        model_.sources.push_back({std::move(name), material, dw, a[3], s.at});
+    }
+
+    // The surface as triangles in scratch_, in file coordinates; false if it is left out.
+    // Negative radii turn spheres, cylinders and cones inside out: `type` becomes the inverse.
+    bool tessellate(const Written& s, const std::vector<double>& a, const std::string& name, std::string& type) {
         scratch_.vertices.clear();
         scratch_.triangles.clear();
-        const double tol = options_.chord_tolerance;
-        auto p = [&](std::size_t i) { return Vec3(a[i], a[i + 1], a[i + 2]); };
-        if (type == "polygon") {
-            std::vector<Vec3> v;
-            for (std::size_t i = 0; i < a.size(); i += 3) v.push_back(p(i));
-            if (v.size() > 3 && v.front() == v.back()) v.pop_back();  // a closed outline, as face.c
-            if (!(glm::length(radiance::polygon_area_vector(v)) > 0.0)) {
-                warn(at, "polygon '" + name + "' has zero area: left out");
-                return;
-            }
-            if (!radiance::append_polygon(v, scratch_))
-                warn(at, "polygon '" + name + "' crosses itself: triangulated as well as it goes");
-        } else if (type == "ring") {
-            double r0 = a[6], r1 = a[7];
-            if (r0 < 0.0 || r1 < 0.0 || r0 == r1) throw bad("radii must be positive and differ");
-            if (!(glm::length(p(3)) > 0.0)) throw bad("the normal is zero");
-            radiance::append_ring(p(0), p(3), std::min(r0, r1), std::max(r0, r1), tol, scratch_);
-        } else if (type == "sphere" || type == "bubble") {
-            double r = a[3];
-            if (r < 0.0) {  // as Radiance: a negative radius turns it inside out
-                warn(at, type + " '" + name + "' has a negative radius: turned inside out");
-                type = inverse_type(type);
-                r = -r;
-            }
-            if (!(r > 0.0)) throw bad("the radius must not be 0");
-            radiance::append_sphere(p(0), r, tol, type == "bubble", scratch_);
-        } else {  // cylinder, tube, cone, cup
-            const bool cylinder = type == "cylinder" || type == "tube";
-            double r0 = a[6], r1 = cylinder ? a[6] : a[7];
-            auto sign = [](double r) { return r > 0.0 ? 1 : (r < 0.0 ? -1 : 0); };
-            // As Radiance's cone.c: radii of one sign (one may be 0), negative ones turning
-            // the surface inside out.
-            if (sign(r0) + sign(r1) == 0) throw bad("the radii must not be 0 or of opposite signs");
-            if (r0 < 0.0 || r1 < 0.0) {
-                warn(at, type + " '" + name + "' has negative radii: turned inside out");
-                type = inverse_type(type);
-                r0 = std::abs(r0);
-                r1 = std::abs(r1);
-            }
-            if (!(glm::length(p(3) - p(0)) > 0.0)) throw bad("its two ends are the same point");
-            const bool inward = type == "tube" || type == "cup";
-            radiance::append_cone(p(0), p(3), r0, r1, tol, inward, scratch_);
+        if (type == "polygon") return tessellate_polygon(a, name, s.at);
+        if (type == "ring") tessellate_ring(s, a);
+        else if (type == "sphere" || type == "bubble") tessellate_sphere(s, a, name, type);
+        else tessellate_cone(s, a, name, type);  // cylinder, tube, cone, cup
+        return true;
+    }
+
+    bool tessellate_polygon(const std::vector<double>& a, const std::string& name, const RadianceLocation& at) {
+        std::vector<Vec3> v;
+        for (std::size_t i = 0; i < a.size(); i += 3) v.push_back(point(a, i));
+        if (v.size() > 3 && v.front() == v.back()) v.pop_back();  // a closed outline, as face.c
+        if (!(glm::length(radiance::polygon_area_vector(v)) > 0.0)) {
+            warn(at, "polygon '" + name + "' has zero area: left out");
+            return false;
         }
-        if (ctx.invert) type = inverse_type(type);
+        if (!radiance::append_polygon(v, scratch_))
+            warn(at, "polygon '" + name + "' crosses itself: triangulated as well as it goes");
+        return true;
+    }
+
+    void tessellate_ring(const Written& s, const std::vector<double>& a) {
+        double r0 = a[6], r1 = a[7];
+        if (r0 < 0.0 || r1 < 0.0 || r0 == r1) throw bad(s, "radii must be positive and differ");
+        if (!(glm::length(point(a, 3)) > 0.0)) throw bad(s, "the normal is zero");
+        radiance::append_ring(point(a, 0), point(a, 3), std::min(r0, r1), std::max(r0, r1), options_.chord_tolerance,
+                              scratch_);
+    }
+
+    void tessellate_sphere(const Written& s, const std::vector<double>& a, const std::string& name, std::string& type) {
+        double r = a[3];
+        if (r < 0.0) {  // as Radiance: a negative radius turns it inside out
+            warn(s.at, type + " '" + name + "' has a negative radius: turned inside out");
+            type = inverse_type(type);
+            r = -r;
+        }
+        if (!(r > 0.0)) throw bad(s, "the radius must not be 0");
+        radiance::append_sphere(point(a, 0), r, options_.chord_tolerance, type == "bubble", scratch_);
+    }
+
+    void tessellate_cone(const Written& s, const std::vector<double>& a, const std::string& name, std::string& type) {
+        const bool cylinder = type == "cylinder" || type == "tube";
+        double r0 = a[6], r1 = cylinder ? a[6] : a[7];
+        auto sign = [](double r) { return r > 0.0 ? 1 : (r < 0.0 ? -1 : 0); };
+        // As Radiance's cone.c: radii of one sign (one may be 0), negative ones turning
+        // the surface inside out.
+        if (sign(r0) + sign(r1) == 0) throw bad(s, "the radii must not be 0 or of opposite signs");
+        if (r0 < 0.0 || r1 < 0.0) {
+            warn(s.at, type + " '" + name + "' has negative radii: turned inside out");
+            type = inverse_type(type);
+            r0 = std::abs(r0);
+            r1 = std::abs(r1);
+        }
+        if (!(glm::length(point(a, 3) - point(a, 0)) > 0.0)) throw bad(s, "its two ends are the same point");
+        const bool inward = type == "tube" || type == "cup";
+        radiance::append_cone(point(a, 0), point(a, 3), r0, r1, options_.chord_tolerance, inward, scratch_);
+    }
+
+    // scratch_'s triangles into the model in model units, as surface `name`.
+    void add_triangles(const Written& s, std::string name, const std::string& type, int material, const Context& ctx,
+                       const glm::dmat4& world) {
         // A mirroring transform turns the winding; xform -I turns the surface.
         const bool flip = (glm::determinant(glm::dmat3(ctx.matrix)) < 0.0) != ctx.invert;
         if (model_.mesh.vertices.size() + scratch_.vertices.size() > kMaxVertices)
-            throw bad("the model would hold more than " + std::to_string(kMaxVertices) + " vertices");
+            throw bad(s, "the model would hold more than " + std::to_string(kMaxVertices) + " vertices");
         const auto base = static_cast<std::uint32_t>(model_.mesh.vertices.size());
         for (const Vec3& v : scratch_.vertices) model_.mesh.vertices.push_back(Vec3(world * glm::dvec4(v, 1.0)));
-        RadianceSurface s{std::move(name), type, material, model_.mesh.triangles.size(), scratch_.triangles.size(), at};
+        RadianceSurface r{std::move(name),           type, material, model_.mesh.triangles.size(),
+                          scratch_.triangles.size(), s.at};
         for (const glm::uvec3& t : scratch_.triangles)
             model_.mesh.triangles.push_back(flip ? glm::uvec3(base + t.x, base + t.z, base + t.y) : base + t);
         model_.triangle_modifier.insert(model_.triangle_modifier.end(), scratch_.triangles.size(),
                                         static_cast<std::uint32_t>(material));
-        model_.surfaces.push_back(std::move(s));
+        model_.surfaces.push_back(std::move(r));
     }
 
     static constexpr int kMaxFileReads = 100000;

@@ -23,6 +23,119 @@ std::uint32_t add_vertex(TriangleMesh& out, const Vec3& p) {
     return static_cast<std::uint32_t>(out.vertices.size() - 1);
 }
 
+// The outline projected on the plane of the two axes not dominant in its normal (`area`),
+// turned so that it runs counter-clockwise in 2-D.
+std::vector<Vec2> project_outline(const std::vector<Vec3>& vertices, const Vec3& area) {
+    const Vec3 an = glm::abs(area);
+    const int ax = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+    const int u = (ax + 1) % 3, w = (ax + 2) % 3;
+    const bool mirrored = area[ax] < 0.0;
+    std::vector<Vec2> p;
+    p.reserve(vertices.size());
+    for (const Vec3& x : vertices) p.emplace_back(x[u], mirrored ? -x[w] : x[w]);
+    return p;
+}
+
+// Flat (collinear) vertices add no area: a relative threshold on the 2-D cross product.
+double flat_threshold(const std::vector<Vec2>& p) {
+    double extent = 0.0;
+    for (const Vec2& q : p) extent = std::max({extent, std::abs(q.x - p[0].x), std::abs(q.y - p[0].y)});
+    return 1e-14 * extent * extent;
+}
+
+// Ear clipping of a counter-clockwise 2-D outline, its triangles added to `out` as indices
+// from `base`. Pass 0 clips ears no reflex vertex lies in (the usual test); pass 1 only
+// refuses vertices strictly inside; pass 2 takes any convex vertex (a self-intersecting
+// outline).
+class EarClipper {
+public:
+    EarClipper(const std::vector<Vec2>& p, std::uint32_t base, TriangleMesh& out)
+        : p_(p), flat_(flat_threshold(p)), ring_(p.size()), base_(base), out_(out) {
+        for (std::size_t i = 0; i < ring_.size(); ++i) ring_[i] = i;
+    }
+
+    // False if the outline needed pass 2, or was given up on and fanned.
+    bool triangulate() {
+        bool clean = true;
+        int pass = 0;
+        while (ring_.size() > 3) {
+            if (cut_one(pass)) {
+                pass = 0;
+                continue;
+            }
+            if (pass < 2) {
+                ++pass;
+                if (pass == 2) clean = false;
+                continue;
+            }
+            for (std::size_t k = 1; k + 1 < ring_.size(); ++k) emit(ring_[0], ring_[k], ring_[k + 1]);  // give up: fan
+            return false;
+        }
+        if (ring_.size() == 3 && std::abs(orient(p_[ring_[0]], p_[ring_[1]], p_[ring_[2]])) > flat_)
+            emit(ring_[0], ring_[1], ring_[2]);
+        return clean;
+    }
+
+private:
+    // Removes one vertex: a flat one (no triangle) or an ear `pass` allows (its triangle
+    // emitted), searching on from where the last was cut: O(n^2) for usual outlines. False
+    // if there is none.
+    bool cut_one(int pass) {
+        const std::size_t n = ring_.size();
+        for (std::size_t step = 0; step < n; ++step) {
+            const std::size_t k = (start_ + step) % n;
+            const std::size_t ia = ring_[(k + n - 1) % n], ib = ring_[k], ic = ring_[(k + 1) % n];
+            const double o = orient(p_[ia], p_[ib], p_[ic]);
+            if (std::abs(o) <= flat_) {  // a flat vertex or a spike: drop it, no triangle
+                remove(k);
+                return true;
+            }
+            if (o < 0.0) continue;  // reflex
+            if (pass < 2 && blocked(ia, ib, ic, pass)) continue;
+            emit(ia, ib, ic);
+            remove(k);
+            return true;
+        }
+        return false;
+    }
+
+    // Whether another vertex of the ring keeps (ia, ib, ic) from being an ear in pass 0 or 1.
+    bool blocked(std::size_t ia, std::size_t ib, std::size_t ic, int pass) const {
+        const std::size_t n = ring_.size();
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::size_t iq = ring_[j];
+            if (iq == ia || iq == ib || iq == ic) continue;
+            const Vec2& q = p_[iq];
+            if (q == p_[ia] || q == p_[ib] || q == p_[ic]) continue;  // a seam's twin vertex
+            if (pass == 0) {
+                const std::size_t iqp = ring_[(j + n - 1) % n], iqn = ring_[(j + 1) % n];
+                if (orient(p_[iqp], q, p_[iqn]) > flat_) continue;  // convex: cannot block alone
+                if (in_triangle(q, p_[ia], p_[ib], p_[ic])) return true;
+            } else if (orient(p_[ia], p_[ib], q) > flat_ && orient(p_[ib], p_[ic], q) > flat_ &&
+                       orient(p_[ic], p_[ia], q) > flat_) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    void emit(std::size_t a, std::size_t b, std::size_t c) {
+        out_.triangles.push_back({base_ + a, base_ + b, base_ + c});
+    }
+
+    void remove(std::size_t k) {
+        ring_.erase(ring_.begin() + static_cast<std::ptrdiff_t>(k));
+        start_ = k == 0 ? 0 : k - 1;
+    }
+
+    const std::vector<Vec2>& p_;
+    const double flat_;
+    std::vector<std::size_t> ring_;  // the outline left, as indices into p_
+    std::size_t start_ = 0;          // where the search goes on
+    const std::uint32_t base_;
+    TriangleMesh& out_;
+};
+
 }  // namespace
 
 int circle_segments(double chord_tolerance) {
@@ -40,85 +153,10 @@ bool append_polygon(const std::vector<Vec3>& vertices, TriangleMesh& out) {
     const Vec3 area = polygon_area_vector(vertices);
     const double twice_area = glm::length(area);
     if (!(twice_area > 0.0)) return true;
-    // Project on the plane of the two axes not dominant in the normal, turned so that the
-    // outline runs counter-clockwise in 2-D.
-    const Vec3 an = glm::abs(area);
-    const int ax = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
-    const int u = (ax + 1) % 3, w = (ax + 2) % 3;
-    const bool mirrored = area[ax] < 0.0;
     const auto base = static_cast<std::uint32_t>(out.vertices.size());
-    std::vector<Vec2> p;
-    p.reserve(vertices.size());
-    for (const Vec3& x : vertices) {
-        out.vertices.push_back(x);
-        p.emplace_back(x[u], mirrored ? -x[w] : x[w]);
-    }
-    auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
-        out.triangles.push_back({base + a, base + b, base + c});
-    };
-    std::vector<std::size_t> ring(vertices.size());
-    for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = i;
-    // Flat (collinear) vertices add no area: a relative threshold on the 2-D cross product.
-    double extent = 0.0;
-    for (const Vec2& q : p) extent = std::max({extent, std::abs(q.x - p[0].x), std::abs(q.y - p[0].y)});
-    const double flat = 1e-14 * extent * extent;
-    // Pass 0 clips ears no reflex vertex lies in (the usual test); pass 1 only refuses
-    // vertices strictly inside; pass 2 takes any convex vertex (a self-intersecting outline).
-    bool clean = true;
-    int pass = 0;
-    std::size_t start = 0;  // the search goes on where the last ear was cut: O(n^2) for usual outlines
-    while (ring.size() > 3) {
-        const std::size_t n = ring.size();
-        bool clipped = false;
-        for (std::size_t step = 0; step < n && !clipped; ++step) {
-            const std::size_t k = (start + step) % n;
-            const std::size_t ia = ring[(k + n - 1) % n], ib = ring[k], ic = ring[(k + 1) % n];
-            const double o = orient(p[ia], p[ib], p[ic]);
-            if (std::abs(o) <= flat) {  // a flat vertex or a spike: drop it, no triangle
-                ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-                start = k == 0 ? 0 : k - 1;
-                clipped = true;
-                break;
-            }
-            if (o < 0.0) continue;  // reflex
-            bool blocked = false;
-            if (pass < 2) {
-                for (std::size_t j = 0; j < n && !blocked; ++j) {
-                    const std::size_t iq = ring[j];
-                    if (iq == ia || iq == ib || iq == ic) continue;
-                    const Vec2& q = p[iq];
-                    if (q == p[ia] || q == p[ib] || q == p[ic]) continue;  // a seam's twin vertex
-                    if (pass == 0) {
-                        const std::size_t iqp = ring[(j + n - 1) % n], iqn = ring[(j + 1) % n];
-                        if (orient(p[iqp], q, p[iqn]) > flat) continue;  // convex: cannot block alone
-                        blocked = in_triangle(q, p[ia], p[ib], p[ic]);
-                    } else {
-                        blocked = orient(p[ia], p[ib], q) > flat && orient(p[ib], p[ic], q) > flat &&
-                                  orient(p[ic], p[ia], q) > flat;
-                    }
-                }
-            }
-            if (blocked) continue;
-            emit(ia, ib, ic);
-            ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-            start = k == 0 ? 0 : k - 1;
-            clipped = true;
-        }
-        if (clipped) {
-            pass = 0;
-            continue;
-        }
-        if (pass < 2) {
-            ++pass;
-            if (pass == 2) clean = false;
-            continue;
-        }
-        for (std::size_t k = 1; k + 1 < ring.size(); ++k) emit(ring[0], ring[k], ring[k + 1]);  // give up: fan
-        return false;
-    }
-    if (ring.size() == 3 && std::abs(orient(p[ring[0]], p[ring[1]], p[ring[2]])) > flat)
-        emit(ring[0], ring[1], ring[2]);
-    return clean;
+    out.vertices.insert(out.vertices.end(), vertices.begin(), vertices.end());
+    const std::vector<Vec2> p = project_outline(vertices, area);
+    return EarClipper(p, base, out).triangulate();
 }
 
 void append_ring(const Vec3& center, const Vec3& normal, double r_inner, double r_outer, double chord_tolerance,

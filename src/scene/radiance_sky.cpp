@@ -296,6 +296,30 @@ void read_ground(ArgReader& a, const std::string& program, double& rho) {
     if (!(rho >= 0.0 && rho <= 1.0)) a.fail(program + " -g: the ground reflectance must lie in [0, 1]");
 }
 
+// The ground glow note: luxtrace's is exact where gensky's and gendaylit's use a fit.
+void note_ground(RadianceSky& out) {
+    if (out.sky.ground_reflectance > 0.0) out.notes.push_back(kGroundNote);
+}
+
+// The options after the date: the program's own (`own` returns false for one it does not
+// read), then -g and the site's (-y -a -o -m); anything else is unknown. `known` lists
+// what the program reads, for that error.
+template <class Own>
+void read_options(ArgReader& a, const std::string& program, When& w, double& rho, const char* known, Own own) {
+    while (!a.done()) {
+        const std::string o = a.word("");
+        if (own(o)) continue;
+        if (o == "-g") read_ground(a, program, rho);
+        else if (!read_site_option(a, program, o, w))
+            a.fail(program + ": unknown option '" + o + "' (read are " + known + ")");
+    }
+}
+
+[[noreturn]] void fail_below_horizon(const ArgReader& a, const std::string& program, const When& w,
+                                     const std::string& why) {
+    a.fail(program + ": the sun is below the horizon (altitude " + fixed(w.altitude_rad / kDeg, 2) + " deg)" + why);
+}
+
 // --- gensky (gensky.c computesky(); skybright.cal for the distributions).
 
 enum class GenskyType { clear, overcast, uniform, intermediate };
@@ -328,72 +352,73 @@ double gensky_normfactor(GenskyType type, double altitude_rad) {
     return 1.0;
 }
 
-RadianceSky map_gensky(ArgReader& a, const glm::dmat4& transform, RadianceSky out) {
-    When w = read_when(a, "gensky");
+// gensky's options after the date.
+struct GenskyOptions {
     GenskyType type = GenskyType::clear;
     bool with_sun = true;
     int zenith_unit = 0, solar_unit = 0;  // 0 default, 1 radiance (-b, -r), -1 irradiance (-B, -R)
     double zenith = 0.0, solar = 0.0, turbidity = 2.45;
-    double& rho = out.sky.ground_reflectance;
-    while (!a.done()) {
-        const std::string o = a.word("");
-        if (o == "+s" || o == "-s") {
-            type = GenskyType::clear;
-            with_sun = o[0] == '+';
-        } else if (o == "+i" || o == "-i") {
-            type = GenskyType::intermediate;
-            with_sun = o[0] == '+';
-        } else if (o == "-c" || o == "+c") {
-            type = GenskyType::overcast;
-        } else if (o == "-u" || o == "+u") {
-            type = GenskyType::uniform;
-        } else if (o == "-b" || o == "-B") {
-            zenith_unit = o == "-B" ? -1 : 1;
-            zenith = a.number("gensky " + o);
-        } else if (o == "-r" || o == "-R") {
-            solar_unit = o == "-R" ? -1 : 1;
-            solar = a.number("gensky " + o);
-        } else if (o == "-t") {
-            turbidity = a.number("gensky -t");
-        } else if (o == "-g") {
-            read_ground(a, "gensky", rho);
-        } else if (!read_site_option(a, "gensky", o, w)) {
-            a.fail("gensky: unknown option '" + o + "' (read are +s -s +i -i -c -u -b -B -r -R -t -g -a -o -m -y)");
-        }
-    }
-    place_sun(w, out.notes);
-    const bool overcast = type == GenskyType::overcast || type == GenskyType::uniform;
-    if (!overcast) clamp_to_87(w, out.notes);
-    if (!overcast && w.altitude_rad < 0.0)
-        a.fail("gensky: the sun is below the horizon (altitude " + fixed(w.altitude_rad / kDeg, 2) +
-               " deg): the clear and intermediate skies need it above; use -c or -u");
-    const double sin_h = std::sin(w.altitude_rad);
-    const double norm = gensky_normfactor(type, w.altitude_rad);
+    bool overcast() const { return type == GenskyType::overcast || type == GenskyType::uniform; }
+};
 
-    // Zenith radiance (W sr^-1 m^-2): given (-b), from the diffuse horizontal irradiance
-    // (-B), or from gensky's luminance formulas in kcd/m2 (the clear sky's from the
-    // turbidity, the overcast sky's from the sun's altitude) at its sky efficacy.
-    double zenith_w = zenith;
-    if (zenith_unit == -1) {
-        zenith_w = zenith / (norm * kPi);
-    } else if (zenith_unit == 0) {
+// One of gensky's own options into `g`; false if `o` is none of them.
+bool read_gensky_option(ArgReader& a, const std::string& o, GenskyOptions& g) {
+    if (o == "+s" || o == "-s") {
+        g.type = GenskyType::clear;
+        g.with_sun = o[0] == '+';
+    } else if (o == "+i" || o == "-i") {
+        g.type = GenskyType::intermediate;
+        g.with_sun = o[0] == '+';
+    } else if (o == "-c" || o == "+c") {
+        g.type = GenskyType::overcast;
+    } else if (o == "-u" || o == "+u") {
+        g.type = GenskyType::uniform;
+    } else if (o == "-b" || o == "-B") {
+        g.zenith_unit = o == "-B" ? -1 : 1;
+        g.zenith = a.number("gensky " + o);
+    } else if (o == "-r" || o == "-R") {
+        g.solar_unit = o == "-R" ? -1 : 1;
+        g.solar = a.number("gensky " + o);
+    } else if (o == "-t") {
+        g.turbidity = a.number("gensky -t");
+    } else {
+        return false;
+    }
+    return true;
+}
+
+// Zenith radiance (W sr^-1 m^-2): given (-b), from the diffuse horizontal irradiance
+// (-B), or from gensky's luminance formulas in kcd/m2 (the clear sky's from the
+// turbidity, the overcast sky's from the sun's altitude) at its sky efficacy.
+double gensky_zenith_radiance(const ArgReader& a, const GenskyOptions& g, const When& w, double norm,
+                              std::vector<std::string>& notes) {
+    const bool overcast = g.overcast();
+    double zenith_w = g.zenith;
+    if (g.zenith_unit == -1) {
+        zenith_w = g.zenith / (norm * kPi);
+    } else if (g.zenith_unit == 0) {
+        const double sin_h = std::sin(w.altitude_rad);
         const double overcast_kcd = 8.6 * sin_h + 0.123;
-        const double clear_kcd = (1.376 * turbidity - 1.81) * std::tan(w.altitude_rad) + 0.38;
+        const double clear_kcd = (1.376 * g.turbidity - 1.81) * std::tan(w.altitude_rad) + 0.38;
         double kcd = overcast ? overcast_kcd : clear_kcd;
-        if (type == GenskyType::intermediate) kcd = (clear_kcd + overcast_kcd) / 2.0;
+        if (g.type == GenskyType::intermediate) kcd = (clear_kcd + overcast_kcd) / 2.0;
         zenith_w = std::max(0.0, kcd) * 1000.0 / kGenskySkyEfficacy_lm_per_W;
-        out.notes.push_back("zenith luminance from gensky's formula" +
-                            std::string(overcast ? "" : " (turbidity " + fixed(turbidity, 2) + ")") +
-                            ", which gensky writes as radiance at 203 lm/W and Radiance reads at 179 lm/W");
+        notes.push_back("zenith luminance from gensky's formula" +
+                        std::string(overcast ? "" : " (turbidity " + fixed(g.turbidity, 2) + ")") +
+                        ", which gensky writes as radiance at 203 lm/W and Radiance reads at 179 lm/W");
     }
     if (!(zenith_w > 0.0))
         a.fail("gensky: the sky is dark (zenith radiance " + fixed(zenith_w, 3) + " W/sr/m2" +
-               (zenith_unit == 0 ? ", sun altitude " + fixed(w.altitude_rad / kDeg, 2) + " deg" : std::string()) +
+               (g.zenith_unit == 0 ? ", sun altitude " + fixed(w.altitude_rad / kDeg, 2) + " deg" : std::string()) +
                "): luxtrace needs a sky of positive brightness");
+    return zenith_w;
+}
 
+// skybright.cal's distribution as a CIE sky type (or uniform), and its brightness.
+void set_gensky_sky(const GenskyOptions& g, double zenith_w, double norm, RadianceSky& out) {
     RadianceSkyLight& sky = out.sky;
     const double k = kRadianceEfficacy_lm_per_W;
-    switch (type) {
+    switch (g.type) {
     case GenskyType::clear:
         sky.sky = "cie";
         sky.cie_type = 12;  // skybright.cal's sunnysky: gradation V and indicatrix 6 of ISO 15469
@@ -410,157 +435,217 @@ RadianceSky map_gensky(ArgReader& a, const glm::dmat4& transform, RadianceSky ou
     }
     // The intermediate sky keeps gensky's horizontal illuminance, the others their exact
     // distribution with the brightness given.
-    if (zenith_unit == -1 || type == GenskyType::intermediate) sky.diffuse_horizontal_lx = k * zenith_w * norm * kPi;
+    if (g.zenith_unit == -1 || g.type == GenskyType::intermediate)
+        sky.diffuse_horizontal_lx = k * zenith_w * norm * kPi;
     else sky.zenith_luminance_cd_m2 = k * zenith_w;
-    orient_sun(w, transform, a, sky.sun_altitude_deg, sky.sun_azimuth_deg);
+}
 
-    // The sun: gensky's solar radiance from the altitude (subdued to 15 % for +i), given
-    // (-r), or from the direct horizontal irradiance (-R); a 0.5 deg source.
-    if (!overcast && sin_h > 0.0 && (solar_unit == 0 || solar > 0.0) && with_sun) {
-        double solar_w = solar;
-        if (solar_unit == -1) {
-            solar_w = solar / (kGenskySunSolidAngle_sr * sin_h);
-        } else if (solar_unit == 0) {
-            solar_w = 1.5e9 / kGenskySunEfficacy_lm_per_W * (1.147 - 0.147 / std::max(sin_h, 0.16));
-            if (type == GenskyType::intermediate) solar_w *= 0.15;
-            out.notes.push_back("solar radiance from gensky's formula in the sun's altitude");
-        }
-        out.sun = RadianceSunLight{k * solar_w * source_solid_angle_sr(0.5), sky.sun_altitude_deg, sky.sun_azimuth_deg};
-        out.notes.push_back("the sun as luxtrace's 0.533 deg disc with gensky's direct normal illuminance (gensky's "
-                            "source is 0.5 deg)");
+// gensky writes a sun for +s and +i with the sun above the horizon, unless -r or -R give
+// it no brightness.
+bool gensky_has_sun(const GenskyOptions& g, double sin_h) {
+    return !g.overcast() && sin_h > 0.0 && (g.solar_unit == 0 || g.solar > 0.0) && g.with_sun;
+}
+
+// The sun: gensky's solar radiance from the altitude (subdued to 15 % for +i), given
+// (-r), or from the direct horizontal irradiance (-R); a 0.5 deg source.
+void add_gensky_sun(const GenskyOptions& g, double sin_h, RadianceSky& out) {
+    double solar_w = g.solar;
+    if (g.solar_unit == -1) {
+        solar_w = g.solar / (kGenskySunSolidAngle_sr * sin_h);
+    } else if (g.solar_unit == 0) {
+        solar_w = 1.5e9 / kGenskySunEfficacy_lm_per_W * (1.147 - 0.147 / std::max(sin_h, 0.16));
+        if (g.type == GenskyType::intermediate) solar_w *= 0.15;
+        out.notes.push_back("solar radiance from gensky's formula in the sun's altitude");
     }
-    if (rho > 0.0) out.notes.push_back(kGroundNote);
+    const double k = kRadianceEfficacy_lm_per_W;
+    out.sun = RadianceSunLight{k * solar_w * source_solid_angle_sr(0.5), out.sky.sun_altitude_deg,
+                               out.sky.sun_azimuth_deg};
+    out.notes.push_back("the sun as luxtrace's 0.533 deg disc with gensky's direct normal illuminance (gensky's "
+                        "source is 0.5 deg)");
+}
+
+RadianceSky map_gensky(ArgReader& a, const glm::dmat4& transform, RadianceSky out) {
+    When w = read_when(a, "gensky");
+    GenskyOptions g;
+    read_options(a, "gensky", w, out.sky.ground_reflectance, "+s -s +i -i -c -u -b -B -r -R -t -g -a -o -m -y",
+                 [&](const std::string& o) { return read_gensky_option(a, o, g); });
+    place_sun(w, out.notes);
+    if (!g.overcast()) clamp_to_87(w, out.notes);
+    if (!g.overcast() && w.altitude_rad < 0.0)
+        fail_below_horizon(a, "gensky", w, ": the clear and intermediate skies need it above; use -c or -u");
+    const double sin_h = std::sin(w.altitude_rad);
+    const double norm = gensky_normfactor(g.type, w.altitude_rad);
+    const double zenith_w = gensky_zenith_radiance(a, g, w, norm, out.notes);
+    set_gensky_sky(g, zenith_w, norm, out);
+    orient_sun(w, transform, a, out.sky.sun_altitude_deg, out.sky.sun_azimuth_deg);
+    if (gensky_has_sun(g, sin_h)) add_gensky_sun(g, sin_h, out);
+    note_ground(out);
     return out;
 }
 
 // --- gendaylit (gendaylit.c main() and computesky()).
 
-RadianceSky map_gendaylit(ArgReader& a, const glm::dmat4& transform, RadianceSky out) {
-    When w = read_when(a, "gendaylit");
+// gendaylit's options after the date.
+struct GendaylitOptions {
     bool with_sun = true, cloudy = false;
     char input = 0;  // 'W', 'G', 'P' or 'E'
     double first = 0.0, second = 0.0;
     double dew_point = kGendaylitDewPoint_c;
     bool dew_given = false;
-    double& rho = out.sky.ground_reflectance;
-    while (!a.done()) {
-        const std::string o = a.word("");
-        if (o == "+s" || o == "-s") {
-            with_sun = o[0] == '+';
-            cloudy = false;
-        } else if (o == "-c" || o == "+c") {
-            cloudy = true;
-            with_sun = false;
-        } else if (o == "-W" || o == "-G" || o == "-P") {
-            input = o[1];
-            first = a.number("gendaylit " + o + "'s first value");
-            second = a.number("gendaylit " + o + "'s second value");
-        } else if (o == "-E") {
-            input = 'E';
-            first = a.number("gendaylit -E");
-        } else if (o == "-L") {
-            a.fail("gendaylit -L (illuminances) is not read: luxtrace's Perez sky takes the irradiances and finds "
-                   "the illuminances with the Perez efficacies; give -W direct-normal diffuse-horizontal (W/m2)");
-        } else if (o == "-O") {
-            const double v = a.number("gendaylit -O");
-            if (v != 0.0)
-                a.fail("gendaylit -O " + fixed(v, 0) +
-                       " is not read: only -O 0 (visible radiance, the default) gives the sky Radiance reads at "
-                       "179 lm/W");
-        } else if (o == "-d") {
-            dew_point = a.number("gendaylit -d");
-            dew_given = true;
-            if (dew_point < -40.0 || dew_point > 40.0) {
-                out.notes.push_back("dew point " + fixed(dew_point, 1) +
-                                    " C outside [-40, 40]: gendaylit's default used instead");
-                dew_point = kGendaylitDewPoint_c;
-            }
-        } else if (o == "-g") {
-            read_ground(a, "gendaylit", rho);
-        } else if (o == "-w") {
-        } else if (o == "-t" || o == "-b" || o == "-R") {
-            a.number("gendaylit " + o);
-            out.notes.push_back("gendaylit " + o + " has no effect in gendaylit and is ignored");
-        } else if (o == "-C" || o == "-CIE" || o == "-l") {
-            a.fail("gendaylit " + o + " (a coloured sky) is not read: luxtrace's Perez sky has no colour");
-        } else if (o == "-i") {
-            a.fail("gendaylit -i (the time interval's correction of low suns) is not read");
-        } else if (!read_site_option(a, "gendaylit", o, w)) {
-            a.fail("gendaylit: unknown option '" + o + "' (read are -W -G -P -E -O 0 -d -g +s -s -c -w -a -o -m -y)");
-        }
-    }
-    if (input == 0) a.fail("gendaylit needs the hour's light: -W, -G, -P or -E");
-    place_sun(w, out.notes);
-    if (!cloudy) clamp_to_87(w, out.notes);
-    if (!(w.altitude_rad > 0.0))
-        a.fail("gendaylit: the sun is below the horizon (altitude " + fixed(w.altitude_rad / kDeg, 2) +
-               " deg), where gendaylit writes a dark sky; luxtrace's Perez sky needs the sun above it");
-    // The day for the extraterrestrial irradiance: jdate() of the date, 0 for -ang (a
-    // global never set), which the day angle makes the same as 365.
-    RadianceSkyLight& sky = out.sky;
-    sky.day_of_year = w.by_angles ? 365 : day_number(w.month, w.day);
-    const double sin_h = std::sin(w.altitude_rad), zenith_rad = kPi / 2.0 - w.altitude_rad;
-    const double e0_w_m2 = 1367.0 * eccentricity_factor(sky.day_of_year);
-    double direct_normal = 0.0, diffuse = 0.0;
-    switch (input) {
-    case 'W': direct_normal = first, diffuse = second; break;
-    case 'G': direct_normal = first / sin_h, diffuse = second; break;
-    case 'P': {  // Perez 1990 eqs. 1 and 2 solved for the irradiances, after gendaylit's clamps
-        const double epsilon = std::clamp(first, 1.0, 12.009), delta = std::clamp(second, 0.01, 0.6);
-        if (epsilon != first || delta != second)
-            out.notes.push_back("-P clamped to epsilon " + fixed(epsilon, 3) + ", delta " + fixed(delta, 3) +
-                                " (gendaylit's range)");
-        const double z3 = zenith_rad * zenith_rad * zenith_rad;
-        diffuse = delta / relative_air_mass(zenith_rad) * e0_w_m2;
-        direct_normal = diffuse * (epsilon - 1.0) * (1.0 + 1.041 * z3);
-        break;
-    }
-    case 'E': {  // Erbs, Klein & Duffie 1982: the diffuse fraction from the clearness index
-        const double s0 = e0_w_m2 * sin_h;
-        if (!(first >= 0.0)) a.fail("gendaylit -E: the global irradiance must not be negative");
-        double global = first;
-        if (global > s0) {
-            out.notes.push_back("global irradiance above the extraterrestrial one taken as 0.999 of it, as gendaylit");
-            global = 0.999 * s0;
-        }
-        const double kt = global / s0;
-        const double fraction = kt <= 0.22  ? 1.0 - 0.09 * kt
-                                : kt <= 0.8 ? 0.9511 - 0.1604 * kt + 4.388 * kt * kt - 16.638 * kt * kt * kt +
-                                                  12.336 * kt * kt * kt * kt
-                                            : 0.165;
-        diffuse = global * fraction;
-        direct_normal = (global - diffuse) / sin_h;
-        out.notes.push_back("the diffuse fraction from the global irradiance by Erbs' model, as gendaylit -E");
-        break;
-    }
-    }
-    if (!(diffuse > 0.0 && diffuse <= 1367.0))
-        a.fail("gendaylit: the diffuse horizontal irradiance must lie in (0, 1367] W/m2, got " + fixed(diffuse, 3));
-    if (!(direct_normal >= 0.0 && direct_normal <= 1367.0))
-        a.fail("gendaylit: the direct normal irradiance must lie in [0, 1367] W/m2, got " + fixed(direct_normal, 3));
-    sky.sky = "perez";
-    sky.diffuse_horizontal_w_m2 = diffuse;
-    sky.direct_normal_w_m2 = direct_normal;
-    sky.dew_point_c = dew_point;
-    if (!dew_given) out.notes.push_back("dew point 10.97 C, gendaylit's default (precipitable water 2 cm)");
-    orient_sun(w, transform, a, sky.sun_altitude_deg, sky.sun_azimuth_deg);
+};
 
+// One of gendaylit's own options into `g` (refusing those luxtrace cannot follow); false
+// if `o` is none of them.
+bool read_gendaylit_option(ArgReader& a, const std::string& o, GendaylitOptions& g, std::vector<std::string>& notes) {
+    if (o == "+s" || o == "-s") {
+        g.with_sun = o[0] == '+';
+        g.cloudy = false;
+    } else if (o == "-c" || o == "+c") {
+        g.cloudy = true;
+        g.with_sun = false;
+    } else if (o == "-W" || o == "-G" || o == "-P") {
+        g.input = o[1];
+        g.first = a.number("gendaylit " + o + "'s first value");
+        g.second = a.number("gendaylit " + o + "'s second value");
+    } else if (o == "-E") {
+        g.input = 'E';
+        g.first = a.number("gendaylit -E");
+    } else if (o == "-L") {
+        a.fail("gendaylit -L (illuminances) is not read: luxtrace's Perez sky takes the irradiances and finds "
+               "the illuminances with the Perez efficacies; give -W direct-normal diffuse-horizontal (W/m2)");
+    } else if (o == "-O") {
+        const double v = a.number("gendaylit -O");
+        if (v != 0.0)
+            a.fail("gendaylit -O " + fixed(v, 0) +
+                   " is not read: only -O 0 (visible radiance, the default) gives the sky Radiance reads at "
+                   "179 lm/W");
+    } else if (o == "-d") {
+        g.dew_point = a.number("gendaylit -d");
+        g.dew_given = true;
+        if (g.dew_point < -40.0 || g.dew_point > 40.0) {
+            notes.push_back("dew point " + fixed(g.dew_point, 1) +
+                            " C outside [-40, 40]: gendaylit's default used instead");
+            g.dew_point = kGendaylitDewPoint_c;
+        }
+    } else if (o == "-w") {
+    } else if (o == "-t" || o == "-b" || o == "-R") {
+        a.number("gendaylit " + o);
+        notes.push_back("gendaylit " + o + " has no effect in gendaylit and is ignored");
+    } else if (o == "-C" || o == "-CIE" || o == "-l") {
+        a.fail("gendaylit " + o + " (a coloured sky) is not read: luxtrace's Perez sky has no colour");
+    } else if (o == "-i") {
+        a.fail("gendaylit -i (the time interval's correction of low suns) is not read");
+    } else {
+        return false;
+    }
+    return true;
+}
+
+// The hour's irradiances (W/m2).
+struct Irradiance {
+    double direct_normal = 0.0, diffuse = 0.0;
+};
+
+// -P: Perez 1990 eqs. 1 and 2 solved for the irradiances, after gendaylit's clamps.
+Irradiance from_perez_parameters(double first, double second, double zenith_rad, double e0_w_m2,
+                                 std::vector<std::string>& notes) {
+    const double epsilon = std::clamp(first, 1.0, 12.009), delta = std::clamp(second, 0.01, 0.6);
+    if (epsilon != first || delta != second)
+        notes.push_back("-P clamped to epsilon " + fixed(epsilon, 3) + ", delta " + fixed(delta, 3) +
+                        " (gendaylit's range)");
+    const double z3 = zenith_rad * zenith_rad * zenith_rad;
+    Irradiance e;
+    e.diffuse = delta / relative_air_mass(zenith_rad) * e0_w_m2;
+    e.direct_normal = e.diffuse * (epsilon - 1.0) * (1.0 + 1.041 * z3);
+    return e;
+}
+
+// -E: Erbs, Klein & Duffie 1982: the diffuse fraction from the clearness index.
+Irradiance from_global(const ArgReader& a, double first, double sin_h, double e0_w_m2,
+                       std::vector<std::string>& notes) {
+    const double s0 = e0_w_m2 * sin_h;
+    if (!(first >= 0.0)) a.fail("gendaylit -E: the global irradiance must not be negative");
+    double global = first;
+    if (global > s0) {
+        notes.push_back("global irradiance above the extraterrestrial one taken as 0.999 of it, as gendaylit");
+        global = 0.999 * s0;
+    }
+    const double kt = global / s0;
+    const double fraction = kt <= 0.22  ? 1.0 - 0.09 * kt
+                            : kt <= 0.8 ? 0.9511 - 0.1604 * kt + 4.388 * kt * kt - 16.638 * kt * kt * kt +
+                                              12.336 * kt * kt * kt * kt
+                                        : 0.165;
+    Irradiance e;
+    e.diffuse = global * fraction;
+    e.direct_normal = (global - e.diffuse) / sin_h;
+    notes.push_back("the diffuse fraction from the global irradiance by Erbs' model, as gendaylit -E");
+    return e;
+}
+
+// Direct normal and diffuse horizontal irradiance from -W, -G, -P or -E, within
+// gendaylit's range.
+Irradiance gendaylit_irradiance(const ArgReader& a, const GendaylitOptions& g, const When& w, int day_of_year,
+                                std::vector<std::string>& notes) {
+    const double sin_h = std::sin(w.altitude_rad), zenith_rad = kPi / 2.0 - w.altitude_rad;
+    const double e0_w_m2 = 1367.0 * eccentricity_factor(day_of_year);
+    Irradiance e;
+    switch (g.input) {
+    case 'W': e = {g.first, g.second}; break;
+    case 'G': e = {g.first / sin_h, g.second}; break;
+    case 'P': e = from_perez_parameters(g.first, g.second, zenith_rad, e0_w_m2, notes); break;
+    case 'E': e = from_global(a, g.first, sin_h, e0_w_m2, notes); break;
+    }
+    if (!(e.diffuse > 0.0 && e.diffuse <= 1367.0))
+        a.fail("gendaylit: the diffuse horizontal irradiance must lie in (0, 1367] W/m2, got " + fixed(e.diffuse, 3));
+    if (!(e.direct_normal >= 0.0 && e.direct_normal <= 1367.0))
+        a.fail("gendaylit: the direct normal irradiance must lie in [0, 1367] W/m2, got " + fixed(e.direct_normal, 3));
+    return e;
+}
+
+// The sun of the Perez sky drawn from the sky's keys; gendaylit writes a sun only when
+// the sky is not fully overcast (epsilon > 1).
+void add_perez_sun(const ArgReader& a, const GendaylitOptions& g, RadianceSky& out) {
+    const RadianceSkyLight& sky = out.sky;
     PerezSkyInput in;
     in.sun_zenith_rad = (90.0 - sky.sun_altitude_deg) * kDeg;
     in.sun_azimuth_rad = sky.sun_azimuth_deg * kDeg;
-    in.diffuse_horizontal_w_m2 = diffuse;
-    in.direct_normal_w_m2 = direct_normal;
-    in.dew_point_c = dew_point;
+    in.diffuse_horizontal_w_m2 = sky.diffuse_horizontal_w_m2;
+    in.direct_normal_w_m2 = sky.direct_normal_w_m2;
+    in.dew_point_c = sky.dew_point_c;
     in.day_of_year = sky.day_of_year;
     try {
         const PerezSky perez(in, false);
-        // gendaylit writes a sun only when the sky is not fully overcast (epsilon > 1).
-        if (with_sun && perez.epsilon() > 1.0 && direct_normal > 0.0)
+        if (g.with_sun && perez.epsilon() > 1.0 && sky.direct_normal_w_m2 > 0.0)
             out.sun = RadianceSunLight{perez.direct_normal_illuminance_lx(), sky.sun_altitude_deg, sky.sun_azimuth_deg};
     } catch (const std::invalid_argument& e) {
         a.fail(std::string("gendaylit: ") + e.what());
     }
-    if (rho > 0.0) out.notes.push_back(kGroundNote);
+}
+
+RadianceSky map_gendaylit(ArgReader& a, const glm::dmat4& transform, RadianceSky out) {
+    When w = read_when(a, "gendaylit");
+    GendaylitOptions g;
+    read_options(a, "gendaylit", w, out.sky.ground_reflectance, "-W -G -P -E -O 0 -d -g +s -s -c -w -a -o -m -y",
+                 [&](const std::string& o) { return read_gendaylit_option(a, o, g, out.notes); });
+    if (g.input == 0) a.fail("gendaylit needs the hour's light: -W, -G, -P or -E");
+    place_sun(w, out.notes);
+    if (!g.cloudy) clamp_to_87(w, out.notes);
+    if (!(w.altitude_rad > 0.0))
+        fail_below_horizon(a, "gendaylit", w,
+                           ", where gendaylit writes a dark sky; luxtrace's Perez sky needs the sun above it");
+    // The day for the extraterrestrial irradiance: jdate() of the date, 0 for -ang (a
+    // global never set), which the day angle makes the same as 365.
+    RadianceSkyLight& sky = out.sky;
+    sky.day_of_year = w.by_angles ? 365 : day_number(w.month, w.day);
+    const Irradiance e = gendaylit_irradiance(a, g, w, sky.day_of_year, out.notes);
+    sky.sky = "perez";
+    sky.diffuse_horizontal_w_m2 = e.diffuse;
+    sky.direct_normal_w_m2 = e.direct_normal;
+    sky.dew_point_c = g.dew_point;
+    if (!g.dew_given) out.notes.push_back("dew point 10.97 C, gendaylit's default (precipitable water 2 cm)");
+    orient_sun(w, transform, a, sky.sun_altitude_deg, sky.sun_azimuth_deg);
+    add_perez_sun(a, g, out);
+    note_ground(out);
     return out;
 }
 

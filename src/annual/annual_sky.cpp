@@ -41,6 +41,77 @@ LocalStandardTime at(int year, int month, int day, double hour_mid, double utc_o
     return t;
 }
 
+// The weather file's hour as the year of skies keeps it, before its sun and sky.
+AnnualHour annual_hour(const weather::WeatherHour& w, weather::WeatherFormat format, const AnnualOptions& options) {
+    AnnualHour h;
+    h.month = w.month;
+    h.day = w.day;
+    h.hour_mid = hour_middle(w, format);
+    h.diffuse_horizontal_w_m2 = w.diffuse_horizontal_w_m2;
+    h.direct_normal_w_m2 = w.direct_normal_w_m2;
+    h.dew_point_c = w.dew_point_c;
+    h.occupied = h.hour_mid >= options.occupied_from_h && h.hour_mid < options.occupied_to_h;
+    return h;
+}
+
+// The sun at the middle of hour `index` of the weather file.
+SunPosition hour_sun(const std::string& path, std::size_t index, const AnnualHour& h, int year, double utc_offset_h,
+                     const SunSite& site) {
+    try {
+        return sun_position(at(year, h.month, h.day, h.hour_mid, utc_offset_h), site);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(hour_name(path, index, h) + ": no sun position: " + e.what());
+    }
+}
+
+// What a sky model needs of an hour with the sun up.
+void require_sky_inputs(const std::string& path, std::size_t index, const AnnualHour& h,
+                        const weather::WeatherHour& w) {
+    auto need = [&](double v, const char* what) {
+        if (!std::isfinite(v))
+            throw InputError(hour_name(path, index, h) + ": the sun is up and its " + what + " is missing");
+    };
+    need(w.diffuse_horizontal_w_m2, "diffuse horizontal irradiance");
+    need(w.direct_normal_w_m2, "direct normal irradiance");
+    need(w.dew_point_c, "dew point");
+}
+
+PerezSkyInput perez_input(const weather::WeatherHour& w, const SunPosition& sun, int year) {
+    PerezSkyInput in;
+    in.sun_zenith_rad = (90.0 - sun.altitude_deg) * kPi / 180.0;
+    in.sun_azimuth_rad = sun.azimuth_deg * kPi / 180.0;
+    in.diffuse_horizontal_w_m2 = w.diffuse_horizontal_w_m2;
+    in.direct_normal_w_m2 = w.direct_normal_w_m2;
+    in.dew_point_c = w.dew_point_c;
+    in.day_of_year = day_of_year(year, w.month, w.day);
+    return in;
+}
+
+// The sky patches' luminances of one hour (cd/m2): the model's relative luminance
+// averaged over each patch, scaled to the hour's diffuse horizontal illuminance.
+std::vector<double> patch_luminances(const SkyPatches& patches, const SkyModel& model, const SunPosition& sun,
+                                     double diffuse_horizontal_lx, int sky_mf) {
+    const auto luminance = [&](const Vec3& d) { return model.relative_luminance(d); };
+    // 4 x 4 nodes per Tregenza patch, 2 x 2 per finer one: the luminance varies
+    // smoothly over a patch except at the sun, and the hour's total is exact below.
+    const int nodes = sky_mf == 1 ? 4 : 2;
+    // The sun's patch is cut at the sun, where the luminance has its kink.
+    const Vec3 sun_dir = sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);
+    // Solid-angle means: each patch emits what the sky sends from it, so the error of a
+    // uniform patch is of second order for a sensor of any orientation (a
+    // cosine-weighted mean would be exact for horizontal ones only and 1.6 % high
+    // on a vertical one under the overcast sky at MF 1).
+    std::vector<double> means = patches.solid_angle_means(luminance, nodes, sun_dir);
+    // The relative luminances scaled so that the patches carry the hour's diffuse
+    // horizontal illuminance exactly (Perez 1993's normalisation, done over the
+    // patches, as gendaymtx does).
+    double e_h = 0.0;
+    for (std::size_t p = 0; p < means.size(); ++p) e_h += means[p] * patches.projected_solid_angle_sr(p);
+    const double scale = e_h > 0.0 ? diffuse_horizontal_lx / e_h : 0.0;
+    for (double& m : means) m *= scale;
+    return means;
+}
+
 }  // namespace
 
 AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, double utc_offset_h,
@@ -48,85 +119,42 @@ AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, d
     : patches_(options.sky_mf) {
     const bool leap = weather.hours.size() == 8784;
     const int year = options.year > 0 ? options.year : (leap ? 2016 : 2017);
-    const std::size_t entries = sky_entries();
-    yearly_.assign(entries, 0.0);
-    std::vector<double> means;
+    yearly_.assign(sky_entries(), 0.0);
     for (std::size_t i = 0; i < weather.hours.size(); ++i) {
         const weather::WeatherHour& w = weather.hours[i];
-        AnnualHour h;
-        h.month = w.month;
-        h.day = w.day;
-        h.hour_mid = hour_middle(w, weather.format);
-        h.diffuse_horizontal_w_m2 = w.diffuse_horizontal_w_m2;
-        h.direct_normal_w_m2 = w.direct_normal_w_m2;
-        h.dew_point_c = w.dew_point_c;
-        h.occupied = h.hour_mid >= options.occupied_from_h && h.hour_mid < options.occupied_to_h;
-        SunPosition sun;
-        try {
-            sun = sun_position(at(year, w.month, w.day, h.hour_mid, utc_offset_h), site);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(hour_name(weather.path, i, h) + ": no sun position: " + e.what());
-        }
+        AnnualHour h = annual_hour(w, weather.format, options);
+        const SunPosition sun = hour_sun(weather.path, i, h, year, utc_offset_h, site);
         h.sun_altitude_deg = sun.altitude_deg;
         h.sun_azimuth_deg = sun.azimuth_deg;
-        const double diffuse = w.diffuse_horizontal_w_m2, direct = w.direct_normal_w_m2;
-        if (sun.above_horizon() && !(diffuse == 0.0 && direct == 0.0)) {
-            auto need = [&](double v, const char* what) {
-                if (!std::isfinite(v))
-                    throw InputError(hour_name(weather.path, i, h) + ": the sun is up and its " + what + " is missing");
-            };
-            need(diffuse, "diffuse horizontal irradiance");
-            need(direct, "direct normal irradiance");
-            need(w.dew_point_c, "dew point");
-            if (!(diffuse > 0.0)) {  // no sky to model (a real file's dawn may say so): dark
-                ++no_diffuse_;
-                hours_.push_back(h);
-                continue;
-            }
-            PerezSkyInput in;
-            in.sun_zenith_rad = (90.0 - sun.altitude_deg) * kPi / 180.0;
-            in.sun_azimuth_rad = sun.azimuth_deg * kPi / 180.0;
-            in.diffuse_horizontal_w_m2 = diffuse;
-            in.direct_normal_w_m2 = direct;
-            in.dew_point_c = w.dew_point_c;
-            in.day_of_year = day_of_year(year, w.month, w.day);
-            const PerezSky perez(in, false);  // scaled below, over the patches
-            if (perez.clamped()) ++clamped_;
-            h.daylit = true;
-            h.row = rows_++;
-            h.diffuse_horizontal_lx = perez.diffuse_horizontal_illuminance_lx();
-            h.direct_normal_lx = perez.direct_normal_illuminance_lx();
-            const SkyModel model = options.sky == "cie"
-                                       ? SkyModel::cie(options.cie_type, in.sun_zenith_rad, in.sun_azimuth_rad)
-                                       : perez.model();
-            const auto luminance = [&](const Vec3& d) { return model.relative_luminance(d); };
-            // 4 x 4 nodes per Tregenza patch, 2 x 2 per finer one: the luminance varies
-            // smoothly over a patch except at the sun, and the hour's total is exact below.
-            const int nodes = options.sky_mf == 1 ? 4 : 2;
-            // The sun's patch is cut at the sun, where the luminance has its kink.
-            const Vec3 sun_dir = sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);
-            // Solid-angle means: each patch emits what the sky sends from it, so the error of a
-            // uniform patch is of second order for a sensor of any orientation (a
-            // cosine-weighted mean would be exact for horizontal ones only and 1.6 % high
-            // on a vertical one under the overcast sky at MF 1).
-            means = patches_.solid_angle_means(luminance, nodes, sun_dir);
-            // The relative luminances scaled so that the patches carry the hour's diffuse
-            // horizontal illuminance exactly (Perez 1993's normalisation, done over the
-            // patches, as gendaymtx does).
-            double e_h = 0.0;
-            for (std::size_t p = 0; p < means.size(); ++p) e_h += means[p] * patches_.projected_solid_angle_sr(p);
-            const double scale = e_h > 0.0 ? h.diffuse_horizontal_lx / e_h : 0.0;
-            for (double& m : means) m *= scale;
-            // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
-            means.push_back(options.ground_reflectance * h.global_horizontal_lx() / kPi);
-            luminance_.insert(luminance_.end(), means.begin(), means.end());
-            for (std::size_t e = 0; e < entries; ++e) yearly_[e] += means[e];
-            if (h.direct_normal_lx > 0.0) {
-                h.sun = static_cast<int>(suns_.size());
-                suns_.push_back(i);
-            }
+        if (sun.above_horizon() && !(w.diffuse_horizontal_w_m2 == 0.0 && w.direct_normal_w_m2 == 0.0)) {
+            require_sky_inputs(weather.path, i, h, w);
+            // No diffuse irradiance, no sky to model (a real file's dawn may say so): dark.
+            if (!(w.diffuse_horizontal_w_m2 > 0.0)) ++no_diffuse_;
+            else add_sky_row(h, i, w, sun, year, options);
         }
         hours_.push_back(h);
+    }
+}
+
+void AnnualSky::add_sky_row(AnnualHour& h, std::size_t index, const weather::WeatherHour& w, const SunPosition& sun,
+                            int year, const AnnualOptions& options) {
+    const PerezSkyInput in = perez_input(w, sun, year);
+    const PerezSky perez(in, false);  // scaled over the patches (patch_luminances)
+    if (perez.clamped()) ++clamped_;
+    h.daylit = true;
+    h.row = rows_++;
+    h.diffuse_horizontal_lx = perez.diffuse_horizontal_illuminance_lx();
+    h.direct_normal_lx = perez.direct_normal_illuminance_lx();
+    const SkyModel model = options.sky == "cie" ? SkyModel::cie(options.cie_type, in.sun_zenith_rad, in.sun_azimuth_rad)
+                                                : perez.model();
+    std::vector<double> means = patch_luminances(patches_, model, sun, h.diffuse_horizontal_lx, options.sky_mf);
+    // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
+    means.push_back(options.ground_reflectance * h.global_horizontal_lx() / kPi);
+    luminance_.insert(luminance_.end(), means.begin(), means.end());
+    for (std::size_t e = 0; e < sky_entries(); ++e) yearly_[e] += means[e];
+    if (h.direct_normal_lx > 0.0) {
+        h.sun = static_cast<int>(suns_.size());
+        suns_.push_back(index);
     }
 }
 

@@ -278,16 +278,30 @@ int cmd_info(const std::string& path, const std::optional<std::string>& scene) {
     return 0;
 }
 
-}  // namespace
+// Every subcommand, and what its arguments and options fill (the CLI keeps pointers
+// into it: it stays where it was made).
+struct CommandLine {
+    CLI::App* run = nullptr;
+    RunArgs run_args;
+    CLI::App* check = nullptr;
+    SceneArgs check_args;
+    CLI::App* info = nullptr;
+    std::string info_path;
+    std::optional<std::string> info_scene;
+    CLI::App* render = nullptr;
+    RenderArgs render_args;
+    CLI::App* photometry = nullptr;
+    std::vector<std::string> photometry_files;
+    int lamp_set = 1;
+    CLI::App* xdmf = nullptr;
+    std::string xdmf_result, xdmf_output;
+    CLI::App* reference = nullptr;
+    std::string reference_part;
+};
 
-int main(int argc, char** argv) {
-    Communicator comm(&argc, &argv);
-    CLI::App app{"luxtrace: forward Monte Carlo photon simulation for lighting"};
-    app.name("luxtrace");  // not argv[0]: the reference printed below must not depend on the path
-    app.require_subcommand(1);
-    app.set_version_flag("--version", "luxtrace " LUXTRACE_VERSION, "print the version and git commit, then exit");
-    RunArgs ra;
-    auto* run = app.add_subcommand("run", "simulate a scene and write the result file");
+void add_run_command(CLI::App& app, CommandLine& c) {
+    RunArgs& ra = c.run_args;
+    auto* run = c.run = app.add_subcommand("run", "simulate a scene and write the result file");
     add_scene_options(run, ra.scene, "simulate");
     run->add_option("--photons", ra.photons,
                     "photon budget (1000000, 1e6 and 1M are the same); with --restart the new budget, at least the "
@@ -311,21 +325,23 @@ int main(int argc, char** argv) {
     // Hidden (group ""): tests make one step of a write after tracing fail (docs/RELIABILITY.md).
     run->add_option("--inject-fault", ra.inject_fault, "FILE:STEP of a write after tracing that fails (tests)")
         ->group("");
-    std::string info_path;
-    SceneArgs check_args;
-    auto* check = app.add_subcommand("check", "parse and validate a scene, print a summary");
-    add_scene_options(check, check_args, "check");
-    auto* info = app.add_subcommand("info", "print the stored summary of a result file");
-    info->add_option("result", info_path, "result file (.h5)")->required();
-    std::optional<std::string> info_scene;
-    info->add_option("--scene", info_scene,
-                     "light groups at these weights, e.g. \"a=0.5,b=1\" (groups not named are off): the detector "
-                     "means (and mean daylight factors) and the global map with their errors, recombined from the "
-                     "result's light groups");
+}
 
-    RenderArgs rd;
-    auto* render = app.add_subcommand("render",
-                                      "rendered views of a result (detector pictures: python3 -m luxtrace.plot)");
+void add_check_and_info_commands(CLI::App& app, CommandLine& c) {
+    c.check = app.add_subcommand("check", "parse and validate a scene, print a summary");
+    add_scene_options(c.check, c.check_args, "check");
+    c.info = app.add_subcommand("info", "print the stored summary of a result file");
+    c.info->add_option("result", c.info_path, "result file (.h5)")->required();
+    c.info->add_option("--scene", c.info_scene,
+                       "light groups at these weights, e.g. \"a=0.5,b=1\" (groups not named are off): the detector "
+                       "means (and mean daylight factors) and the global map with their errors, recombined from the "
+                       "result's light groups");
+}
+
+void add_render_command(CLI::App& app, CommandLine& c) {
+    RenderArgs& rd = c.render_args;
+    auto* render = c.render =
+        app.add_subcommand("render", "rendered views of a result (detector pictures: python3 -m luxtrace.plot)");
     render->add_option("result", rd.result, "result file (.h5)")->required();
     render->add_option("--camera", rd.camera, "position,target[,up] as 6 or 9 comma-separated numbers");
     render->add_option("--view", rd.camera_name, "name of a [[camera]] in the scene file");
@@ -339,39 +355,35 @@ int main(int argc, char** argv) {
     render->add_option("--falsecolour-max", rd.falsecolour_max, "top of the false-colour scale (cd/m^2)");
     render->add_option("--samples", rd.samples, "rays per pixel");
     render->add_option("--threads", rd.threads, "threads (default: all cores)");
-    std::vector<std::string> photometry_files;
-    int lamp_set = 1;
-    auto* photometry = app.add_subcommand("photometry",
-                                          "read IES or EULUMDAT files and print what luxtrace makes of them");
-    photometry->add_option("files", photometry_files, "IES LM-63 or EULUMDAT files")->required();
-    photometry->add_option("--lamp-set", lamp_set, "EULUMDAT: the lamp set to scale by (default 1)");
-    std::string xdmf_result, xdmf_output;
-    auto* xdmf = app.add_subcommand("export-xdmf", "write the ParaView/VisIt companion (.xdmf) of a result");
-    xdmf->add_option("result", xdmf_result, "result file (.h5)")->required();
-    xdmf->add_option("-o,--output", xdmf_output, "XDMF file (default: RESULT.xdmf)");
+}
 
-    // Hidden: the reference tables of docs/REFERENCE.md that are made from the program itself.
-    std::string reference_part;
-    auto* reference = app.add_subcommand("reference", "print the reference tables made from the program")->group("");
-    reference->add_option("part", reference_part, "cli: the command line")->required()->check(CLI::IsMember({"cli"}));
+void add_photometry_and_xdmf_commands(CLI::App& app, CommandLine& c) {
+    c.photometry = app.add_subcommand("photometry", "read IES or EULUMDAT files and print what luxtrace makes of them");
+    c.photometry->add_option("files", c.photometry_files, "IES LM-63 or EULUMDAT files")->required();
+    c.photometry->add_option("--lamp-set", c.lamp_set, "EULUMDAT: the lamp set to scale by (default 1)");
+    c.xdmf = app.add_subcommand("export-xdmf", "write the ParaView/VisIt companion (.xdmf) of a result");
+    c.xdmf->add_option("result", c.xdmf_result, "result file (.h5)")->required();
+    c.xdmf->add_option("-o,--output", c.xdmf_output, "XDMF file (default: RESULT.xdmf)");
+}
 
+// Hidden: the reference tables of docs/REFERENCE.md that are made from the program itself.
+void add_reference_command(CLI::App& app, CommandLine& c) {
+    c.reference = app.add_subcommand("reference", "print the reference tables made from the program")->group("");
+    c.reference->add_option("part", c.reference_part, "cli: the command line")
+        ->required()
+        ->check(CLI::IsMember({"cli"}));
+}
+
+// The parsed subcommand, its errors mapped to exit codes.
+int run_command(const Communicator& comm, const CLI::App& app, const CommandLine& c) {
     try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        if (comm.is_root()) app.exit(e);
-        return 0;
-    } catch (const CLI::ParseError& e) {
-        if (comm.is_root()) app.exit(e);
-        return e.get_exit_code() == 0 ? 0 : kExitBadInput;
-    }
-    try {
-        if (*run) return cmd_run(comm, ra);
-        if (*check) return comm.is_root() ? cmd_check(check_args) : 0;
-        if (*info) return comm.is_root() ? cmd_info(info_path, info_scene) : 0;
-        if (*render) return comm.is_root() ? cmd_render(rd) : 0;
-        if (*photometry) return comm.is_root() ? cmd_photometry(photometry_files, lamp_set) : 0;
-        if (*xdmf) return comm.is_root() ? cmd_export_xdmf(xdmf_result, xdmf_output) : 0;
-        if (*reference) {
+        if (*c.run) return cmd_run(comm, c.run_args);
+        if (*c.check) return comm.is_root() ? cmd_check(c.check_args) : 0;
+        if (*c.info) return comm.is_root() ? cmd_info(c.info_path, c.info_scene) : 0;
+        if (*c.render) return comm.is_root() ? cmd_render(c.render_args) : 0;
+        if (*c.photometry) return comm.is_root() ? cmd_photometry(c.photometry_files, c.lamp_set) : 0;
+        if (*c.xdmf) return comm.is_root() ? cmd_export_xdmf(c.xdmf_result, c.xdmf_output) : 0;
+        if (*c.reference) {
             if (comm.is_root()) print_cli_reference(app, std::cout);
             return 0;
         }
@@ -384,4 +396,30 @@ int main(int argc, char** argv) {
         comm.abort(1);
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Communicator comm(&argc, &argv);
+    CLI::App app{"luxtrace: forward Monte Carlo photon simulation for lighting"};
+    app.name("luxtrace");  // not argv[0]: the reference (run_command) must not depend on the path
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "luxtrace " LUXTRACE_VERSION, "print the version and git commit, then exit");
+    CommandLine command_line;
+    add_run_command(app, command_line);
+    add_check_and_info_commands(app, command_line);
+    add_render_command(app, command_line);
+    add_photometry_and_xdmf_commands(app, command_line);
+    add_reference_command(app, command_line);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        if (comm.is_root()) app.exit(e);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        if (comm.is_root()) app.exit(e);
+        return e.get_exit_code() == 0 ? 0 : kExitBadInput;
+    }
+    return run_command(comm, app, command_line);
 }

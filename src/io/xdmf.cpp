@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace luxtrace {
@@ -84,7 +85,33 @@ public:
     }
     void close_attribute() { out_ << "      </Attribute>\n"; }
 
+    // A per-triangle dataset `path` [T] as attribute `name`.
+    void triangle_attribute(const std::string& name, const std::string& path, const char* type, int precision) {
+        open_attribute(name);
+        hdf(kAttributeIndent, path, std::to_string(T_), type, precision);
+        close_attribute();
+    }
+    // Side `side`, band `band` of the maps as three attributes: all arrivals, first hits
+    // (direct), and the secondary (interreflected) light, all arrivals minus first hits.
+    void illuminance_attributes(const std::string& suffix, std::size_t side, std::size_t band) {
+        const std::string& in = kAttributeIndent;
+        open_attribute("illuminance" + suffix + "_lx");
+        band_column(in, "/global/illuminance", side, band);
+        close_attribute();
+        open_attribute("direct" + suffix + "_lx");
+        band_column(in, "/global/illuminance_direct", side, band);
+        close_attribute();
+        open_attribute("secondary" + suffix + "_lx");
+        out_ << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\"" << dims(T_, 1)
+             << (two_sided_ ? " 1" : "") << "\">\n";
+        band_column(in + "  ", "/global/illuminance", side, band);
+        band_column(in + "  ", "/global/illuminance_direct", side, band);
+        out_ << in << "</DataItem>\n";
+        close_attribute();
+    }
+
     static std::string dims(std::size_t a, std::size_t b) { return std::to_string(a) + ' ' + std::to_string(b); }
+    inline static const std::string kAttributeIndent = "        ";  // of an attribute's DataItem
 
 private:
     std::ostream& out_;
@@ -92,6 +119,62 @@ private:
     std::size_t T_, B_;
     bool two_sided_;
 };
+
+// Same folder: the bare file name, so the pair can be moved together; otherwise absolute.
+std::string h5_reference(const fs::path& result, const fs::path& xdmf) {
+    const fs::path xdir = fs::absolute(xdmf).parent_path();
+    const fs::path rabs = fs::absolute(result);
+    return rabs.parent_path().lexically_normal() == xdir.lexically_normal() ? rabs.filename().string()
+                                                                            : rabs.lexically_normal().string();
+}
+
+void write_grid_header(std::ostream& out, const std::string& scene,
+                       const std::optional<std::vector<std::string>>& material_names) {
+    out << "<?xml version=\"1.0\" ?>\n"
+        << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+        << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+        << "  <Domain>\n"
+        << "    <Grid Name=\"" << xml_escape(scene) << "\" GridType=\"Uniform\">\n";
+    if (material_names) {
+        std::string names;
+        for (const std::string& n : *material_names) {
+            if (!names.empty()) names += ',';
+            names += n;
+        }
+        out << "      <Information Name=\"material_names\" Value=\"" << xml_escape(names) << "\"/>\n";
+    }
+}
+
+void write_mesh(std::ostream& out, XdmfWriter& w, const MeshShape& mesh) {
+    const std::size_t V = mesh.vertices, T = mesh.triangles;
+    out << "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << T << "\">\n";
+    w.hdf("        ", "/mesh/triangles", XdmfWriter::dims(T, 3), "UInt", 4);
+    out << "      </Topology>\n"
+        << "      <Geometry GeometryType=\"XYZ\">\n";
+    w.hdf("        ", "/mesh/vertices", XdmfWriter::dims(V, 3), "Float", 8);
+    out << "      </Geometry>\n";
+}
+
+// The surface maps as cell attributes. Format 2: one attribute per side (_front, _back);
+// format 1: both sides together.
+void write_maps(XdmfWriter& w, const ResultFile& r, const std::vector<std::string>& bands, bool two_sided) {
+    const std::size_t B = bands.size();
+    const std::vector<std::string> side_names = two_sided ? std::vector<std::string>{"_front", "_back"}
+                                                          : std::vector<std::string>{""};
+    for (std::size_t side = 0; side < side_names.size(); ++side)
+        for (std::size_t b = 0; b < B; ++b)
+            w.illuminance_attributes(side_names[side] + (B == 1 ? "" : "_" + bands[b]), side, b);
+    if (two_sided) {
+        for (std::size_t side = 0; side < side_names.size(); ++side)
+            for (const char* map : {"odd_even_difference", "sigma"}) {
+                w.open_attribute(map + side_names[side] + "_lx");
+                w.side_column(XdmfWriter::kAttributeIndent, "/global/" + std::string(map) + "_lx", side);
+                w.close_attribute();
+            }
+    } else if (r.has_odd_even_difference()) {
+        w.triangle_attribute("odd_even_difference_lx", "/global/odd_even_difference_lx", "Float", 8);
+    }
+}
 
 }  // namespace
 
@@ -103,83 +186,20 @@ void write_xdmf(const fs::path& result, const fs::path& xdmf) {
     const MeshShape mesh = r.mesh_shape();
     if (!r.has_surface_illuminance())
         throw InputError(result.string() + ": not a complete luxtrace result (mesh or /global maps missing)");
-    const std::size_t V = mesh.vertices, T = mesh.triangles;
     std::vector<std::string> bands = r.bands();
     if (bands.empty()) bands.push_back("Y");
-    const std::size_t B = bands.size();
     std::string scene = r.scene_name();
     if (scene.empty()) scene = result.stem().string();
 
-    // Same folder: the bare file name, so the pair can be moved together; otherwise absolute.
-    const fs::path xdir = fs::absolute(xdmf).parent_path();
-    const fs::path rabs = fs::absolute(result);
-    const std::string h5 = rabs.parent_path().lexically_normal() == xdir.lexically_normal()
-                               ? rabs.filename().string()
-                               : rabs.lexically_normal().string();
-
+    const std::string h5 = h5_reference(result, xdmf);
     const bool two_sided = r.surface_sides() == 2;
     std::ostringstream out;
-    XdmfWriter w(out, h5, T, B, two_sided);
-    out << "<?xml version=\"1.0\" ?>\n"
-        << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-        << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
-        << "  <Domain>\n"
-        << "    <Grid Name=\"" << xml_escape(scene) << "\" GridType=\"Uniform\">\n";
-    if (const auto material_names = r.material_names()) {
-        std::string names;
-        for (const std::string& n : *material_names) {
-            if (!names.empty()) names += ',';
-            names += n;
-        }
-        out << "      <Information Name=\"material_names\" Value=\"" << xml_escape(names) << "\"/>\n";
-    }
-    out << "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << T << "\">\n";
-    w.hdf("        ", "/mesh/triangles", XdmfWriter::dims(T, 3), "UInt", 4);
-    out << "      </Topology>\n"
-        << "      <Geometry GeometryType=\"XYZ\">\n";
-    w.hdf("        ", "/mesh/vertices", XdmfWriter::dims(V, 3), "Float", 8);
-    out << "      </Geometry>\n";
-
-    const std::string in = "        ";
-    // Format 2: one attribute per side (_front, _back); format 1: both sides together.
-    const std::vector<std::string> side_names = two_sided ? std::vector<std::string>{"_front", "_back"}
-                                                          : std::vector<std::string>{""};
-    for (std::size_t side = 0; side < side_names.size(); ++side)
-        for (std::size_t b = 0; b < B; ++b) {
-            const std::string suffix = side_names[side] + (B == 1 ? "" : "_" + bands[b]);
-            w.open_attribute("illuminance" + suffix + "_lx");
-            w.band_column(in, "/global/illuminance", side, b);
-            w.close_attribute();
-            w.open_attribute("direct" + suffix + "_lx");
-            w.band_column(in, "/global/illuminance_direct", side, b);
-            w.close_attribute();
-            // Secondary (interreflected) light: all arrivals minus first hits.
-            w.open_attribute("secondary" + suffix + "_lx");
-            out << in << "<DataItem ItemType=\"Function\" Function=\"$0 - $1\" Dimensions=\"" << XdmfWriter::dims(T, 1)
-                << (two_sided ? " 1" : "") << "\">\n";
-            w.band_column(in + "  ", "/global/illuminance", side, b);
-            w.band_column(in + "  ", "/global/illuminance_direct", side, b);
-            out << in << "</DataItem>\n";
-            w.close_attribute();
-        }
-    if (two_sided) {
-        for (std::size_t side = 0; side < side_names.size(); ++side)
-            for (const char* map : {"odd_even_difference", "sigma"}) {
-                w.open_attribute(map + side_names[side] + "_lx");
-                w.side_column(in, "/global/" + std::string(map) + "_lx", side);
-                w.close_attribute();
-            }
-    } else if (r.has_odd_even_difference()) {
-        w.open_attribute("odd_even_difference_lx");
-        w.hdf(in, "/global/odd_even_difference_lx", std::to_string(T), "Float", 8);
-        w.close_attribute();
-    }
-    w.open_attribute("area_m2");
-    w.hdf(in, "/mesh/area", std::to_string(T), "Float", 8);
-    w.close_attribute();
-    w.open_attribute("material");
-    w.hdf(in, "/mesh/material", std::to_string(T), "UInt", 4);
-    w.close_attribute();
+    XdmfWriter w(out, h5, mesh.triangles, bands.size(), two_sided);
+    write_grid_header(out, scene, r.material_names());
+    write_mesh(out, w, mesh);
+    write_maps(w, r, bands, two_sided);
+    w.triangle_attribute("area_m2", "/mesh/area", "Float", 8);
+    w.triangle_attribute("material", "/mesh/material", "UInt", 4);
     out << "    </Grid>\n"
         << "  </Domain>\n"
         << "</Xdmf>\n";

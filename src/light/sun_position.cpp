@@ -278,32 +278,45 @@ double julian_day(int year, int month, double day) {
     return jd + 2.0 - a + std::trunc(a / 4.0);
 }
 
-SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
-    check(time, site);
-    SunPosition out;
-    SpaIntermediates& s = out.spa;
+namespace {
 
-    // 3.1: time scales. The day's fraction in UT: local standard time minus its offset.
+// The time scales of one instant (3.1).
+struct TimeScales {
+    double jd;   // Julian day (UT), eq. 4
+    double jde;  // Julian ephemeris day, eq. 5
+    double jc;   // Julian century, eq. 6
+    double jce;  // Julian ephemeris century, eq. 7
+    double jme;  // Julian ephemeris millennium, eq. 8
+};
+
+// 3.1: time scales. The day's fraction in UT: local standard time minus its offset.
+TimeScales time_scales(const LocalStandardTime& time, const SunSite& site) {
     const double day = time.day + (time.hour - time.utc_offset_h + (time.minute + time.second / 60.0) / 60.0) / 24.0;
-    const double jd = julian_day(time.year, time.month, day);
-    const double jde = jd + site.delta_t_s / 86400.0;  // eq. 5
-    const double jc = (jd - 2451545.0) / 36525.0;      // eq. 6
-    const double jce = (jde - 2451545.0) / 36525.0;    // eq. 7
-    const double jme = jce / 10.0;                     // eq. 8
-    s.julian_day = jd;
-    s.julian_ephemeris_day = jde;
+    TimeScales t;
+    t.jd = julian_day(time.year, time.month, day);
+    t.jde = t.jd + site.delta_t_s / 86400.0;  // eq. 5
+    t.jc = (t.jd - 2451545.0) / 36525.0;      // eq. 6
+    t.jce = (t.jde - 2451545.0) / 36525.0;    // eq. 7
+    t.jme = t.jce / 10.0;                     // eq. 8
+    return t;
+}
 
-    // 3.2: the Earth's heliocentric position (eqs. 9-12, Table A4.2).
+// 3.2: the Earth's heliocentric position (eqs. 9-12, Table A4.2).
+void heliocentric_position(double jme, SpaIntermediates& s) {
     const EarthPeriodicSums sums = earth_periodic_sums(jme);
     s.heliocentric_longitude = limit_360(deg(earth_series(sums.l, jme)));
     s.heliocentric_latitude = deg(earth_series(sums.b, jme));
     s.radius_au = earth_series(sums.r, jme);
+}
 
-    // 3.3: geocentric.
+// 3.3: geocentric.
+void geocentric_position(SpaIntermediates& s) {
     s.geocentric_longitude = limit_360(s.heliocentric_longitude + 180.0);  // eq. 13
     s.geocentric_latitude = -s.heliocentric_latitude;                      // eq. 14
+}
 
-    // 3.4: nutation (eqs. 15-23, Table A4.3).
+// 3.4: nutation (eqs. 15-23, Table A4.3).
+void nutation(double jce, SpaIntermediates& s) {
     const double jce2 = jce * jce, jce3 = jce2 * jce;
     const std::array<double, 5> x = {297.85036 + 445267.111480 * jce - 0.0019142 * jce2 + jce3 / 189474.0,  // eq. 15
                                      357.52772 + 35999.050340 * jce - 0.0001603 * jce2 - jce3 / 300000.0,   // eq. 16
@@ -319,8 +332,12 @@ SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
     }
     s.nutation_longitude = sum_psi / 36000000.0;  // eq. 22
     s.nutation_obliquity = sum_eps / 36000000.0;  // eq. 23
+}
 
-    // 3.5: true obliquity of the ecliptic; eq. 24 in arc seconds, U = JME/10.
+// 3.5-3.7: the true obliquity of the ecliptic, the aberration correction and the sun's
+// apparent longitude.
+void apparent_longitude(double jme, SpaIntermediates& s) {
+    // 3.5: eq. 24 in arc seconds, U = JME/10.
     constexpr double kObliquity[] = {84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67,
                                      -39.05,    7.12,     27.87, 5.79,    2.45};
     const double u = jme / 10.0;
@@ -330,24 +347,35 @@ SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
 
     s.aberration = -20.4898 / (3600.0 * s.radius_au);                                     // eq. 26
     s.apparent_longitude = s.geocentric_longitude + s.nutation_longitude + s.aberration;  // eq. 27
+}
 
-    // 3.8: apparent sidereal time at Greenwich.
-    const double nu0 = limit_360(280.46061837 + 360.98564736629 * (jd - 2451545.0) + 0.000387933 * jc * jc -
+// 3.8: apparent sidereal time at Greenwich.
+void sidereal_time(const TimeScales& t, SpaIntermediates& s) {
+    const double jc = t.jc;
+    const double nu0 = limit_360(280.46061837 + 360.98564736629 * (t.jd - 2451545.0) + 0.000387933 * jc * jc -
                                  jc * jc * jc / 38710000.0);  // eq. 28
     const double eps = rad(s.true_obliquity);
     s.sidereal_time = nu0 + s.nutation_longitude * std::cos(eps);  // eq. 29
+}
 
-    // 3.9-3.10: geocentric right ascension and declination.
+// 3.9-3.10: geocentric right ascension and declination.
+void geocentric_equatorial(SpaIntermediates& s) {
+    const double eps = rad(s.true_obliquity);
     const double lambda = rad(s.apparent_longitude), beta = rad(s.geocentric_latitude);
     s.right_ascension = limit_360(deg(
         std::atan2(std::sin(lambda) * std::cos(eps) - std::tan(beta) * std::sin(eps), std::cos(lambda))));  // eq. 30
     s.declination = deg(
         std::asin(std::sin(beta) * std::cos(eps) + std::cos(beta) * std::sin(eps) * std::sin(lambda)));  // eq. 31
+}
 
-    // 3.11: local hour angle, westward from south.
-    s.hour_angle = limit_360(s.sidereal_time + site.longitude_deg - s.right_ascension);  // eq. 32
+// The sun as the observer sees it, in radians: what 3.14 and 3.15 start from.
+struct Topocentric {
+    double declination;  // delta', eq. 39
+    double hour_angle;   // H', eq. 40
+};
 
-    // 3.12-3.13: parallax of the observer on the Earth's surface.
+// 3.12-3.13: parallax of the observer on the Earth's surface.
+Topocentric topocentric_position(const SunSite& site, SpaIntermediates& s) {
     const double xi = rad(8.794 / (3600.0 * s.radius_au));  // eq. 33
     const double phi = rad(site.latitude_deg);
     const double uu = std::atan(0.99664719 * std::tan(phi));                        // eq. 34 (1 - flattening)
@@ -361,9 +389,13 @@ SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
                                       std::cos(delta) - xx * std::sin(xi) * std::cos(h));  // eq. 39
     s.topocentric_declination = deg(delta_p);
     s.topocentric_hour_angle = s.hour_angle - deg(d_alpha);  // eq. 40
-    const double h_p = rad(s.topocentric_hour_angle);
+    return {delta_p, rad(s.topocentric_hour_angle)};
+}
 
-    // 3.14: elevation and zenith, refraction corrected.
+// 3.14: elevation and zenith, refraction corrected.
+void elevation(const SunSite& site, const Topocentric& topo, SunPosition& out) {
+    SpaIntermediates& s = out.spa;
+    const double phi = rad(site.latitude_deg), delta_p = topo.declination, h_p = topo.hour_angle;
     const double e0 = deg(
         std::asin(std::sin(phi) * std::sin(delta_p) + std::cos(phi) * std::cos(delta_p) * std::cos(h_p)));  // eq. 41
     constexpr double kSunRadiusDeg = 0.26667;
@@ -375,11 +407,36 @@ SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
     }
     out.altitude_deg = e0 + s.refraction;      // eq. 43
     out.zenith_deg = 90.0 - out.altitude_deg;  // eq. 44
+}
 
-    // 3.15: azimuth; Gamma from south westward (eq. 45), Phi from north eastward (eq. 46).
+// 3.15: azimuth; Gamma from south westward (eq. 45), Phi from north eastward (eq. 46).
+double azimuth(const SunSite& site, const Topocentric& topo) {
+    const double phi = rad(site.latitude_deg), delta_p = topo.declination, h_p = topo.hour_angle;
     const double gamma = deg(
         std::atan2(std::sin(h_p), std::cos(h_p) * std::sin(phi) - std::tan(delta_p) * std::cos(phi)));
-    out.azimuth_deg = limit_360(gamma + 180.0);
+    return limit_360(gamma + 180.0);
+}
+
+}  // namespace
+
+SunPosition sun_position(const LocalStandardTime& time, const SunSite& site) {
+    check(time, site);
+    SunPosition out;
+    SpaIntermediates& s = out.spa;
+    const TimeScales t = time_scales(time, site);  // 3.1
+    s.julian_day = t.jd;
+    s.julian_ephemeris_day = t.jde;
+    heliocentric_position(t.jme, s);  // 3.2
+    geocentric_position(s);           // 3.3
+    nutation(t.jce, s);               // 3.4
+    apparent_longitude(t.jme, s);     // 3.5-3.7
+    sidereal_time(t, s);              // 3.8
+    geocentric_equatorial(s);         // 3.9-3.10
+    // 3.11: local hour angle, westward from south.
+    s.hour_angle = limit_360(s.sidereal_time + site.longitude_deg - s.right_ascension);  // eq. 32
+    const Topocentric topo = topocentric_position(site, s);                              // 3.12-3.13
+    elevation(site, topo, out);                                                          // 3.14
+    out.azimuth_deg = azimuth(site, topo);                                               // 3.15
     return out;
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace luxtrace {
 
@@ -34,25 +35,48 @@ Decision RunController::after_reduction(const ReductionInput& in) {
 }
 
 Decision RunController::decide(const ReductionInput& in) {
-    const RunConfig& run = scene_.run;
     photons_ = in.photons;
     elapsed_s_ = in.elapsed_s;
     const double e0 = in.photons > 0 ? scene_.lights.total_flux_lm() / static_cast<double>(in.photons) : 0.0;
-    std::vector<GlobalEstimate> computed;
-    if (in.globals.empty())
-        for (const std::vector<double>& w : requests_.weights)
-            computed.push_back(
-                estimate_global(WeightedTallies(layout_, in.tallies, w), scene_.triangle_area_m2, e0, in.photons));
+    const std::vector<GlobalEstimate> computed = in.globals.empty() ? estimate_globals(in, e0)
+                                                                    : std::vector<GlobalEstimate>{};
     const std::span<const GlobalEstimate> globals = in.globals.empty() ? computed : in.globals;
     global_ = globals[0];
-    status_.clear();
-    forecast_.clear();
+    measure_rate(in);
+    extend_history(in, evaluate_targets(in, e0, globals));
+    Decision d;
+    d.next_period_s = next_period_s(in);
+    // The stop rules in order: the first that applies decides.
+    if (stop_at_met_target(d)) return d;
+    if (stop_at_traced_budget(in, d)) return d;
+    if (stop_at_signal(in, d)) return d;
+    if (stop_before_time_limit(in, d)) return d;
+    checkpoint_when_due(in, d);
+    return d;
+}
+
+std::vector<GlobalEstimate> RunController::estimate_globals(const ReductionInput& in, double e0) const {
+    std::vector<GlobalEstimate> computed;
+    for (const std::vector<double>& w : requests_.weights)
+        computed.push_back(
+            estimate_global(WeightedTallies(layout_, in.tallies, w), scene_.triangle_area_m2, e0, in.photons));
+    return computed;
+}
+
+void RunController::measure_rate(const ReductionInput& in) {
     // The photon rate is the tracing's: its first point is where tracing began, not where
     // the run's clock started (the BVH of a large scene takes seconds to build).
     if (rate_points_.empty() && in.tracing_start_s > 0.0 && in.tracing_start_s < in.elapsed_s)
         rate_points_.push_back({in.tracing_start_s, 0.0, 0.0});
     rate_points_.push_back({in.elapsed_s, static_cast<double>(in.photons - photon_offset_), 0.0});
     rate_ = photon_rate(rate_points_);
+}
+
+HistoryRow RunController::evaluate_targets(const ReductionInput& in, double e0,
+                                           std::span<const GlobalEstimate> globals) {
+    const RunConfig& run = scene_.run;
+    status_.clear();
+    forecast_.clear();
     HistoryRow
         row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
@@ -72,68 +96,94 @@ Decision RunController::decide(const ReductionInput& in) {
         row.target_forecast_photons.push_back(f.valid ? f.photons_needed : std::nan(""));
     }
     if (!row.target_forecast_s.empty()) row.forecast_s = row.target_forecast_s.front();
+    return row;
+}
+
+void RunController::extend_history(const ReductionInput& in, HistoryRow row) {
     // A restart that adds no photons (it writes the result a checkpoint holds, issue 35)
     // adds no row: the history is the one the interrupted run would have written.
     const bool nothing_new = in.photons == photon_offset_ && !history_.empty() && history_.back().photons == in.photons;
-    if (!nothing_new) history_.push_back(row);
+    if (!nothing_new) history_.push_back(std::move(row));
+}
 
+double RunController::stall_bound_s(const ReductionInput& in) {
     // Keep the tracing time reductions take under 1% of the run (issue 26). A stall can be
     // inflated by a descheduled thread on a busy machine: use the median of the last five.
     recent_stalls_.push_back(in.stall_s + in.work_s);
     if (recent_stalls_.size() > 5) recent_stalls_.erase(recent_stalls_.begin());
     std::vector<double> sorted = recent_stalls_;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-    const double min_period_s = 100.0 * sorted[sorted.size() / 2];
+    return 100.0 * sorted[sorted.size() / 2];
+}
+
+double RunController::next_period_s(const ReductionInput& in) {
+    const double min_period_s = stall_bound_s(in);
     if (scene_.run.report_every_photons == 0) period_s_ = std::max(period_s_, min_period_s);
-    Decision d;
-    d.next_period_s = period_s_;
+    double next = period_s_;
     // When a target's forecast falls before the next reduction, reduce then instead: the
     // run stops close to the moment the target is met, not up to a period later. (Not
     // with reductions at photon counts, whose schedule is fixed.)
     if (scene_.run.report_every_photons == 0)
         for (const Forecast& f : forecast_)
             if (f.valid && f.time_s > in.elapsed_s)
-                d.next_period_s = std::min(d.next_period_s,
-                                           std::max({kMinPeriod_s, min_period_s, 1.02 * (f.time_s - in.elapsed_s)}));
-    bool error_targets_unmet = false;
-    for (const TargetStatus& s : status_) {
+                next = std::min(next, std::max({kMinPeriod_s, min_period_s, 1.02 * (f.time_s - in.elapsed_s)}));
+    return next;
+}
+
+bool RunController::stop_at_met_target(Decision& d) const {
+    for (const TargetStatus& s : status_)
         if (s.met) {
             d.stop = true;
             d.reason = "target " + s.label;
-            return d;
+            return true;
         }
-        error_targets_unmet = error_targets_unmet || s.kind != TargetKind::photons_received;
-    }
-    if (in.all_ranks_idle) {
-        d.stop = true;
-        d.reason = "photons";
-        return d;
-    }
-    if (in.signalled) {
-        d.stop = d.checkpoint = true;
-        d.exit_code = 3;
-        d.reason = "signal";
-        return d;
-    }
+    return false;
+}
+
+bool RunController::stop_at_traced_budget(const ReductionInput& in, Decision& d) {
+    if (!in.all_ranks_idle) return false;
+    d.stop = true;
+    d.reason = "photons";
+    return true;
+}
+
+bool RunController::stop_at_signal(const ReductionInput& in, Decision& d) {
+    if (!in.signalled) return false;
+    d.stop = d.checkpoint = true;
+    d.exit_code = 3;
+    d.reason = "signal";
+    return true;
+}
+
+bool RunController::stop_before_time_limit(const ReductionInput& in, Decision& d) const {
+    const RunConfig& run = scene_.run;
+    if (!(run.time_limit_s > 0.0)) return false;
     // Stop in time to write the result before the wall-time limit. When error targets
     // are still unmet, the run is unfinished work: checkpoint and exit 3 to be resumed.
     const double margin_s = 2.0 * in.write_s + 0.25;  // time to write the result
-    if (run.time_limit_s > 0.0 && in.elapsed_s + margin_s + 0.05 >= run.time_limit_s) {
+    if (in.elapsed_s + margin_s + 0.05 >= run.time_limit_s) {
         d.stop = true;
         d.reason = "time_limit";
+        const bool error_targets_unmet = std::any_of(status_.begin(), status_.end(), [](const TargetStatus& s) {
+            return s.kind != TargetKind::photons_received;
+        });
         if (error_targets_unmet) {
             d.checkpoint = true;
             d.exit_code = 3;
         }
-        return d;
+        return true;
     }
     // The next reduction comes no later than the last moment to stop.
-    if (run.time_limit_s > 0.0) d.next_period_s = std::min(d.next_period_s, run.time_limit_s - margin_s - in.elapsed_s);
+    d.next_period_s = std::min(d.next_period_s, run.time_limit_s - margin_s - in.elapsed_s);
+    return false;
+}
+
+void RunController::checkpoint_when_due(const ReductionInput& in, Decision& d) {
+    const RunConfig& run = scene_.run;
     if (run.checkpoint_every_s > 0.0 && in.elapsed_s - last_checkpoint_s_ >= run.checkpoint_every_s) {
         d.checkpoint = true;
         last_checkpoint_s_ = in.elapsed_s;
     }
-    return d;
 }
 
 void RunController::fill_run_info(RunInfo& info) const {

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace luxtrace {
 
@@ -19,6 +21,147 @@ using namespace side_terms;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 constexpr std::size_t kTriangleGrain = 4096;  // triangles per task (core/parallel.hpp)
+
+// One detector's counts with the error of a cell, a range or the whole grid: eq. (8) from
+// n_c and q_c, or with sobol the spread of the replicate means instead (docs/QMC.md).
+class DetectorCounts {
+public:
+    DetectorCounts(const Detector& det, std::size_t di, const WeightedTallies& w, double e0, std::uint64_t photons)
+        : det_(det), di_(di), w_(w), bands_(w.layout().bands()), per_count_(e0 * det.value_per_lm()),
+          inv_n_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0), replicates_(w.layout().replicates()),
+          rep_photons_(replicate_photons(w)), rep_sums_(replicates_) {}
+
+    const Detector& detector() const { return det_; }
+    std::size_t bands() const { return bands_; }
+    std::size_t replicates() const { return replicates_; }
+    double per_count() const { return per_count_; }  // a count's value (lx or cd/m^2)
+    double cell_n(int c, std::size_t b) const { return w_.cell_n(di_, c, b); }
+    double cell_q(int c, std::size_t b) const { return w_.cell_q(di_, c, b); }
+    double replicate_n(std::size_t rep, int c, std::size_t b) const { return w_.replicate_n(di_, rep, c, b); }
+
+    // Eq. (8) for one cell from its n_c and q_c.
+    double rel(double n, double q) const { return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n_)) : kNaN; }
+    // sobol: `slot(r)` gives the replicate-r count of what is estimated; the bands of a
+    // cell are summed by calling it once per band.
+    template <class Slot>
+    double replicate_rel(Slot&& slot) {
+        for (std::size_t q = 0; q < replicates_; ++q) rep_sums_[q] = slot(q);
+        const ReplicateEstimate e = replicate_estimate(rep_sums_, rep_photons_);
+        return e.mean > 0.0 ? e.sigma / e.mean : kNaN;
+    }
+    // Cell c's relative error over bands [b0, b1), whose counts are n and q.
+    double cell_rel(int c, std::size_t b0, std::size_t b1, double n, double q) {
+        if (replicates_ == 0) return rel(n, q);
+        return replicate_rel([&](std::size_t rep) {
+            double sum = 0.0;
+            for (std::size_t b = b0; b < b1; ++b) sum += replicate_n(rep, c, b);
+            return sum;
+        });
+    }
+    // Cell c summed over its bands (a photon has one band, so n and q add).
+    void band_sums(int c, double& n, double& q) const {
+        n = q = 0.0;
+        for (std::size_t b = 0; b < bands_; ++b) {
+            n += cell_n(c, b);
+            q += cell_q(c, b);
+        }
+    }
+    // The whole detector as one cell.
+    double total_n() const { return w_.total_n(di_); }
+    double total_rel() {
+        return replicates_ == 0 ? rel(w_.total_n(di_), w_.total_q(di_))
+                                : replicate_rel([&](std::size_t rep) { return w_.replicate_total_n(di_, rep); });
+    }
+    std::uint64_t received() const { return w_.received(di_); }
+
+private:
+    const Detector& det_;
+    std::size_t di_;
+    const WeightedTallies& w_;
+    std::size_t bands_;
+    double per_count_, inv_n_;
+    std::size_t replicates_;
+    std::vector<std::uint64_t> rep_photons_;
+    std::vector<double> rep_sums_;  // replicate_rel's scratch
+};
+
+// Every cell and band: its value and relative error, eq. (8).
+void estimate_cells(DetectorCounts& d, DetectorEstimate& out) {
+    const std::size_t nb = d.bands();
+    out.value.resize(static_cast<std::size_t>(d.detector().cells()) * nb);
+    out.sigma_rel.resize(out.value.size());
+    for (int c = 0; c < d.detector().cells(); ++c)
+        for (std::size_t b = 0; b < nb; ++b) {
+            const double n = d.cell_n(c, b);
+            const double q = d.cell_q(c, b);
+            out.value[c * nb + b] = n * d.per_count();
+            out.sigma_rel[c * nb + b] = d.cell_rel(c, b, b + 1, n, q);
+        }
+}
+
+// Eq. (9) over the range on band-summed cells.
+void estimate_range(DetectorCounts& d, const CellRange& r, DetectorEstimate& out) {
+    double sum_l = 0.0, sum_l2 = 0.0, sum_s2 = 0.0, registrations = 0.0;
+    const int k = (r.i1 - r.i0) * (r.j1 - r.j0);
+    for (int j = r.j0; j < r.j1; ++j)
+        for (int i = r.i0; i < r.i1; ++i) {
+            const int c = j * d.detector().nx + i;
+            double n, q;
+            d.band_sums(c, n, q);
+            const double l = n * d.per_count();
+            const double sigma_c = n > 0.0 ? d.cell_rel(c, 0, d.bands(), n, q) * l : 0.0;
+            sum_l += l;
+            sum_l2 += l * l;
+            sum_s2 += sigma_c * sigma_c;
+            registrations += n;
+        }
+    // A light scene's registrations are weighted; a count target reads the plain run's.
+    out.registrations = static_cast<std::uint64_t>(std::llround(registrations));
+    out.mean_arithmetic = sum_l / k;
+    out.mean_quadratic = std::sqrt(sum_l2 / k);
+    out.sigma_abs = std::sqrt(sum_s2 / k);
+    out.sigma_rel_arithmetic = out.mean_arithmetic > 0.0 ? out.sigma_abs / out.mean_arithmetic : kNaN;
+    out.sigma_rel_quadratic = out.mean_quadratic > 0.0 ? out.sigma_abs / out.mean_quadratic : kNaN;
+}
+
+// A task area's Eavg error from the replicate spread of its sum (sobol); without
+// replicates illuminance_metrics combines the cells' errors as independent (random).
+std::optional<double> task_area_mean_sigma(DetectorCounts& d, const std::vector<double>& v, const TaskArea& a) {
+    if (d.replicates() == 0) return std::nullopt;
+    const int nx = d.detector().nx;
+    const double cells = (a.i1 - a.i0) * (a.j1 - a.j0);
+    double area_sum = 0.0;
+    for (int j = a.j0; j < a.j1; ++j)
+        for (int i = a.i0; i < a.i1; ++i) area_sum += v[j * nx + i];
+    return area_sum / cells * d.replicate_rel([&](std::size_t rep) {
+        double sum = 0.0;
+        for (int j = a.j0; j < a.j1; ++j)
+            for (int i = a.i0; i < a.i1; ++i)
+                for (std::size_t b = 0; b < d.bands(); ++b) sum += d.replicate_n(rep, j * nx + i, b);
+        return sum;
+    });
+}
+
+// Eavg, Emin, Emax, U0 of the whole grid and of each task area, from the band-summed
+// cells and their absolute errors; the whole grid's Eavg error is the exact one of the
+// detector's mean.
+void estimate_illuminance_metrics(DetectorCounts& d, DetectorEstimate& out) {
+    const Detector& det = d.detector();
+    std::vector<double> v(det.cells()), s(det.cells());
+    for (int c = 0; c < det.cells(); ++c) {
+        double n, q;
+        d.band_sums(c, n, q);
+        v[c] = n * d.per_count();
+        s[c] = n > 0.0 ? d.cell_rel(c, 0, d.bands(), n, q) * v[c] : kNaN;
+    }
+    out.metrics.push_back(
+        illuminance_metrics(v, s, det.nx, TaskArea{"", 0, det.nx, 0, det.ny}, out.mean_value * out.mean_sigma_rel));
+    for (const TaskArea& a : det.task_areas)
+        out.metrics.push_back(illuminance_metrics(v, s, det.nx, a, task_area_mean_sigma(d, v, a)));
+    out.summed_value = std::move(v);
+    out.summed_sigma = std::move(s);
+}
+
 }  // namespace
 
 std::vector<double> side_illuminance_lx(const WeightedTallies& w, std::span<const double> area, double e0) {
@@ -129,115 +272,19 @@ DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const Ta
 
 DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const WeightedTallies& w, double e0,
                                    std::uint64_t photons, CellRange r) {
-    const TallyLayout& L = w.layout();
     const bool whole_grid = r.i1 == 0;
     if (r.i1 == 0) r = {0, det.nx, 0, det.ny};
-    const std::size_t nb = L.bands();
-    const double per_count = e0 * det.value_per_lm();
-    const double inv_n = photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0;
-    const double nan = kNaN;
+    DetectorCounts d(det, di, w, e0, photons);
     DetectorEstimate out;
-    out.value.resize(static_cast<std::size_t>(det.cells()) * nb);
-    out.sigma_rel.resize(out.value.size());
-    // eq. (8) for one cell from its n_c and q_c.
-    auto rel = [&](double n, double q) { return n > 0.0 ? std::sqrt(std::max(0.0, q / (n * n) - inv_n)) : nan; };
-    // sobol: the spread of the replicate means instead (docs/QMC.md). `slot(r)` gives the
-    // replicate-r count of what is estimated; the bands of a cell are summed by calling
-    // it once per band.
-    const std::size_t R = L.replicates();
-    const std::vector<std::uint64_t> rep_photons = replicate_photons(w);
-    std::vector<double> rep_sums(R);
-    out.replicate_spread = R > 0;
-    out.dof = R > 0 ? static_cast<int>(R) - 1 : 0;
-    auto replicate_rel = [&](auto&& slot) {
-        for (std::size_t q = 0; q < R; ++q) rep_sums[q] = slot(q);
-        const ReplicateEstimate e = replicate_estimate(rep_sums, rep_photons);
-        return e.mean > 0.0 ? e.sigma / e.mean : nan;
-    };
-    auto cell_rel = [&](int c, std::size_t b0, std::size_t b1, double n, double q) {
-        if (R == 0) return rel(n, q);
-        return replicate_rel([&](std::size_t rep) {
-            double sum = 0.0;
-            for (std::size_t b = b0; b < b1; ++b) sum += w.replicate_n(di, rep, c, b);
-            return sum;
-        });
-    };
-    for (int c = 0; c < det.cells(); ++c)
-        for (std::size_t b = 0; b < nb; ++b) {
-            const double n = w.cell_n(di, c, b);
-            const double q = w.cell_q(di, c, b);
-            out.value[c * nb + b] = n * per_count;
-            out.sigma_rel[c * nb + b] = cell_rel(c, b, b + 1, n, q);
-        }
-    // Eq. (9) over the range on band-summed cells (a photon has one band, so n and q add).
-    auto band_sums = [&](int c, double& n, double& q) {
-        n = q = 0.0;
-        for (std::size_t b = 0; b < nb; ++b) {
-            n += w.cell_n(di, c, b);
-            q += w.cell_q(di, c, b);
-        }
-    };
-    double sum_l = 0.0, sum_l2 = 0.0, sum_s2 = 0.0, registrations = 0.0;
-    const int k = (r.i1 - r.i0) * (r.j1 - r.j0);
-    for (int j = r.j0; j < r.j1; ++j)
-        for (int i = r.i0; i < r.i1; ++i) {
-            const int c = j * det.nx + i;
-            double n, q;
-            band_sums(c, n, q);
-            const double l = n * per_count;
-            const double sigma_c = n > 0.0 ? cell_rel(c, 0, nb, n, q) * l : 0.0;
-            sum_l += l;
-            sum_l2 += l * l;
-            sum_s2 += sigma_c * sigma_c;
-            registrations += n;
-        }
-    // A light scene's registrations are weighted; a count target reads the plain run's.
-    out.registrations = static_cast<std::uint64_t>(std::llround(registrations));
-    out.mean_arithmetic = sum_l / k;
-    out.mean_quadratic = std::sqrt(sum_l2 / k);
-    out.sigma_abs = std::sqrt(sum_s2 / k);
-    out.sigma_rel_arithmetic = out.mean_arithmetic > 0.0 ? out.sigma_abs / out.mean_arithmetic : nan;
-    out.sigma_rel_quadratic = out.mean_quadratic > 0.0 ? out.sigma_abs / out.mean_quadratic : nan;
-    out.photons_received = w.received(di);
-    const double tn = w.total_n(di);
-    const double tq = w.total_q(di);
-    out.mean_value = tn * per_count / det.cells();
-    out.mean_sigma_rel = R == 0 ? rel(tn, tq)
-                                : replicate_rel([&](std::size_t rep) { return w.replicate_total_n(di, rep); });
-    if (whole_grid && (det.type == DetectorType::illuminance || det.type == DetectorType::points)) {
-        // Band-summed cells and their absolute errors; the whole grid's Eavg error is the
-        // exact one above, a task area's the replicate spread of its sum (sobol) or the
-        // cells' errors combined as independent (random).
-        std::vector<double> v(det.cells()), s(det.cells());
-        for (int c = 0; c < det.cells(); ++c) {
-            double n, q;
-            band_sums(c, n, q);
-            v[c] = n * per_count;
-            s[c] = n > 0.0 ? cell_rel(c, 0, nb, n, q) * v[c] : nan;
-        }
-        out.metrics.push_back(
-            illuminance_metrics(v, s, det.nx, TaskArea{"", 0, det.nx, 0, det.ny}, out.mean_value * out.mean_sigma_rel));
-        for (const TaskArea& a : det.task_areas) {
-            std::optional<double> avg_sigma;
-            if (R > 0) {
-                const double cells = (a.i1 - a.i0) * (a.j1 - a.j0);
-                double area_sum = 0.0;
-                for (int j = a.j0; j < a.j1; ++j)
-                    for (int i = a.i0; i < a.i1; ++i) area_sum += v[j * det.nx + i];
-                avg_sigma = area_sum / cells * replicate_rel([&](std::size_t rep) {
-                                double sum = 0.0;
-                                for (int j = a.j0; j < a.j1; ++j)
-                                    for (int i = a.i0; i < a.i1; ++i)
-                                        for (std::size_t b = 0; b < nb; ++b)
-                                            sum += w.replicate_n(di, rep, j * det.nx + i, b);
-                                return sum;
-                            });
-            }
-            out.metrics.push_back(illuminance_metrics(v, s, det.nx, a, avg_sigma));
-        }
-        out.summed_value = std::move(v);
-        out.summed_sigma = std::move(s);
-    }
+    out.replicate_spread = d.replicates() > 0;
+    out.dof = d.replicates() > 0 ? static_cast<int>(d.replicates()) - 1 : 0;
+    estimate_cells(d, out);
+    estimate_range(d, r, out);
+    out.photons_received = d.received();
+    out.mean_value = d.total_n() * d.per_count() / det.cells();
+    out.mean_sigma_rel = d.total_rel();
+    if (whole_grid && (det.type == DetectorType::illuminance || det.type == DetectorType::points))
+        estimate_illuminance_metrics(d, out);
     return out;
 }
 

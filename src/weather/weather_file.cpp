@@ -106,6 +106,86 @@ std::string hour_text(int month, int day, int hour) {
     return std::to_string(month) + "/" + std::to_string(day) + " hour " + std::to_string(hour);
 }
 
+// LOCATION,city,state,country,source,WMO,latitude,longitude,time zone,elevation
+void read_epw_location(const std::string& path, int line, const std::string& text, WeatherSite& site) {
+    const auto loc = split(text, ',');
+    if (loc.empty() || loc[0] != "LOCATION") fail(path, line, "the first line is not LOCATION");
+    if (loc.size() < 10) fail(path, line, "LOCATION has fewer than 10 fields");
+    site.city = loc[1];
+    site.latitude_deg = number(path, line, "latitude", loc[6], -90.0, 90.0);
+    site.longitude_deg = number(path, line, "longitude", loc[7], -180.0, 180.0);
+    site.time_zone_h = number(path, line, "time zone", loc[8], -12.0, 14.0);
+    site.elevation_m = number(path, line, "elevation", loc[9], -1000.0, 9000.0);
+}
+
+// The hour the next EPW record must hold: the year runs from 1/1 hour 1 to 12/31 hour
+// 24 without a gap.
+struct ExpectedHour {
+    bool leap = false;
+    int month = 1;
+    int day = 1;
+    int hour = 1;
+    bool done = false;
+
+    // A leap-year file holds Feb 29 where a common year goes on with Mar 1.
+    void allow_leap_day(int record_month, int record_day) {
+        if (month == 3 && day == 1 && hour == 1 && record_month == 2 && record_day == 29 && !leap) {
+            leap = true;
+            month = 2;
+            day = 29;
+        }
+    }
+    void advance() {
+        if (++hour > 24) {
+            hour = 1;
+            if (++day > days_in_month(month, leap)) {
+                day = 1;
+                if (++month > 12) done = true;
+            }
+        }
+    }
+};
+
+// The weather of one record's fields, each with the format's missing-value code.
+void read_epw_values(const std::string& path, int line, const std::vector<std::string>& f, WeatherHour& h) {
+    h.dry_bulb_c = maybe_missing(path, line, "dry bulb temperature", f[6], 99.9, -70.0, 70.0);
+    h.dew_point_c = maybe_missing(path, line, "dew point temperature", f[7], 99.9, -70.0, 70.0);
+    h.global_horizontal_w_m2 = maybe_missing(path, line, "global horizontal irradiance", f[13], 9999.0, 0.0,
+                                             kMaxIrradiance_w_m2);
+    h.direct_normal_w_m2 = maybe_missing(path, line, "direct normal irradiance", f[14], 9999.0, 0.0,
+                                         kMaxIrradiance_w_m2);
+    h.diffuse_horizontal_w_m2 = maybe_missing(path, line, "diffuse horizontal irradiance", f[15], 9999.0, 0.0,
+                                              kMaxIrradiance_w_m2);
+    h.global_horizontal_lx = maybe_missing(path, line, "global horizontal illuminance", f[16], 999999.0, 0.0,
+                                           kMaxIlluminance_lx);
+    h.direct_normal_lx = maybe_missing(path, line, "direct normal illuminance", f[17], 999999.0, 0.0,
+                                       kMaxIlluminance_lx);
+    h.diffuse_horizontal_lx = maybe_missing(path, line, "diffuse horizontal illuminance", f[18], 999999.0, 0.0,
+                                            kMaxIlluminance_lx);
+}
+
+// One hourly record, which must be the `expected` hour.
+WeatherHour read_epw_hour(const std::string& path, int line, const std::string& row, ExpectedHour& expected) {
+    const auto f = split(row, ',');
+    if (f.size() < 19) {
+        fail(path, line, "a truncated record: " + std::to_string(f.size()) + " fields, expected 35");
+    }
+    WeatherHour h;
+    h.year = integer(path, line, "year", f[0], 1, 9999);
+    h.month = integer(path, line, "month", f[1], 1, 12);
+    h.day = integer(path, line, "day", f[2], 1, 31);
+    const int record_hour = integer(path, line, "hour", f[3], 1, 24);
+    expected.allow_leap_day(h.month, h.day);
+    if (h.month != expected.month || h.day != expected.day || record_hour != expected.hour) {
+        fail(path, line,
+             "expected " + hour_text(expected.month, expected.day, expected.hour) + ", found " +
+                 hour_text(h.month, h.day, record_hour) + " (a missing or extra hour)");
+    }
+    h.hour = record_hour;
+    read_epw_values(path, line, f, h);
+    return h;
+}
+
 }  // namespace
 
 WeatherFile read_epw(const std::string& path) {
@@ -117,79 +197,26 @@ WeatherFile read_epw(const std::string& path) {
     int line = 0;
     if (!std::getline(in, text)) fail(path, 1, "empty file (expected a LOCATION line)");
     ++line;
-    // LOCATION,city,state,country,source,WMO,latitude,longitude,time zone,elevation
-    const auto loc = split(text, ',');
-    if (loc.empty() || loc[0] != "LOCATION") fail(path, line, "the first line is not LOCATION");
-    if (loc.size() < 10) fail(path, line, "LOCATION has fewer than 10 fields");
-    file.site.city = loc[1];
-    file.site.latitude_deg = number(path, line, "latitude", loc[6], -90.0, 90.0);
-    file.site.longitude_deg = number(path, line, "longitude", loc[7], -180.0, 180.0);
-    file.site.time_zone_h = number(path, line, "time zone", loc[8], -12.0, 14.0);
-    file.site.elevation_m = number(path, line, "elevation", loc[9], -1000.0, 9000.0);
+    read_epw_location(path, line, text, file.site);
 
-    // The other header lines (DESIGN CONDITIONS ... DATA PERIODS) start with a letter.
-    bool leap = false;
-    int month = 1;
-    int day = 1;
-    int hour = 1;
-    bool done = false;
+    ExpectedHour expected;
     while (std::getline(in, text)) {
         ++line;
         const std::string row = trim(text);
+        // The other header lines (DESIGN CONDITIONS ... DATA PERIODS) start with a letter.
         if (file.hours.empty() && (row.empty() || std::isalpha(static_cast<unsigned char>(row[0])))) {
             continue;
         }
         if (row.empty()) fail(path, line, "empty line among the hourly records");
-        if (done) fail(path, line, "an extra hour after 12/31 hour 24");
-        const auto f = split(row, ',');
-        if (f.size() < 19) {
-            fail(path, line, "a truncated record: " + std::to_string(f.size()) + " fields, expected 35");
-        }
-        WeatherHour h;
-        h.year = integer(path, line, "year", f[0], 1, 9999);
-        h.month = integer(path, line, "month", f[1], 1, 12);
-        h.day = integer(path, line, "day", f[2], 1, 31);
-        const int record_hour = integer(path, line, "hour", f[3], 1, 24);
-        // A leap-year file holds Feb 29 where a common year goes on with Mar 1.
-        if (month == 3 && day == 1 && hour == 1 && h.month == 2 && h.day == 29 && !leap) {
-            leap = true;
-            month = 2;
-            day = 29;
-        }
-        if (h.month != month || h.day != day || record_hour != hour) {
-            fail(path, line,
-                 "expected " + hour_text(month, day, hour) + ", found " + hour_text(h.month, h.day, record_hour) +
-                     " (a missing or extra hour)");
-        }
-        h.hour = record_hour;
-        h.dry_bulb_c = maybe_missing(path, line, "dry bulb temperature", f[6], 99.9, -70.0, 70.0);
-        h.dew_point_c = maybe_missing(path, line, "dew point temperature", f[7], 99.9, -70.0, 70.0);
-        h.global_horizontal_w_m2 = maybe_missing(path, line, "global horizontal irradiance", f[13], 9999.0, 0.0,
-                                                 kMaxIrradiance_w_m2);
-        h.direct_normal_w_m2 = maybe_missing(path, line, "direct normal irradiance", f[14], 9999.0, 0.0,
-                                             kMaxIrradiance_w_m2);
-        h.diffuse_horizontal_w_m2 = maybe_missing(path, line, "diffuse horizontal irradiance", f[15], 9999.0, 0.0,
-                                                  kMaxIrradiance_w_m2);
-        h.global_horizontal_lx = maybe_missing(path, line, "global horizontal illuminance", f[16], 999999.0, 0.0,
-                                               kMaxIlluminance_lx);
-        h.direct_normal_lx = maybe_missing(path, line, "direct normal illuminance", f[17], 999999.0, 0.0,
-                                           kMaxIlluminance_lx);
-        h.diffuse_horizontal_lx = maybe_missing(path, line, "diffuse horizontal illuminance", f[18], 999999.0, 0.0,
-                                                kMaxIlluminance_lx);
-        file.hours.push_back(h);
-        if (++hour > 24) {
-            hour = 1;
-            if (++day > days_in_month(month, leap)) {
-                day = 1;
-                if (++month > 12) done = true;
-            }
-        }
+        if (expected.done) fail(path, line, "an extra hour after 12/31 hour 24");
+        file.hours.push_back(read_epw_hour(path, line, row, expected));
+        expected.advance();
     }
-    if (!done) {
+    if (!expected.done) {
         fail(path, line,
              "the file ends after " + std::to_string(file.hours.size()) +
                  " hours (truncated: expected 8760, or 8784 in a leap year); next would be " +
-                 hour_text(month, day, hour));
+                 hour_text(expected.month, expected.day, expected.hour));
     }
     return file;
 }

@@ -85,6 +85,11 @@ public:
     std::size_t no_diffuse_hours() const { return no_diffuse_; }
 
 private:
+    // Hour `index` has a sky: its sky vector (the patches and the ground) becomes the next
+    // row, and the hour gets its row, its illuminances and its sun.
+    void add_sky_row(AnnualHour& h, std::size_t index, const weather::WeatherHour& w, const SunPosition& sun, int year,
+                     const AnnualOptions& options);
+
     SkyPatches patches_;
     std::vector<AnnualHour> hours_;
     std::size_t rows_ = 0, clamped_ = 0, no_diffuse_ = 0;

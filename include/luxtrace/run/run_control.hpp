@@ -63,6 +63,23 @@ public:
 
 private:
     Decision decide(const ReductionInput& in);
+    // What a reduction tells: the global estimates (when the input has none), the photon
+    // rate, the targets' states and forecasts, and the history row they make.
+    std::vector<GlobalEstimate> estimate_globals(const ReductionInput& in, double e0) const;
+    void measure_rate(const ReductionInput& in);
+    HistoryRow evaluate_targets(const ReductionInput& in, double e0, std::span<const GlobalEstimate> globals);
+    void extend_history(const ReductionInput& in, HistoryRow row);
+    // When to reduce next: the period, at least 100 times the recent stalls (stall_bound_s),
+    // shortened to a target's forecast.
+    double stall_bound_s(const ReductionInput& in);
+    double next_period_s(const ReductionInput& in);
+    // The stop rules, in the order decide applies them; each says whether it stopped the run.
+    bool stop_at_met_target(Decision& d) const;
+    static bool stop_at_traced_budget(const ReductionInput& in, Decision& d);
+    static bool stop_at_signal(const ReductionInput& in, Decision& d);
+    bool stop_before_time_limit(const ReductionInput& in, Decision& d) const;  // else bounds next_period_s
+    void checkpoint_when_due(const ReductionInput& in, Decision& d);
+
     const Scene& scene_;
     const TallyLayout& layout_;
     std::vector<HistoryRow> history_;                // stored: whole run including earlier parts

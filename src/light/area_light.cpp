@@ -4,13 +4,6 @@
 
 namespace luxtrace {
 
-EmittedRay AreaLight::emit(double up1, double up2, double ud1, double ud2) const {
-    // A Lambertian direction from the point's front side.
-    const SurfacePick s = surface_point(surface, up1, up2);
-    return {s.point, sample_cosine_hemisphere(surface.normal[s.triangle], ud1, ud2), surface.scene_triangle[s.triangle],
-            s.a, s.b};
-}
-
 bool AreaLight::incident(const Vec3& p, const Vec3& n, double flux_lm, double u1, double u2, int count,
                          IncidentLight& in) const {
     // Points uniform in area: E = sum (M/pi) cos_s cos_e / d^2 * A / N over unshadowed points.

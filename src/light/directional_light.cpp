@@ -4,10 +4,6 @@
 
 namespace luxtrace {
 
-EmittedRay DirectionalLight::emit(double up1, double up2, double, double) const {
-    return {beam.center + frame.to_world(disk_point(beam.radius, up1, up2)), aim};
-}
-
 double DirectionalLight::place(const SceneSphere& sphere) {
     beam.radius = sphere.radius;
     beam.center = sphere.center - 1.01 * sphere.radius * aim;

@@ -2,6 +2,10 @@
 
 namespace luxtrace {
 
+EmittedRay Light::emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const {
+    return std::visit([&](const auto& k) { return k.emit(u_pos1, u_pos2, u_dir1, u_dir2); }, kind);
+}
+
 void Light::place(const Vec3& lo, const Vec3& hi) {
     const SceneSphere sphere = SceneSphere::around(lo, hi);
     std::visit(

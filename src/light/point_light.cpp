@@ -6,15 +6,6 @@
 
 namespace luxtrace {
 
-EmittedRay PointLight::emit(double up1, double up2, double ud1, double ud2) const {
-    if (!distribution) return {position, sample_uniform_sphere(ud1, ud2)};
-    const Vec3 d = distribution->sample(ud1, ud2);
-    Vec3 origin = position;  // where on the opening depends on d (luminous_opening.hpp)
-    if (opening.shape != LuminousOpening::Shape::point)
-        origin += frame.to_world(sample_opening_point(opening, d, up1, up2));
-    return {origin, frame.to_world(d)};
-}
-
 double PointLight::intensity_cd(const Vec3& out, double flux_lm) const {
     if (!distribution) return flux_lm / (4.0 * kPi);
     if (!photometry) throw std::logic_error("a point light's distribution without its photometry");

@@ -9,11 +9,6 @@ namespace luxtrace {
 
 namespace {
 
-template <class... F>
-struct Overloaded : F... {
-    using F::operator()...;
-};
-
 // Does any of the patch face the opening's outside? cos(theta) is linear in the
 // direction, so between the points of a 5 x 5 grid it changes by less than the grid's
 // angular step (< 0.1 rad for any patch): a patch is dropped only when it lies behind the
@@ -56,17 +51,6 @@ PortalLight PortalLight::through(DaylightKind source, std::shared_ptr<const Port
     }
     l.source = std::move(source);
     return l;
-}
-
-EmittedRay PortalLight::emit(double up1, double up2, double ud1, double ud2) const {
-    return std::visit(Overloaded{
-                          [&](const SunLight& sun) { return from_opening(sun.travel_direction(ud1, ud2), up1, up2); },
-                          [&](const SkyLight&) { return from_opening(-portal_sky->sample(ud1, ud2), up1, up2); },
-                          [&](const SkyPatchLight& patch) {
-                              return from_disk(patch.travel_direction(ud1, ud2), up1, up2);
-                          },
-                      },
-                      source);
 }
 
 EmittedRay PortalLight::from_opening(const Vec3& direction, double up1, double up2) const {

@@ -6,13 +6,6 @@
 
 namespace luxtrace {
 
-EmittedRay SkyLight::emit(double up1, double up2, double ud1, double ud2) const {
-    // Travel away from the sky element, starting on the disk that covers the scene's
-    // sphere as seen from that direction.
-    const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));
-    return {beam.center - 1.01 * beam.radius * d + Frame::around(d).to_world(disk_point_f(beam.radius, up1, up2)), d};
-}
-
 double SkyLight::place(const SceneSphere& sphere) {
     beam.radius = sphere.radius;
     beam.center = sphere.center;

@@ -4,10 +4,6 @@
 
 namespace luxtrace {
 
-EmittedRay SpotLight::emit(double, double, double ud1, double ud2) const {
-    return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
-}
-
 double SpotLight::intensity_cd(const Vec3& out, double flux_lm) const {
     if (glm::dot(out, frame.n) < cos_half_angle) return 0.0;
     return flux_lm / (2.0 * kPi * (1.0 - cos_half_angle));

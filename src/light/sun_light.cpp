@@ -7,14 +7,6 @@
 
 namespace luxtrace {
 
-Vec3 SunLight::travel_direction(double u1, double u2) const {
-    return frame.to_world(sample_uniform_cone(cos_half_angle, u1, u2));
-}
-
-EmittedRay SunLight::emit(double up1, double up2, double ud1, double ud2) const {
-    return {beam.center + frame.to_world(disk_point(beam.radius, up1, up2)), travel_direction(ud1, ud2)};
-}
-
 double SunLight::place(const SceneSphere& sphere) {
     // Rays up to the disc's half angle off the aim drift sideways by at most 2.02 r tan(a)
     // before they leave the sphere: the disk is that much larger.

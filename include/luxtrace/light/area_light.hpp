@@ -3,6 +3,8 @@
 // and uniform over the area.
 #include "luxtrace/light/emitter_surface.hpp"
 #include "luxtrace/light/light_queries.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
+#include "luxtrace/material/material.hpp"
 
 #include <ostream>
 
@@ -23,5 +25,13 @@ struct AreaLight {
     LuminaireView view_from(const Vec3& eye, double flux_lm) const;
     void describe(std::ostream& out, double) const { out << " from " << surface.area_m2 << " m^2"; }
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay AreaLight::emit(double up1, double up2, double ud1, double ud2) const {
+    // A Lambertian direction from the point's front side.
+    const SurfacePick s = surface_point(surface, up1, up2);
+    return {s.point, sample_cosine_hemisphere(surface.normal[s.triangle], ud1, ud2), surface.scene_triangle[s.triangle],
+            s.a, s.b};
+}
 
 }  // namespace luxtrace

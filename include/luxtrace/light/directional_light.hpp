@@ -2,6 +2,7 @@
 // A directional light: parallel rays of one illuminance from a disk covering the scene.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/light_queries.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 namespace luxtrace {
 
@@ -20,5 +21,10 @@ struct DirectionalLight {
     bool incident(const Vec3& p, const Vec3& n, double flux_lm, double, double, int, IncidentLight& in) const;
     LuminaireView view_from(const Vec3& eye, double flux_lm) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay DirectionalLight::emit(double up1, double up2, double, double) const {
+    return {beam.center + frame.to_world(disk_point(beam.radius, up1, up2)), aim};
+}
 
 }  // namespace luxtrace

@@ -75,9 +75,9 @@ struct Light {
         return std::holds_alternative<K>(kind);
     }
 
-    EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const {
-        return std::visit([&](const auto& k) { return k.emit(u_pos1, u_pos2, u_dir1, u_dir2); }, kind);
-    }
+    // One call per photon: the kinds' emit functions are inline in their headers and
+    // meet in this one function (light.cpp), as one switch.
+    EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
     // Whether its photons' start points are drawn (area lights, beams, luminous openings):
     // two more uniforms, from the photon's block 1.
     bool draws_position() const {

@@ -6,6 +6,7 @@
 #include "luxtrace/light/luminous_opening.hpp"
 #include "luxtrace/light/photometry.hpp"
 #include "luxtrace/light/photometry_distribution.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 #include <memory>
 #include <ostream>
@@ -35,5 +36,15 @@ struct PointLight {
     LuminaireView view_from(const Vec3& eye, double flux_lm) const;
     void describe_photometry(std::ostream& out) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay PointLight::emit(double up1, double up2, double ud1, double ud2) const {
+    if (!distribution) return {position, sample_uniform_sphere(ud1, ud2)};
+    const Vec3 d = distribution->sample(ud1, ud2);
+    Vec3 origin = position;  // where on the opening depends on d (luminous_opening.hpp)
+    if (opening.shape != LuminousOpening::Shape::point)
+        origin += frame.to_world(sample_opening_point(opening, d, up1, up2));
+    return {origin, frame.to_world(d)};
+}
 
 }  // namespace luxtrace

@@ -9,6 +9,7 @@
 #include "luxtrace/light/sky_light.hpp"
 #include "luxtrace/light/sky_patch_light.hpp"
 #include "luxtrace/light/sun_light.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 #include <memory>
 #include <optional>
@@ -61,5 +62,14 @@ private:
     // A sky patch's: from the disk around the opening along `direction`.
     EmittedRay from_disk(const Vec3& direction, double u_pos1, double u_pos2) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay PortalLight::emit(double up1, double up2, double ud1, double ud2) const {
+    if (const auto* patch = std::get_if<SkyPatchLight>(&source))
+        return from_disk(patch->travel_direction(ud1, ud2), up1, up2);
+    if (const auto* sun = std::get_if<SunLight>(&source))
+        return from_opening(sun->travel_direction(ud1, ud2), up1, up2);
+    return from_opening(-portal_sky->sample(ud1, ud2), up1, up2);
+}
 
 }  // namespace luxtrace

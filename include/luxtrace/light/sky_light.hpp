@@ -5,6 +5,7 @@
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/light_queries.hpp"
 #include "luxtrace/light/sky_directions.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 #include <memory>
 #include <optional>
@@ -43,5 +44,13 @@ struct SkyLight {
     }
     void describe(std::ostream& out, double unobstructed_horizontal_lx) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay SkyLight::emit(double up1, double up2, double ud1, double ud2) const {
+    // Travel away from the sky element, starting on the disk that covers the scene's
+    // sphere as seen from that direction.
+    const Vec3 d = -horizon.to_world(sky->sample(ud1, ud2));
+    return {beam.center - 1.01 * beam.radius * d + Frame::around(d).to_world(disk_point_f(beam.radius, up1, up2)), d};
+}
 
 }  // namespace luxtrace

@@ -4,6 +4,10 @@
 // covering the scene perpendicular to their direction, as a sky's.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/light_queries.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace luxtrace {
 
@@ -31,5 +35,18 @@ struct SkyPatchLight {
     LuminaireView view_from(const Vec3& eye, double flux_lm) const;
     // `render` draws no patch sky: no incident light, no daylight reference.
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline Vec3 SkyPatchLight::sky_direction(double u1, double u2) const {
+    const double mu = patch.mu_lo + u1 * (patch.mu_hi - patch.mu_lo);
+    const double az = patch.az_lo_rad + u2 * patch.az_width_rad;
+    const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    return horizon.to_world(Vec3(s * std::sin(az), s * std::cos(az), mu));
+}
+
+inline EmittedRay SkyPatchLight::emit(double up1, double up2, double ud1, double ud2) const {
+    const Vec3 d = travel_direction(ud1, ud2);
+    return {beam.center - 1.01 * beam.radius * d + Frame::around(d).to_world(disk_point_f(beam.radius, up1, up2)), d};
+}
 
 }  // namespace luxtrace

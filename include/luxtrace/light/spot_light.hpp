@@ -2,6 +2,7 @@
 // A spot: a point emitting uniformly into a cone around its axis.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/light_queries.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 namespace luxtrace {
 
@@ -18,5 +19,10 @@ struct SpotLight {
     bool incident(const Vec3& p, const Vec3& n, double flux_lm, double, double, int, IncidentLight& in) const;
     LuminaireView view_from(const Vec3& eye, double flux_lm) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline EmittedRay SpotLight::emit(double, double, double ud1, double ud2) const {
+    return {position, frame.to_world(sample_uniform_cone(cos_half_angle, ud1, ud2))};
+}
 
 }  // namespace luxtrace

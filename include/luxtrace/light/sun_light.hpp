@@ -3,6 +3,7 @@
 // the scene; `illuminance_lx` is the direct normal illuminance.
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/light/light_queries.hpp"
+#include "luxtrace/light/uniform_sampling.hpp"
 
 #include <optional>
 #include <ostream>
@@ -22,7 +23,7 @@ struct SunLight {
     Beam beam;                                                   // set by place()
 
     // A direction of travel, uniform over the disc.
-    Vec3 travel_direction(double u1, double u2) const;
+    inline Vec3 travel_direction(double u1, double u2) const;
     EmittedRay emit(double u_pos1, double u_pos2, double u_dir1, double u_dir2) const;
     static constexpr bool draws_position() { return true; }
     static constexpr bool distant() { return true; }
@@ -38,5 +39,14 @@ struct SunLight {
     bool may_be_dark(double) const { return illuminance_lx == 0.0; }
     void describe(std::ostream& out, double unobstructed_horizontal_lx) const;
 };
+
+// Inline: the tracer emits every photon through here (Light::emit).
+inline Vec3 SunLight::travel_direction(double u1, double u2) const {
+    return frame.to_world(sample_uniform_cone(cos_half_angle, u1, u2));
+}
+
+inline EmittedRay SunLight::emit(double up1, double up2, double ud1, double ud2) const {
+    return {beam.center + frame.to_world(disk_point(beam.radius, up1, up2)), travel_direction(ud1, ud2)};
+}
 
 }  // namespace luxtrace

@@ -1,6 +1,9 @@
-"""The package as a whole: its modules' imports."""
+"""The package as a whole: its modules' imports, its version."""
 import ast
 import os
+import subprocess
+
+import luxtrace
 
 PACKAGE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "luxtrace")
 
@@ -34,3 +37,11 @@ def test_no_module_imports_itself_through_others():
 
     cycles = sorted(m for m in modules if m in reachable(m))
     assert cycles == [], f"modules in an import cycle: {cycles}"
+
+
+def test_version_is_the_binarys(binary):
+    """One version number (CMakeLists.txt's project()) for both; the binary adds the commit
+    it was built from (``luxtrace 0.4.0+gabc1234``)."""
+    out = subprocess.run([binary, "--version"], capture_output=True, text=True, check=True).stdout.split()
+    assert out[0] == "luxtrace"
+    assert luxtrace.__version__ == out[1].split("+")[0]

@@ -1,6 +1,6 @@
 #include "rays.hpp"
 
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/surface_table.hpp"
 

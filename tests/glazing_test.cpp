@@ -8,7 +8,7 @@
 #include "luxtrace/material/glazing.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/material/material.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include "scene_test_support.hpp"
 

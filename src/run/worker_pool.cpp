@@ -1,7 +1,7 @@
 #include "luxtrace/run/worker_pool.hpp"
 
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include <time.h>
 

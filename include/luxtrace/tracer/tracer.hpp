@@ -3,7 +3,7 @@
 // map) -> material (scatter), and the scorer (tally/photon_tally.hpp) commits what the
 // filters registered.
 //
-// Random numbers of photon k come in Philox blocks of four (sampler.hpp), one block per
+// Random numbers of photon k come in Philox blocks of four (philox_sampler.hpp), one block per
 // group of decisions, always the same block for the same decision:
 //   block 0: light, band, emission direction (2);
 //   block 1: emission position (2), drawn by area and directional lights only;

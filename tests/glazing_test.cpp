@@ -6,7 +6,7 @@
 // against R and T (chi-square); the loader's bad input; and whole runs, a parallel beam
 // through a glazed pane onto an illuminance detector at several incidence angles.
 #include "luxtrace/material/glazing.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/sampler/philox_sampler.hpp"
 

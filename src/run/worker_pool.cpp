@@ -123,7 +123,6 @@ void WorkerPool::trace_until_stopped(ThreadTime& time) {
             continue;
         }
         tracer.trace(chunk.begin, chunk.end, buffer);
-        traced_.fetch_add(chunk.size(), std::memory_order_relaxed);
     }
     buffer.flush();
 }

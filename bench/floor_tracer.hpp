@@ -7,7 +7,7 @@
 // with the band-0 reflectance of the triangle's material, a cosine direction about the
 // normal on the incoming side, and the hit point moved off the surface by the triangle's
 // margin. All float; no bands, detectors, odd/even maps, edge test or tally buffer.
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/surface_table.hpp"

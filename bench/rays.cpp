@@ -1,6 +1,6 @@
 #include "rays.hpp"
 
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "luxtrace/tracer/surface_table.hpp"
 
@@ -19,8 +19,7 @@ std::vector<RecordedRay> record_tracer_rays(const Scene& scene, const EmbreeScen
         PhotonTracer tracer(scene, embree, surfaces, store.layout(),
                             PhotonSampler(sampler_kind(scene.run.sampler), seed));
         TallyBuffer buffer(store);
-        tracer.record_rays(&rays);
-        tracer.trace(0, n, buffer);
+        tracer.trace_recording(0, n, buffer, rays);
     }
     return rays;
 }

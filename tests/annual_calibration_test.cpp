@@ -9,7 +9,7 @@
 // 72, 8 %), so a factor-2 wrong sigma fails.
 // Plus: `luxtrace check` accepts the annual example (its probe counts a sky patch's photons
 // that miss the portal as escaped, as the tracer does).
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

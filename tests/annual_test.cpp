@@ -8,7 +8,8 @@
 //    hour's total within a few sigma of the global horizontal illuminance.
 //  - Coefficients times one hour's sky equal a run of that hour's sky light alone, for a
 //    Perez and a CIE overcast sky, on a vertical sensor that sees sky and ground.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/core/math.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

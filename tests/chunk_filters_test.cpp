@@ -5,7 +5,7 @@
 // on a checkpoint whose maps span several chunks, the last one partly filled.
 #include "io/chunk_filters.hpp"
 #include "luxtrace/io/result_data.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "test_support.hpp"

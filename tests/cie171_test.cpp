@@ -3,7 +3,7 @@
 // (docs/VALIDATION.md, "CIE 171:2006 daylight test cases").
 #include "cie171_cases.hpp"
 #include "daylight_reference.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

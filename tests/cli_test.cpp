@@ -1,6 +1,6 @@
 // The command line as a user meets it: exit codes, messages, nothing written on bad
 // input, `check` and `info` summaries, count forms.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

@@ -2,7 +2,7 @@
 // the edges and corners where its faces meet, and the same room placed 10 km from the
 // origin, with a 2 mm thin shelf in it, gives the same answer within its sigmas and
 // loses no photon either. Runs the real binary; photon fates come from the result file.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/material/ward_lobe.hpp"
 
 #include "test_support.hpp"

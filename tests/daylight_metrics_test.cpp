@@ -7,6 +7,7 @@
 #include "app/result_summary.hpp"
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/io/result_data.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"

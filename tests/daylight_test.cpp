@@ -10,7 +10,7 @@
 //    with the sun's illuminance inside it, nothing outside, and the window's flux in all;
 //    through a glazed window the patch is the pane's T(theta) times that, and it is
 //    direct light in the surface map (going straight through a pane turns nothing).
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/light/site.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "luxtrace/light/sun_position.hpp"

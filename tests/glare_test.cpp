@@ -4,7 +4,7 @@
 // vertical illuminance at an eye inside an integrating sphere, whose value is known.
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/glare/ugr.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "test_support.hpp"
 

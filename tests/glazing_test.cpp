@@ -6,9 +6,9 @@
 // against R and T (chi-square); the loader's bad input; and whole runs, a parallel beam
 // through a glazed pane onto an illuminance detector at several incidence angles.
 #include "luxtrace/material/glazing.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/material/material.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include "scene_test_support.hpp"
 

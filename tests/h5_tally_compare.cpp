@@ -1,6 +1,6 @@
 // Compares the integer tallies of two luxtrace result files bit for bit.
 // Usage: h5_tally_compare A.h5 B.h5   (exit 0: identical, 1: different, 2: unreadable)
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include <iostream>
 #include <string>

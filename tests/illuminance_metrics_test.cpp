@@ -4,7 +4,7 @@
 // draws, and an end-to-end run with analytic references (docs/VALIDATION.md case 6).
 #include "luxtrace/stats/illuminance_metrics.hpp"
 #include "luxtrace/core/math.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

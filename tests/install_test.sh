@@ -39,6 +39,11 @@ grep -q 20000 info.log || fail "info does not report the 20000 photons: $(cat in
 
 if [ -d "$src/python/luxtrace" ]; then
     PYTHONPATH=$prefix/share/luxtrace/python /usr/bin/python3 -c "import luxtrace" || fail "import luxtrace"
+    # One version for both: the package's is the binary's, less the commit the binary names.
+    py_version=$(PYTHONPATH=$prefix/share/luxtrace/python /usr/bin/python3 -c "import luxtrace; print(luxtrace.__version__)")
+    bin_version=$("$lux" --version | awk '{print $2}')
+    [ "$py_version" = "${bin_version%%+*}" ] ||
+        fail "the installed Python package is version $py_version, luxtrace --version says $bin_version"
 fi
 cd /
 rm -rf "$work"

@@ -4,7 +4,7 @@
 // groups and light scenes are InputErrors naming the file, the line (or key) and what is
 // wrong.
 #include "luxtrace/light/ies.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include "scene_test_support.hpp"
 

@@ -3,7 +3,7 @@
 // counts: at weights 1 it is the plain run to the bit, a group alone is a run of that
 // group's lights alone (within the errors), and a dimmed scene's errors (the groups'
 // second moments weighted by w_g^2) match the scatter over seeds.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

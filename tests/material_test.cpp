@@ -3,7 +3,7 @@
 // (binomial z-scores within 4 sigma), directions obey reflection and Snell's law,
 // and a clear glass slab transmits (1 - R) / (1 + R).
 #include "luxtrace/material/material.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include <gtest/gtest.h>
 

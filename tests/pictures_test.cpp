@@ -2,7 +2,7 @@
 // test runs a tiny scene with the luxtrace binary and judges the files against the
 // result's own counts and the physics. (Detector pictures are the Python package's:
 // python/tests/test_plot.py.)
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

@@ -6,7 +6,7 @@
 // holds their positions and directions.
 #include "luxtrace/detector/pts_file.hpp"
 #include "luxtrace/detector/sensor_points.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/light/sky_model.hpp"
 #include "point_source.hpp"
 #include "scene_test_support.hpp"

@@ -8,7 +8,7 @@
 //    values within the runs' errors: open sky (CIE 16), an exterior black obstruction
 //    (CIE 12 with its sun), and the sun with its ground glow.
 #include "luxtrace/light/portal.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/light/sky_model.hpp"
 
 #include "scene_test_support.hpp"

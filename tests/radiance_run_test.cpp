@@ -6,7 +6,7 @@
 // Bad input exits 2 naming the file and line, with nothing written.
 #include "cie171_cases.hpp"
 #include "luxtrace/core/math.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/scene/radiance_materials.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "test_support.hpp"

@@ -5,7 +5,7 @@
 // history's global estimates with the same bits (reductions at photon counts: the same
 // photons in each); the result's reduction_message_bytes says which way each run took.
 // Exit 0 when all agree; the first disagreement is printed and fails the run.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"

@@ -3,7 +3,7 @@
 // with black walls, added smoothly otherwise), mirrors and glass, tone mapping's
 // invariants, the image files, and `luxtrace render` on bad input.
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/light/ies.hpp"
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/image_io.hpp"

@@ -6,6 +6,7 @@
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

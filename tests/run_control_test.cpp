@@ -8,7 +8,7 @@
 #include "luxtrace/detector/detector.hpp"
 #include "luxtrace/forecast/forecast.hpp"
 #include "luxtrace/io/result_data.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/decision.hpp"
 #include "luxtrace/run/reduction_message.hpp"

@@ -8,8 +8,8 @@
 #include "luxtrace/light/photometry_distribution.hpp"
 #include "luxtrace/light/uniform_sampling.hpp"
 #include "luxtrace/material/material.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
-#include "luxtrace/sampler/sampler.hpp"
 #include "luxtrace/sampler/sobol.hpp"
 #include "luxtrace/stats/estimates.hpp"
 

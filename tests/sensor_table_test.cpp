@@ -6,7 +6,7 @@
 // analytic mean within sigma_E, a scene without points detectors writes no table, one that
 // cannot be written warns and keeps the result, and a bad .pts file writes nothing.
 #include "luxtrace/io/sensor_table.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "point_source.hpp"
 #include "test_support.hpp"
 #include "z_pool.hpp"

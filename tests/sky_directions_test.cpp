@@ -4,7 +4,7 @@
 // hemisphere.
 #include "luxtrace/light/sky_directions.hpp"
 
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

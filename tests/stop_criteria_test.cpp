@@ -1,7 +1,7 @@
 // Every stop criterion of [run] / [[run.target]] is met and honoured: the run stops at
 // the first reduction where a target holds (earlier reductions did not meet it), and the
 // stored estimates show it was met. Runs the real binary on a small closed room.
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 // and the whole-grid mean within 5 of its own sigma (eq. 8 on the grid as one cell).
 // The constants below must match the scene files; fixed seeds make the runs repeatable.
 #include "luxtrace/core/math.hpp"
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
 

@@ -4,7 +4,7 @@
 #include "luxtrace/material/ward_lobe.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/material/material.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include <gtest/gtest.h>

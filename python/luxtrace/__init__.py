@@ -21,9 +21,9 @@ from .result_file import write
 from .sensor_table import SensorTable, read_sensor_table, sensor_table, sensor_table_path
 from .result import (BACK, FRONT, NEWEST_FORMAT_VERSION, Detector, Group, History, Mesh, Result, ResultError,
                      SurfaceMap, TargetHistory, check_seal, open)
-from . import annual  # noqa: E402,F401  (after .result, whose classes it builds on)
+from . import annual  # noqa: F401  (luxtrace.annual without an import of its own)
+from ._version import __version__  # noqa: F401  (luxtrace's, CMakeLists.txt's project())
 
-__version__ = "0.2.0"
 __all__ = ["open", "combine", "write", "check_seal", "Result", "Mesh", "SurfaceMap", "Detector", "Group", "History",
            "TargetHistory", "ResultError", "MismatchError", "FRONT", "BACK", "NEWEST_FORMAT_VERSION", "SensorTable",
            "sensor_table", "read_sensor_table", "sensor_table_path"]

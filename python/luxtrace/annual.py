@@ -18,7 +18,7 @@ from collections import namedtuple
 import h5py
 import numpy as np
 
-from .result import _AttrAccess, _attrs
+from ._attributes import AttrAccess, attributes
 
 #: The per-hour datasets of /annual, the columns of :attr:`Annual.hours`.
 HOUR_COLUMNS = ("month", "day", "hour", "occupied", "daylit", "en17037_hour", "sun_altitude_deg", "sun_azimuth_deg",
@@ -51,7 +51,7 @@ En17037Level.__doc__ = ("One EN 17037 level of a grid: its two illuminances, the
                         "probability that it is the wrong one (None in a checkpoint).")
 
 
-class AnnualGrid(_AttrAccess):
+class AnnualGrid(AttrAccess):
     """One sensor grid (an illuminance or points detector) of an annual run:
     /annual/detectors/NAME. ``illuminance_lx``, ``illuminance_sigma_lx``, ``direct_sun_lx``,
     ``direct_sun_sigma_lx`` [H, C] (float32 as stored; 0 when dark); ``sensors`` (name ->
@@ -97,11 +97,11 @@ class AnnualGrid(_AttrAccess):
         with h5py.File(self.path, "r") as f:
             g = f[f"annual/detectors/{self.name}/coefficients"]
             out = {k: v[()] for k, v in g.items()}
-            out.update(_attrs(g))
+            out.update(attributes(g))
         return out
 
 
-class Annual(_AttrAccess):
+class Annual(AttrAccess):
     """The /annual group: the year's hours and skies and every sensor grid.
 
     ``attrs`` (``weather``, ``sky``, ``sky_mf``, ``daylit_hours``, ``sun_hours``,
@@ -175,5 +175,5 @@ def read(f, path=None):
         if any(np.shape(d.get(k)) != (H, C) for k in HOURLY) or any(
                 np.shape(v) != (C,) for k, v in d.items() if k.split("_sigma")[0].split("_bias")[0] in SENSOR_METRICS):
             raise ValueError(f"/annual/detectors/{name}: its datasets are not [{H}, C] and [C] alike")
-        grids[name] = AnnualGrid(name, _attrs(g), d, path)
-    return Annual(_attrs(a), datasets, grids)
+        grids[name] = AnnualGrid(name, attributes(g), d, path)
+    return Annual(attributes(a), datasets, grids)

@@ -14,6 +14,8 @@ import h5py
 import numpy as np
 
 from . import sensor_table, statistics
+from ._attributes import AttrAccess, attributes, plain
+from .annual import read as read_annual
 
 #: The newest result layout this package reads (SPEC §4 ``format_version``).
 NEWEST_FORMAT_VERSION = 2
@@ -26,26 +28,6 @@ _HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 
 class ResultError(ValueError):
     """A file that is not a luxtrace result, is damaged, or is of an unknown format."""
-
-
-def _plain(v):
-    """An HDF5 attribute as plain Python: str for strings, int/float for scalars, lists
-    of str for string arrays, numpy arrays otherwise."""
-    if isinstance(v, bytes):
-        return v.decode()
-    if isinstance(v, np.ndarray):
-        if v.dtype.kind in ("O", "S", "U"):
-            return [x.decode() if isinstance(x, bytes) else str(x) for x in v.ravel()]
-        if v.shape == ():
-            return v.item()
-        return v
-    if isinstance(v, np.generic):
-        return v.item()
-    return v
-
-
-def _attrs(obj):
-    return {k: _plain(v) for k, v in obj.attrs.items()}
 
 
 def crc32_and_length(f):
@@ -88,19 +70,7 @@ def check_seal(path):
     return True
 
 
-class _AttrAccess:
-    """Attributes of the HDF5 group that no property names are readable as Python
-    attributes too (``detector.E_min`` for ``detector.attrs["E_min"]``), so attributes a
-    newer luxtrace writes need no change here."""
-
-    def __getattr__(self, name):
-        attrs = self.__dict__.get("attrs")
-        if attrs is not None and name in attrs:
-            return attrs[name]
-        raise AttributeError(f"{type(self).__name__} has no attribute or HDF5 attribute '{name}'")
-
-
-class Group(_AttrAccess):
+class Group(AttrAccess):
     """A group of the file as it was read: ``attrs`` (dict) and ``datasets`` (name -> array).
 
     Observers (``/observers/NAME``) and anything this package has no class for come as a
@@ -144,7 +114,7 @@ class Mesh:
                 and np.array_equal(self.material, other.material) and self.material_names == other.material_names)
 
 
-class SurfaceMap(_AttrAccess):
+class SurfaceMap(AttrAccess):
     """Per-triangle maps of the whole scene (``/global``), always in format 2's shape.
 
     Count and illuminance arrays are [T, 2, B]: triangle, side (0 = front, the side the
@@ -225,7 +195,7 @@ class SurfaceMap(_AttrAccess):
     photons_truncated = property(lambda self: self._attr("photons_truncated", 0))
 
 
-class Detector(_AttrAccess):
+class Detector(AttrAccess):
     """One measuring grid (``/detectors/NAME``).
 
     Arrays are [ny, nx, B]: row j along the detector's ``up`` axis, column i along
@@ -494,7 +464,7 @@ class History:
         return 0 if t is None else len(t)
 
 
-class Result(_AttrAccess):
+class Result(AttrAccess):
     """A luxtrace result or checkpoint, read whole (see :func:`open`), or several combined
     (see :func:`luxtrace.combine`).
 
@@ -588,8 +558,8 @@ class Result(_AttrAccess):
                 raise KeyError(f"{self.path}: light scene '{scene}' has no detector '{name}'")
             grp = dets[name]
             areas = grp["task_areas"].items() if "task_areas" in grp else ()
-            return Detector(name, _read_datasets(grp), {**base.attrs, **_attrs(grp)}, self.photons,
-                            task_areas={a: Group(a, _attrs(t), _read_datasets(t)) for a, t in areas})
+            return Detector(name, _read_datasets(grp), {**base.attrs, **attributes(grp)}, self.photons,
+                            task_areas={a: Group(a, attributes(t), _read_datasets(t)) for a, t in areas})
 
     def detector(self, name):
         """The detector NAME; KeyError naming the detectors there are otherwise."""
@@ -648,7 +618,7 @@ def _read_light_group_tallies(f):
         dets = {}
         for dname, d in (grp["detectors"].items() if "detectors" in grp else ()):
             dets[dname] = {k: d[k][()] for k in Detector.TALLIES if k in d}
-            dets[dname].update({k: _plain(d.attrs[k]) for k in
+            dets[dname].update({k: plain(d.attrs[k]) for k in
                                 ("photons_received", "total_count", "total_sumsq", "replicate_total") if k in d.attrs})
         out[name] = {"index": int(grp.attrs["index"]), "flux_lm": float(grp.attrs["flux_lm"]),
                      "lights": int(grp.attrs.get("lights", 0)), "detectors": dets,
@@ -692,7 +662,7 @@ def open(path, check=True):  # noqa: A001  (luxtrace.open, like h5py.File / open
 
 def _read(f, path):
     """The groups of an open file as a Result (shapes not yet checked)."""
-    attrs = _attrs(f)
+    attrs = attributes(f)
     if attrs.get("format") not in ("luxtrace-result", "luxtrace-checkpoint"):
         raise ResultError(f"{path}: not a luxtrace result (root attribute format = {attrs.get('format')!r})")
     version = int(attrs.get("format_version", 1))
@@ -707,32 +677,31 @@ def _read(f, path):
             raise ResultError(f"{path}: damaged result: no /{g} group")
     m = f["mesh"]
     names = m.attrs.get("material_names", m["material_names"][()] if "material_names" in m else [])
-    mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], _plain(np.asarray(names)))
+    mesh = Mesh(m["vertices"][()], m["triangles"][()], m["area"][()], m["material"][()], plain(np.asarray(names)))
     surface_tallies, detector_tallies, group_tallies = _read_tallies(f, version)
     g = _read_datasets(f["global"], skip=SurfaceMap.TALLIES)
     if version == 1:
         for k in ("illuminance", "illuminance_direct", "odd_even_difference_lx"):
             g[k] = _with_sides(g[k])
         g["sigma_lx"] = np.full((mesh.triangle_count, 2), np.nan)
-    surface = SurfaceMap({**surface_tallies, **g}, _attrs(f["global"]), mesh.area_m2, version)
+    surface = SurfaceMap({**surface_tallies, **g}, attributes(f["global"]), mesh.area_m2, version)
     photons = int(attrs.get("photons", 0))
     rep_photons = attrs.get("replicate_photons")
     detectors = {}
     for name, tallies in detector_tallies.items():
         grp = f["detectors"][name]
         areas = grp["task_areas"].items() if "task_areas" in grp else ()
-        detectors[name] = Detector(name, {**tallies, **_read_datasets(grp, skip=Detector.TALLIES)}, _attrs(grp),
+        detectors[name] = Detector(name, {**tallies, **_read_datasets(grp, skip=Detector.TALLIES)}, attributes(grp),
                                    photons, None if rep_photons is None else np.atleast_1d(rep_photons),
-                                   {a: Group(a, _attrs(t), _read_datasets(t)) for a, t in areas})
+                                   {a: Group(a, attributes(t), _read_datasets(t)) for a, t in areas})
     observers = {}
     if "observers" in f:
         for name, grp in f["observers"].items():
-            observers[name] = Group(name, _attrs(grp), _read_datasets(grp))
-    history = History(_read_datasets(f["history"]), _attrs(f["history"])) if "history" in f else None
+            observers[name] = Group(name, attributes(grp), _read_datasets(grp))
+    history = History(_read_datasets(f["history"]), attributes(f["history"])) if "history" in f else None
     res = Result(attrs, mesh, surface, detectors, observers, history, path=path)
     res.light_group_tallies = group_tallies
-    res.daylight = Group("daylight", _attrs(f["daylight"]), _read_datasets(f["daylight"])) if "daylight" in f else None
-    from .annual import read as read_annual  # annual.py builds on this module's classes
+    res.daylight = Group("daylight", attributes(f["daylight"]), _read_datasets(f["daylight"])) if "daylight" in f else None
     res.annual = read_annual(f, path)
     return res
 

@@ -1,6 +1,6 @@
 #include "annual_summary.hpp"
 
-#include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 
 #include <cmath>

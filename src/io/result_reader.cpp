@@ -1,10 +1,9 @@
-// Reading result files back by HDF5 path, and checkpoints for a restart.
+#include "luxtrace/io/result_reader.hpp"
+
 #include "hdf5_file.hpp"
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/io/file_seal.hpp"
-#include "luxtrace/io/result_file.hpp"
 
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -140,70 +139,6 @@ std::vector<std::string> ResultReader::children(const std::string& group) const 
     H5E_END_TRY;
     if (ok < 0) fail(path_, "cannot list group " + group + " (damaged)");
     return names;
-}
-
-CheckpointState read_checkpoint(const std::filesystem::path& path) {
-    const ResultReader r(path);
-    const std::string where = path.string() + ": ";
-    if (r.attr_str("/", "format") != "luxtrace-checkpoint" || !r.has("/checkpoint"))
-        throw InputError(where + "not a luxtrace checkpoint (it is a result file; restart needs a checkpoint)");
-    // Unsealed checkpoints come from luxtrace 0.1, whose photons drew other random numbers.
-    if (!r.sealed())
-        throw InputError(where +
-                         "this checkpoint has no luxtrace seal: it was written by luxtrace 0.1 (photon layout 1); "
-                         "continue it with that version or start anew");
-    CheckpointState s;
-    try {
-        s.tallies = r.u64("/checkpoint/tallies");
-        s.done = r.u64("/checkpoint/done_ranges");
-        s.budget = r.attr_u64("/checkpoint", "budget");
-        s.layout_size = r.attr_u64("/checkpoint", "layout_size");
-        s.triangles = r.attr_u64("/checkpoint", "triangles");
-        s.bands = r.attr_u64("/checkpoint", "bands");
-        s.seed = r.attr_u64("/", "seed");
-        s.sampler = r.attr_str("/", "sampler");
-        if (r.has_attr("/", "photon_layout")) s.photon_layout = r.attr_u64("/", "photon_layout");
-        if (r.has_attr("/", "replicates")) s.replicates = r.attr_u64("/", "replicates");
-        if (r.has_attr("/", "light_groups")) s.light_groups = r.attr_strs("/", "light_groups");
-        if (r.has_attr("/", "group_maps")) s.group_maps = r.attr_u64("/", "group_maps") != 0;
-        s.format_version = r.attr_u64("/", "format_version");
-        s.elapsed_s = r.attr_f64("/", "elapsed_s");
-        const auto t = r.f64("/history/time_s");
-        const auto p = r.u64("/history/photons");
-        const auto g = r.f64("/history/sigma_rel_global");
-        const auto f = r.f64("/history/forecast_s");
-        if (p.size() != t.size() || g.size() != t.size() || f.size() != t.size())
-            throw InputError(where + "the /history columns differ in length");
-        std::vector<std::size_t> shape;
-        std::vector<double> tv, tf, tp;
-        if (r.has("/history/target_value")) {
-            tv = r.f64("/history/target_value", &shape);
-            tf = r.f64("/history/target_forecast_s");
-            if (r.has("/history/target_forecast_photons")) tp = r.f64("/history/target_forecast_photons");
-            if (shape.size() != 2 || shape[0] != t.size() || tf.size() != tv.size() ||
-                (!tp.empty() && tp.size() != tv.size()))
-                throw InputError(where + "the /history target columns do not match its rows");
-        }
-        const std::size_t nt = shape.size() == 2 ? shape[1] : 0;
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            HistoryRow row{t[i], p[i], g[i], f[i], {}, {}, {}};
-            for (std::size_t j = 0; j < nt; ++j) {
-                row.target_value.push_back(tv[i * nt + j]);
-                row.target_forecast_s.push_back(tf[i * nt + j]);
-                row.target_forecast_photons.push_back(tp.empty() ? std::nan("") : tp[i * nt + j]);
-            }
-            s.history.push_back(std::move(row));
-        }
-    } catch (const InputError& e) {
-        throw InputError(std::string(e.what()) + " (damaged checkpoint)");
-    }
-    if (s.tallies.size() != s.layout_size || s.done.size() % 2 != 0)
-        throw InputError(where + "damaged checkpoint: inconsistent sizes");
-    for (std::size_t i = 0; i < s.done.size(); i += 2)
-        if (s.done[i] > s.done[i + 1])
-            throw InputError(where + "damaged checkpoint: photon range " + std::to_string(s.done[i]) + ".." +
-                             std::to_string(s.done[i + 1]) + " runs backwards");
-    return s;
 }
 
 }  // namespace luxtrace

@@ -18,7 +18,7 @@ double linear_inverse(double k, double u) {
 
 float DirectionTable::slope(double mean) { return static_cast<float>(std::clamp(12.0 * (mean - 0.5), -2.0, 2.0)); }
 
-DirectionTable::DirectionTable(int rows, const std::vector<Cell>& cells) : rows_(rows) {
+DirectionTable::DirectionTable(int rows, const std::vector<Cell>& cells) {
     for (int r = 0; r <= rows; ++r) mu_.push_back(r == 90 ? 0.0 : (r == 180 ? -1.0 : mu_top(r)));
     for (int c = 0; c < kColumns; ++c) {
         sin_edge_[static_cast<std::size_t>(c)] = std::sin(c * kDegree);

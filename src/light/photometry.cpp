@@ -51,8 +51,6 @@ std::optional<CPlaneSymmetry> c_plane_symmetry(const std::vector<double>& h) {
     return std::nullopt;
 }
 
-double LuminousOpening::size_m() const { return std::max({std::abs(length_m), std::abs(width_m), std::abs(height_m)}); }
-
 const char* shape_name(LuminousOpening::Shape s) {
     using S = LuminousOpening::Shape;
     switch (s) {

@@ -62,7 +62,7 @@ Vec3 direction_at(double s, double phi) {
 
 }  // namespace
 
-SkyPatches::SkyPatches(int mf) : mf_(mf), alpha_deg_(0.0) {
+SkyPatches::SkyPatches(int mf) : alpha_deg_(0.0) {
     if (mf < 1 || mf > kMaxMf)
         throw std::invalid_argument("sky patch subdivision MF " + std::to_string(mf) + " is not 1 to " +
                                     std::to_string(kMaxMf));

@@ -98,9 +98,4 @@ RankProgress RankWork::progress() const {
     return {item_index_, item_.empty() ? 0 : pos_ - item_.begin};
 }
 
-std::uint64_t RankWork::handed_out() const {
-    std::lock_guard lock(mutex_);
-    return handed_out_;
-}
-
 }  // namespace luxtrace

@@ -1,7 +1,7 @@
 #include "luxtrace/run/worker_pool.hpp"
 
 #include "luxtrace/core/error.hpp"
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 
 #include <time.h>
 
@@ -123,7 +123,6 @@ void WorkerPool::trace_until_stopped(ThreadTime& time) {
             continue;
         }
         tracer.trace(chunk.begin, chunk.end, buffer);
-        traced_.fetch_add(chunk.size(), std::memory_order_relaxed);
     }
     buffer.flush();
 }

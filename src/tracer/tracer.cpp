@@ -139,7 +139,8 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     return true;
 }
 
-void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out) {
+template <class SeeRay>
+void PhotonTracer::fly(std::uint64_t first, std::uint64_t last, TallyBuffer& out, SeeRay see_ray) {
     std::uint64_t next = first;
     int active = 0;
     while (active < kInFlight && launch(flight_[active], next, last, out)) ++active;
@@ -153,7 +154,7 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
         for (int i = 0; i < active; ++i) {
             Photon& p = flight_[i];
             const Vec3f d(p.direction);
-            if (record_ != nullptr) record_->push_back({p.origin, d, 0.0f});
+            see_ray(p.origin, d);
             p.hit = embree_.intersect_local(p.origin, d);
             if (p.hit.found) __builtin_prefetch(&surfaces_.triangle(p.hit.triangle));
         }
@@ -183,6 +184,17 @@ void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& o
             }
         }
     }
+}
+
+void PhotonTracer::trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out) {
+    fly(first, last, out, [](const Vec3f&, const Vec3f&) {});
+}
+
+void PhotonTracer::trace_recording(std::uint64_t first, std::uint64_t last, TallyBuffer& out,
+                                   std::vector<RecordedRay>& rays) {
+    fly(first, last, out, [&rays](const Vec3f& origin, const Vec3f& direction) {
+        rays.push_back({origin, direction, 0.0f});
+    });
 }
 
 }  // namespace luxtrace

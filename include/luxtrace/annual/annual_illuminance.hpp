@@ -33,7 +33,6 @@ public:
                        std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
                        std::span<const double> group_flux_lm);
 
-    std::size_t cells() const { return cells_; }
     // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
     // weather file (0 in the dark ones).
     // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).

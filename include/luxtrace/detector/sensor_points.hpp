@@ -33,7 +33,6 @@ public:
     SensorPoints(std::vector<Vec3> positions, std::vector<Vec3> directions, double radius_m);
 
     std::size_t size() const { return positions_.size(); }
-    bool empty() const { return positions_.empty(); }
     const std::vector<Vec3>& positions() const { return positions_; }
     const std::vector<Vec3>& directions() const { return directions_; }
     double radius_m() const { return radius_m_; }

@@ -4,10 +4,11 @@
 // the format versions apart here and nowhere else. Format 1 (luxtrace 0.2) has one
 // surface map for both sides of a triangle, [T, B]; format 2 one per side, [T, 2, B].
 // Attributes the typed accessors do not cover (the summary's metrics and glare figures)
-// are read by path through raw(), the ResultReader (result_file.hpp) underneath. To read a new group of datasets (e.g.
-// per light group): a struct here and one method that reads it in result_data.cpp, next to the writer's part in
+// are read by path through raw(), the ResultReader (result_reader.hpp) underneath. To read a new group of datasets
+// (e.g. per light group): a struct here and one method that reads it in result_data.cpp, next to the writer's part in
 // result_parts.hpp (as light_groups() reads what result_light_scenes.cpp writes).
 #include "luxtrace/io/result_file.hpp"
+#include "luxtrace/io/result_reader.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
-// The result file of SPEC §4 (docs/REFERENCE.md): writing it, reading it back by HDF5
-// path (info's summary, tests), and a checkpoint's state. The writer's parts are in
-// src/io/result_parts.hpp; other C++ readers use the typed ResultFile (result_data.hpp).
+// The result file of SPEC §4 (docs/REFERENCE.md): writing it, and reading a checkpoint's
+// state back. The writer's parts are in src/io/result_parts.hpp; readers use ResultReader
+// (result_reader.hpp) by HDF5 path or the typed ResultFile (result_data.hpp).
 #include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 
@@ -98,36 +98,8 @@ std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, cons
                                          const TallyLayout& layout, const RunInfo& info,
                                          const std::vector<HistoryRow>& history, const CheckpointData& checkpoint);
 
-// Reads a checkpoint written by write_result with CheckpointData; throws InputError.
+// Reads a checkpoint (result_image with CheckpointData, or tally_checkpoint_image); throws
+// InputError.
 CheckpointState read_checkpoint(const std::filesystem::path& path);
-
-// Reading back by HDF5 path, for `luxtrace info` and for tests; other readers use the typed
-// ResultFile (result_data.hpp), which reads through this class.
-class ResultReader {
-public:
-    explicit ResultReader(const std::filesystem::path& path);  // throws InputError
-    ~ResultReader();
-    ResultReader(const ResultReader&) = delete;
-    ResultReader& operator=(const ResultReader&) = delete;
-
-    bool has(const std::string& object) const;
-    bool has_attr(const std::string& object, const std::string& name) const;
-    std::vector<std::uint64_t> u64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
-    std::vector<double> f64(const std::string& dataset, std::vector<std::size_t>* shape = nullptr) const;
-    double attr_f64(const std::string& object, const std::string& name) const;
-    std::vector<double> f64_attr_array(const std::string& object, const std::string& name) const;
-    std::uint64_t attr_u64(const std::string& object, const std::string& name) const;
-    std::string attr_str(const std::string& object, const std::string& name) const;
-    std::vector<std::string> attr_strs(const std::string& object, const std::string& name) const;
-    std::vector<std::string> children(const std::string& group) const;
-    const std::filesystem::path& path() const { return path_; }
-    // The file carries luxtrace's seal (file_seal.hpp) and matched it.
-    bool sealed() const { return sealed_; }
-
-private:
-    std::filesystem::path path_;
-    bool sealed_ = false;
-    std::int64_t file_ = -1;  // hid_t
-};
 
 }  // namespace luxtrace

@@ -31,7 +31,6 @@ public:
         if (f < keep) return {static_cast<int>(i), f / keep};
         return {static_cast<int>(c.alias), (f - keep) / (1.0 - keep)};
     }
-    int size() const { return static_cast<int>(cells_.size()); }
     // The probability of cell i (for tests).
     double probability(int i) const;
 

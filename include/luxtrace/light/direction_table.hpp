@@ -62,14 +62,12 @@ public:
     Vec3 sample(double u1, double u2) const;
     // The sum of the weights.
     double total() const { return total_; }
-    int rows() const { return rows_; }
     // The probability of cell (row, column).
     double cell_probability(int row, int column) const;
 
 private:
     AliasTable cells_;
-    int rows_ = 0;
-    std::vector<double> mu_;  // cos Z at the rows' edges (rows_ + 1; the horizon exactly 0)
+    std::vector<double> mu_;  // cos Z at the rows' edges (rows + 1; the horizon exactly 0)
     std::array<double, kColumns> sin_edge_{}, cos_edge_{};  // of the columns' first azimuths
     double total_ = 0.0;
     std::vector<double> weight_;            // per cell, normalised

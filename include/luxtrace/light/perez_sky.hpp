@@ -83,7 +83,6 @@ public:
     // that the sky's horizontal illuminance is the diffuse horizontal illuminance.
     const SkyModel& model() const { return model_; }
     double zenith_luminance_cd_m2() const { return zenith_luminance_cd_m2_; }
-    double luminance_cd_m2(const Vec3& dir) const { return zenith_luminance_cd_m2_ * model_.relative_luminance(dir); }
     double luminance_cd_m2(double zenith_rad, double azimuth_rad) const {
         return zenith_luminance_cd_m2_ * model_.relative_luminance(zenith_rad, azimuth_rad);
     }

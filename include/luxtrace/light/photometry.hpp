@@ -56,9 +56,6 @@ struct LuminousOpening {
     };
     Shape shape = Shape::point;
     double length_m = 0.0, width_m = 0.0, height_m = 0.0;
-    // Largest extent, the "size" against which the point model's far-field rule (five
-    // times the size) is judged.
-    double size_m() const;
 };
 const char* shape_name(LuminousOpening::Shape s);
 

@@ -52,7 +52,6 @@ public:
     // 1-16, 0 for the uniform sky, kPerezType for the Perez sky.
     static constexpr int kPerezType = 17;
     int cie_type() const { return type_; }
-    bool is_perez() const { return type_ == kPerezType; }
     // Whether the luminance depends on the sun's position (the general skies and Perez).
     bool sun_dependent() const { return (type_ >= 1 && type_ <= 15) || type_ == kPerezType; }
     double sun_zenith_rad() const { return sun_zenith_rad_; }

@@ -39,7 +39,6 @@ public:
     // Throws std::invalid_argument for mf < 1 or mf > kMaxMf.
     explicit SkyPatches(int mf);
 
-    int mf() const { return mf_; }
     // Sky patches only: 144 mf^2 + 1.
     std::size_t count() const { return patches_.size(); }
     // Altitude rows, 7 mf + 1 (the last is the zenith cap).
@@ -115,7 +114,6 @@ private:
     std::vector<double> means(const std::function<double(const Vec3&)>& L, int nodes, const std::optional<Vec3>& cusp,
                               bool cosine_weighted) const;
 
-    int mf_;
     double alpha_deg_;
     std::vector<double> row_sin_;         // sin of each row's lower altitude, and 1 at the end
     std::vector<std::size_t> row_first_;  // first patch of each row, and count() at the end

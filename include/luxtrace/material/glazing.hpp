@@ -61,7 +61,6 @@ public:
         const double p = pass_[k] + f * (pass_[k + 1] - pass_[k]);
         return {r, p - r};
     }
-    std::size_t knot_count() const { return knots_.size(); }
 
 private:
     friend GlazingCurve pane_curve(double normal_transmittance, double ior);

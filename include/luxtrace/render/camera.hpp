@@ -22,7 +22,6 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     const Vec3& position() const { return position_; }
-    const Vec3& forward() const { return forward_; }
 
     // Unit direction through the image point (x, y) in pixels: (0, 0) is the top-left
     // corner of the image, x grows to the right, y downward; pixel (i, j) covers

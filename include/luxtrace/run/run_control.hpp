@@ -52,10 +52,6 @@ public:
     // the time limit (exit 3 with a checkpoint while error targets are unmet), a periodic
     // checkpoint; the next period from the stalls and the forecasts.
     Decision after_reduction(const ReductionInput& in);
-    // Estimates and target states of the latest reduction.
-    const GlobalEstimate& global() const { return global_; }
-    const std::vector<TargetStatus>& targets() const { return status_; }
-    const std::vector<Forecast>& forecasts() const { return forecast_; }
     const std::vector<HistoryRow>& history() const { return history_; }
     void fill_run_info(RunInfo& info) const;
     // One progress line: elapsed, photons, rate, every target's error, goal, forecast.

@@ -32,12 +32,10 @@ public:
     WorkPlan(const std::vector<PhotonRange>& done, std::uint64_t budget, std::uint64_t block, int ranks);
 
     int ranks() const { return ranks_; }
-    std::uint64_t budget() const { return budget_; }
     // Item i of `rank`, clipped to the budget; empty once the rank has no more work.
     PhotonRange item(int rank, std::uint64_t i) const;
     // Every traced range: the earlier run's plus what each rank's progress covers.
     std::vector<PhotonRange> done_ranges(const std::vector<RankProgress>& progress) const;
-    const std::vector<PhotonRange>& previously_done() const { return done_; }
     std::uint64_t previously_done_count() const;
 
 private:
@@ -71,7 +69,6 @@ public:
     bool fence_reached() const;
     // Valid while no chunk is being traced (all threads paused or finished).
     RankProgress progress() const;
-    std::uint64_t handed_out() const;
 
 private:
     const WorkPlan& plan_;

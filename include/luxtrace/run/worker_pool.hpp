@@ -50,8 +50,6 @@ public:
     void wait_for_park(double max_s);
     // True once every thread has run out of work.
     bool exhausted() const { return idle_.load() == static_cast<int>(threads_.size()); }
-    // Photons traced so far by this rank's threads (for progress; exact when paused).
-    std::uint64_t photons_traced() const { return traced_.load(std::memory_order_relaxed); }
     // A tracing thread threw. The thread parks as if out of work (so pause() and stop()
     // still return) and keeps the first exception for the main thread; the tallies are
     // then incomplete and must not be written.
@@ -88,7 +86,6 @@ private:
     int parked_ = 0;
     std::uint64_t resumes_ = 0;  // a thread parked at the fence retries after a resume
     std::atomic<int> idle_{0};
-    std::atomic<std::uint64_t> traced_{0};
     std::atomic<bool> failed_{false};
     std::exception_ptr error_;            // guarded by mutex_
     double cpu_s_ = 0.0, alive_s_ = 0.0;  // summed over finished threads, guarded by mutex_

@@ -1,7 +1,7 @@
 #pragma once
 // The random numbers of photon k, in the blocks of the photon layout (tracer.hpp), from
 // either sampler:
-//   random - Philox4x32-10 blocks (sampler.hpp);
+//   random - Philox4x32-10 blocks (philox_sampler.hpp);
 //   sobol  - Owen-scrambled Sobol points (sobol.hpp). Photon k belongs to stream
 //            r = k mod R and is point i = k / R of that stream; each stream is its own
 //            independent scramble of the sequence, so the R streams are R independent
@@ -15,7 +15,7 @@
 //            independent of everything else.
 // Either way a photon's numbers depend only on (seed, k): tallies are bit-identical for
 // any ranks x threads, and a restart continues the same streams.
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/sampler/sobol.hpp"
 
 #include <array>

@@ -39,7 +39,7 @@ public:
     // The scramble of dimension `dim` of randomisation `stream` of a run: a Philox4x32-10
     // word with the run seed as key and counter (stream, dim, "sobl", 0), so every
     // (stream, dimension) has its own independent scramble and none shares a counter with
-    // the photons' Philox blocks (tag "luxt", sampler.hpp).
+    // the photons' Philox blocks (tag "luxt", philox_sampler.hpp).
     static std::uint32_t scramble_seed(std::uint64_t run_seed, std::uint32_t stream, std::uint32_t dim);
 
     // Nested uniform scrambling of a 32-bit fraction (Burley 2020, eq. for the

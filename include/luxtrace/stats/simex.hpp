@@ -23,7 +23,6 @@ class SimexSums {
 public:
     // One replicate: its figure at lambda = 1 and at lambda = 2, minus the observed one.
     void add(double delta1, double delta2);
-    int replicates() const { return count_; }
     // sigma and bias from the replicates so far (both 0 with fewer than 2).
     SimexEstimate estimate(double observed) const;
 

@@ -22,8 +22,6 @@ public:
                     std::span<const double> weights = {});
 
     const TallyLayout& layout() const { return layout_; }
-    std::span<const std::uint64_t> data() const { return data_; }
-    std::uint64_t counter(TallyLayout::Counter c) const { return data_[layout_.counter(c)]; }
     // Every group at weight 1: the plain run.
     bool plain() const { return plain_; }
     std::span<const double> weights() const { return weights_; }  // per group

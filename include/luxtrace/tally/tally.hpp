@@ -70,7 +70,6 @@ public:
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }
-    const TallyDims& dims() const { return dims_; }
     std::size_t bands() const { return dims_.bands; }
     std::size_t groups() const { return dims_.groups; }
     std::size_t map_groups() const { return dims_.map_groups; }

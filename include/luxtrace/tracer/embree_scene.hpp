@@ -55,8 +55,7 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    // Scene coordinates of the local origin, and the conversions.
-    const Vec3& origin() const { return origin_; }
+    // Conversions between scene coordinates and Embree's local frame.
     Vec3f to_local(const Vec3& p) const { return Vec3f(p - origin_); }
     Vec3 to_scene(const Vec3f& p) const { return Vec3(p) + origin_; }
     // Vertex v in local coordinates (Embree's own buffer).

@@ -3,7 +3,7 @@
 // map) -> material (scatter), and the scorer (tally/photon_tally.hpp) commits what the
 // filters registered.
 //
-// Random numbers of photon k come in Philox blocks of four (sampler.hpp), one block per
+// Random numbers of photon k come in Philox blocks of four (philox_sampler.hpp), one block per
 // group of decisions, always the same block for the same decision:
 //   block 0: light, band, emission direction (2);
 //   block 1: emission position (2), drawn by area and directional lights only;
@@ -48,8 +48,9 @@ public:
                  PhotonSampler sampler);
     // Trace photons [first, last) and add their contributions to `out`.
     void trace(std::uint64_t first, std::uint64_t last, TallyBuffer& out);
-    // Append every ray traced from now on to `sink` (null: stop recording).
-    void record_rays(std::vector<RecordedRay>* sink) { record_ = sink; }
+    // The same, appending every ray it hands to Embree to `rays` (the benchmarks' replays):
+    // a loop of its own, so that trace() tests nothing per ray for it.
+    void trace_recording(std::uint64_t first, std::uint64_t last, TallyBuffer& out, std::vector<RecordedRay>& rays);
 
     static constexpr int kInFlight = 8;
 
@@ -82,6 +83,10 @@ private:
     };
     const PhotonSampler::Block& batched_block(BlockBatch& batch, std::uint64_t k, std::uint32_t b);
     const PhotonSampler::Block& start_block(std::uint64_t k) { return batched_block(start_batch_, k, 0); }
+    // The loop of both trace()s: photons in flight until [first, last) is done, and
+    // `see_ray(origin, direction)` called before each ray is intersected.
+    template <class SeeRay>
+    void fly(std::uint64_t first, std::uint64_t last, TallyBuffer& out, SeeRay see_ray);
     // One step after the photon's ray was intersected, with the block of its arrival;
     // false once the photon has ended.
     bool step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& out);
@@ -101,7 +106,6 @@ private:
     // Every light draws a start position (area lights, beams, luminous openings): block 1
     // is then drawn in batches too; otherwise one at a time, for the photons that need it.
     bool all_positioned_ = false;
-    std::vector<RecordedRay>* record_ = nullptr;
 };
 
 }  // namespace luxtrace

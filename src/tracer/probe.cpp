@@ -1,6 +1,6 @@
 #include "luxtrace/tracer/probe.hpp"
 
-#include "luxtrace/sampler/sampler.hpp"
+#include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"

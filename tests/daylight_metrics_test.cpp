@@ -6,11 +6,12 @@
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "app/result_summary.hpp"
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/estimate/estimate_scene.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>

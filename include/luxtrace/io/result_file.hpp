@@ -2,7 +2,7 @@
 // The result file of SPEC §4 (docs/REFERENCE.md): writing it, reading it back by HDF5
 // path (info's summary, tests), and a checkpoint's state. The writer's parts are in
 // src/io/result_parts.hpp; other C++ readers use the typed ResultFile (result_data.hpp).
-#include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>

@@ -3,8 +3,8 @@
 // before each write, and the writer (io/result_file.hpp) only writes these numbers. To add
 // a group of estimates (e.g. per light group or light scene): a member here, filled in
 // estimate_result, written by one part of the writer (src/io/result_parts.hpp).
-#include "luxtrace/annual/annual_estimate.hpp"
-#include "luxtrace/glare/observer_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
+#include "luxtrace/estimate/observer_estimate.hpp"
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/illuminance_metrics.hpp"
@@ -50,12 +50,6 @@ struct LightSceneEstimates {
     bool surface_available = true;
     ResultEstimates estimates;
 };
-
-// Every light group's flux (lm), per Scene::light_groups.
-std::vector<double> light_group_flux_lm(const Scene& scene);
-// E_h,ext of daylight factors: the sum over the lights of their unobstructed horizontal
-// illuminance, each times its group's weight (empty weights: the plain run, all at 1).
-double daylight_reference_lx(const Scene& scene, std::span<const double> weights);
 
 // e0 = flux per photon (lm), photons = N, the photons emitted so far.
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,

@@ -1,4 +1,4 @@
-#include "luxtrace/annual/annual_illuminance.hpp"
+#include "luxtrace/estimate/annual_coefficients.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
-#include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 
+#include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 namespace luxtrace {
@@ -28,19 +29,6 @@ Observer dimmed(const Observer& o, const Scene& scene, std::span<const double> w
     return d;
 }
 }  // namespace
-
-std::vector<double> light_group_flux_lm(const Scene& scene) {
-    std::vector<double> flux(scene.light_groups.size(), 0.0);
-    for (const Light& l : scene.lights.lights()) flux[l.group] += l.flux_lm;
-    return flux;
-}
-
-double daylight_reference_lx(const Scene& scene, std::span<const double> weights) {
-    double e = 0.0;
-    for (const Light& l : scene.lights.lights())
-        e += (weights.empty() ? 1.0 : weights[l.group]) * l.unobstructed_horizontal_lx;
-    return e;
-}
 
 LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& ls, const TallyLayout& layout,
                                          std::span<const std::uint64_t> data, double e0, std::uint64_t photons) {

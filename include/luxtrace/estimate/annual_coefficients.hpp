@@ -1,18 +1,18 @@
 #pragma once
 // Each hour's illuminance on a detector from its daylight coefficients (issue 24,
 // docs/ANNUAL.md). A run keeps every detector cell's tallies per light group: the sky
-// patches, the ground and every hour's sun (annual_sky.hpp). Group g's coefficient of cell
-// c is C_gc = k n_gc (k the cell's value per count, eq. 8's n_c), with variance
+// patches, the ground and every hour's sun (annual/annual_sky.hpp). Group g's coefficient
+// of cell c is C_gc = k n_gc (k the cell's value per count, eq. 8's n_c), with variance
 // k^2 (q_gc - n_gc^2 / N); hour h's illuminance is E_hc = sum_g w_hg C_gc, w_hg the hour's
 // luminance of the group over what the group emitted, and its variance
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
-// this is exact for the weighted sum (weighted_tallies.hpp). A cell that no photon of an
-// emitting group reached gets, in its hourly error, the variance of its expected count estimated
-// from data (AnnualCoefficients()), not 0. A sun's interreflected part is pooled over the same
-// hour of the neighbouring days (its direct part stays the hour's own); the replicates draw
-// a sun's direct count around its pooled mean and its interreflected count around an
-// empirical-Bayes centre. The direct sun (LM-83's ASE) is the hour's sun group's direct
-// registrations alone (TallyLayout::detector_direct).
+// this is exact for the weighted sum (stats/weighted_tallies.hpp). A cell that no photon of
+// an emitting group reached gets, in its hourly error, the variance of its expected count
+// estimated from data (AnnualCoefficients()), not 0. A sun's interreflected part is pooled
+// over the same hour of the neighbouring days (its direct part stays the hour's own); the
+// replicates draw a sun's direct count around its pooled mean and its interreflected count
+// around an empirical-Bayes centre. The direct sun (LM-83's ASE) is the hour's sun group's
+// direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 #include "luxtrace/tally/tally.hpp"
@@ -25,10 +25,10 @@ namespace luxtrace {
 
 class AnnualCoefficients {
 public:
-    // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of one
-    // registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per light
-    // group (light_group_flux_lm): a group that emits nothing (a patch or sun behind every
-    // portal) has exactly zero coefficients, with no error.
+    // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of
+    // one registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per
+    // light group (light_group_flux_lm, estimate_scene.hpp): a group that emits nothing (a
+    // patch or sun behind every portal) has exactly zero coefficients, with no error.
     AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
                        std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
                        std::span<const double> group_flux_lm);
@@ -46,7 +46,7 @@ public:
     void centre(AnnualSeries& out) const;
     // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
     // a Poisson count of its variance, for the errors of nonlinear metrics
-    // (annual_metrics.hpp).
+    // (stats/annual_metrics.hpp).
     void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:

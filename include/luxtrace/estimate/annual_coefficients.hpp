@@ -8,11 +8,11 @@
 // k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
 // this is exact for the weighted sum (stats/weighted_tallies.hpp). A cell that no photon of
 // an emitting group reached gets, in its hourly error, the variance of its expected count
-// estimated from data (AnnualCoefficients()), not 0. A sun's interreflected part is pooled
-// over the same hour of the neighbouring days (its direct part stays the hour's own); the
-// replicates draw a sun's direct count around its pooled mean and its interreflected count
-// around an empirical-Bayes centre. The direct sun (LM-83's ASE) is the hour's sun group's
-// direct registrations alone (TallyLayout::detector_direct).
+// estimated from data (sky_coefficients, dark_rates), not 0. A sun's interreflected part is
+// pooled over the same hour of the neighbouring days (its direct part stays the hour's
+// own); the replicates draw a sun's direct count around its pooled mean and its
+// interreflected count around an empirical-Bayes centre. The direct sun (LM-83's ASE) is
+// the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 #include "luxtrace/tally/tally.hpp"
@@ -50,6 +50,20 @@ public:
     void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
+    // The constructor reads the detector's counts per light group (Counts) in five steps,
+    // each filling the members under its name below:
+    //   sky_coefficients  the sky patches' and the ground's coefficients and their errors
+    //   pool_suns         per sun, the suns of the same hour on the neighbouring days
+    //   dark_rates        the expected count of a cell that a sun and its neighbours all missed
+    //   sun_priors        per clock hour and cell, the prior of a sun's interreflected count
+    //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
+    struct Counts;
+    void sky_coefficients(const Counts& counts);
+    void pool_suns(const Counts& counts);
+    void dark_rates(const Counts& counts);
+    void sun_priors(const Counts& counts);
+    void sun_coefficients(const Counts& counts);
+
     // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
     void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
     void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
@@ -62,21 +76,32 @@ private:
     std::size_t cells_ = 0;
     double inv_photons_ = 0.0;
     double per_count_ = 0.0;  // k
-    // [entry][cell]: sky patches then the ground (AnnualSky's sky vector order), and
-    // [sun][cell] for the suns; coefficients (lx per unit weight), the sky's variances for
-    // the replicates and the direct sun's for its hourly error.
-    std::vector<double> sky_, sky_var_, sun_, direct_, direct_var_;
-    // k^2 q per entry (suns: the pooled estimate's variance, with a dark floor), for the
-    // hourly error.
-    std::vector<double> sky_q_, sun_q_;
-    // Per sun: the suns of the same hour on the neighbouring days, and this sun's share of
-    // the three's photons.
-    std::vector<std::vector<std::size_t>> pool_;
-    std::vector<double> pool_share_;
-    // A sun's fresh-run draw, in counts (the constructor): the direct count's pooled mean,
-    // and the indirect count's empirical-Bayes centre and its variance.
-    std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
+
+    // sky_coefficients, [entry][cell] (sky patches then the ground, AnnualSky's sky vector
+    // order): the coefficients (lx per unit weight), k^2 q for the hourly error (with a floor
+    // where the cell saw nothing) and the plain counts' variances for the replicates.
+    std::vector<double> sky_, sky_q_, sky_var_;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
+
+    // pool_suns, per sun: the suns of the same hour on the neighbouring days, this sun's
+    // share of the three's photons and its share of the neighbours' photons alone.
+    std::vector<std::vector<std::size_t>> pool_;
+    std::vector<double> pool_share_, neighbour_share_;
+
+    // dark_rates: the total and the direct count of a (sun, cell) pair whose neighbours read
+    // nothing, per neighbour and unit share.
+    double dark_lambda_n_ = 0.0, dark_lambda_d_ = 0.0;
+
+    // sun_priors, [clock hour][cell]: the prior's mean count per unit flux and its shape.
+    std::vector<double> eb_rho_, eb_alpha_;
+
+    // sun_coefficients, [sun][cell]: the coefficients (lx per unit weight) and the direct
+    // sun's; for the hourly errors k^2 q of the pooled estimate (with a dark floor) and the
+    // direct sun's variance; a fresh run's draw, in counts: the direct count's pooled mean,
+    // and the indirect count's empirical-Bayes centre and its variance.
+    std::vector<double> sun_, direct_, sun_q_, direct_var_;
+    std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
+
     // The estimate, made once.
     mutable AnnualSeries estimate_;
     mutable bool have_estimate_ = false;

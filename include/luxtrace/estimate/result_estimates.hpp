@@ -4,6 +4,7 @@
 // a group of estimates (e.g. per light group or light scene): a member here, filled in
 // estimate_result, written by one part of the writer (src/io/result_parts.hpp).
 #include "luxtrace/estimate/annual_estimate.hpp"
+#include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/estimate/observer_estimate.hpp"
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "luxtrace/stats/estimates.hpp"
@@ -51,14 +52,19 @@ struct LightSceneEstimates {
     ResultEstimates estimates;
 };
 
-// e0 = flux per photon (lm), photons = N, the photons emitted so far.
+// e0 = flux per photon (lm), photons = N, the photons emitted so far: the plain run's
+// estimates and every [[light_scene]]'s.
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,
                                 double e0, std::uint64_t photons);
-// The same on a light scene's weights (one per group; empty: the plain run). UGR takes each
-// luminaire's luminance times its group's weight; the maintenance factors stay the plain
-// run's.
-ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& tallies, double e0, std::uint64_t photons);
-LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& light_scene, const TallyLayout& layout,
-                                         std::span<const std::uint64_t> data, double e0, std::uint64_t photons);
+// The same on the tallies as a light scene weights them (all weights 1: the plain run). UGR
+// takes each luminaire's luminance times its group's weight; the maintenance factors stay
+// the plain run's.
+ResultEstimates estimate_result(const EstimateScene& scene, const WeightedTallies& tallies, double e0,
+                                std::uint64_t photons);
+// A light scene's estimates: a run's [[light_scene]], or, after the run, any combination of
+// a result's light groups (`luxtrace info --scene`, io/light_group_tallies.hpp).
+LightSceneEstimates estimate_light_scene(const EstimateScene& scene, const LightScene& light_scene,
+                                         const TallyLayout& layout, std::span<const std::uint64_t> data, double e0,
+                                         std::uint64_t photons);
 
 }  // namespace luxtrace

@@ -6,12 +6,13 @@
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "app/result_summary.hpp"
 #include "luxtrace/core/math.hpp"
+#include "luxtrace/estimate/estimate_scene.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_reader.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/simulation.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -238,10 +239,10 @@ TEST(DaylightReference, SumsTheLightsWeightedByTheirGroups) {
     for (Light& l : lights) l.flux_lm = 1.0;
     scene.lights = LightSet(lights);
     scene.light_groups = {"daylight", "lamps"};
-    EXPECT_DOUBLE_EQ(daylight_reference_lx(scene, {}), 10000.0);
+    EXPECT_DOUBLE_EQ(daylight_reference_lx(estimate_scene(scene), {}), 10000.0);
     const std::vector<double> half{0.5, 1.0}, off{0.0, 1.0};
-    EXPECT_DOUBLE_EQ(daylight_reference_lx(scene, half), 5000.0);
-    EXPECT_EQ(daylight_reference_lx(scene, off), 0.0);
+    EXPECT_DOUBLE_EQ(daylight_reference_lx(estimate_scene(scene), half), 5000.0);
+    EXPECT_EQ(daylight_reference_lx(estimate_scene(scene), off), 0.0);
 }
 
 #ifdef LUXTRACE_BINARY

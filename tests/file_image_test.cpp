@@ -7,13 +7,13 @@
 // dataset and attribute), by luxtrace's reader and by the Python package.
 #include "io/hdf5_file.hpp"
 #include "io/result_parts.hpp"
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/file_seal.hpp"
 #include "luxtrace/io/result_data.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 #include "test_support.hpp"
 

@@ -1,7 +1,8 @@
 #pragma once
 // `luxtrace info RESULT --scene "a=0.5,b=1"`: a combination of the result's light groups
-// (issue 22), recombined from each group's own counts in /light_groups without tracing
-// again, with exact errors (the groups' photons are disjoint; docs/REFERENCE.md §1).
+// (issue 22), estimated from each group's own counts in /light_groups without tracing
+// again, by the run's own estimate of a light scene (estimate/result_estimates.hpp), with
+// exact errors (the groups' photons are disjoint; docs/REFERENCE.md §1).
 #include <iosfwd>
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 // The result's /annual group (scenes with [annual], docs/REFERENCE.md §4, docs/ANNUAL.md):
 // the year's hours and skies, and per sensor grid every hour's illuminance and direct sun
 // with their errors, the daylight coefficients' counts, and the annual metrics with theirs.
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
 

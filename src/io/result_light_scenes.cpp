@@ -1,6 +1,7 @@
 // The result's light groups (/light_groups/NAME: each group's own counts, from which any
 // combination is recombined after the run) and light scenes (/light_scenes/NAME: each
 // [[light_scene]]'s estimates). Issue 22; docs/REFERENCE.md §4.
+#include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "result_parts.hpp"
 

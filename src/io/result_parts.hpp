@@ -2,11 +2,11 @@
 // The parts of a result file (docs/REFERENCE.md), one writer each; write_result
 // (result_file.cpp) calls them in the file's order. Each writes numbers it is given: the
 // counts, rearranged from the tally layout into the file's [.., B] arrays, and the
-// estimates of stats/result_estimates.hpp. A new group of datasets (e.g. per light group)
-// is one more writer here, called from write_result, and read in result_data.cpp.
+// estimates of estimate/result_estimates.hpp. A new group of datasets (e.g. per light
+// group) is one more writer here, called from write_result, and read in result_data.cpp.
 #include "hdf5_file.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/result_file.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 
 #include <cstdint>
 #include <optional>

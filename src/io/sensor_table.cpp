@@ -2,9 +2,9 @@
 
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/core/text.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 
 #include <cmath>
 #include <cstdio>

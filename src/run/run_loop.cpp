@@ -1,6 +1,7 @@
 #include "luxtrace/run/run_loop.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/sensor_table.hpp"
@@ -9,7 +10,6 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/global_sums.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 #include "luxtrace/tally/message_packing.hpp"
 
 #include <unistd.h>

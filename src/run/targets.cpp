@@ -1,6 +1,6 @@
 #include "luxtrace/run/targets.hpp"
 
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 #include "luxtrace/scene/scene.hpp"
 
 #include <algorithm>

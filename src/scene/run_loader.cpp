@@ -1,7 +1,8 @@
 // [run] and its [[run.target]] -> the scene's run settings (docs/REFERENCE.md §2). The
 // command line overrides them (src/app).
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/annual/annual_grid.hpp"
 #include "luxtrace/sampler/photon_sampler.hpp"
+#include "luxtrace/stats/annual_metrics.hpp"
 #include "scene_loader.hpp"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 // io/ladybug_results.hpp): one grid per annual sensor grid, the sun-up hours of a 365-day
 // year (the hours whose middle has the sun above the horizon; 29 February of a leap-year
 // file is left out, as the reader's year has 8760 hours).
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 
 #include <filesystem>
 #include <optional>

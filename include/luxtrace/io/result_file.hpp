@@ -2,7 +2,7 @@
 // The result file of SPEC §4 (docs/REFERENCE.md): writing it, and reading a checkpoint's
 // state back. The writer's parts are in src/io/result_parts.hpp; readers use ResultReader
 // (result_reader.hpp) by HDF5 path or the typed ResultFile (result_data.hpp).
-#include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>

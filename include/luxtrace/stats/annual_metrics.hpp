@@ -96,8 +96,8 @@ inline constexpr AnnualGridFigure kAnnualTargetFigures[] = {{"sda", &AnnualMetri
 // Bad sizes or no occupied or daylight hour throw std::invalid_argument (the caller's bug).
 AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t = {});
 
-// The hourly series a grid's errors come from (annual/annual_illuminance.hpp): the run's own
-// estimate; the centre the replicates are drawn around (what the data say a fresh run's
+// The hourly series a grid's errors come from (estimate/annual_coefficients.hpp): the run's
+// own estimate; the centre the replicates are drawn around (what the data say a fresh run's
 // expected values are); replicate r, one fresh run's values drawn around that centre.
 // Replicates are independent of each other.
 enum class AnnualDraw { estimate, centre, replicate };

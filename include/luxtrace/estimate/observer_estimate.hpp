@@ -1,6 +1,6 @@
 #pragma once
-// What the result stores of an observer (/observers/NAME): UGR (CIE 117, ugr.hpp) from the
-// eye detector's indirect illuminance and the luminaires' terms fixed at load.
+// What the result stores of an observer (/observers/NAME): UGR (CIE 117, glare/ugr.hpp)
+// from the eye detector's indirect illuminance and the luminaires' terms fixed at load.
 #include "luxtrace/glare/observer.hpp"
 #include "luxtrace/glare/ugr.hpp"
 #include "luxtrace/stats/estimates.hpp"

@@ -1,4 +1,4 @@
-#include "luxtrace/glare/observer_estimate.hpp"
+#include "luxtrace/estimate/observer_estimate.hpp"
 
 #include <cmath>
 

@@ -3,8 +3,9 @@
 // before each write, and the writer (io/result_file.hpp) only writes these numbers. To add
 // a group of estimates (e.g. per light group or light scene): a member here, filled in
 // estimate_result, written by one part of the writer (src/io/result_parts.hpp).
-#include "luxtrace/annual/annual_estimate.hpp"
-#include "luxtrace/glare/observer_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
+#include "luxtrace/estimate/estimate_scene.hpp"
+#include "luxtrace/estimate/observer_estimate.hpp"
 #include "luxtrace/stats/daylight_metrics.hpp"
 #include "luxtrace/stats/estimates.hpp"
 #include "luxtrace/stats/illuminance_metrics.hpp"
@@ -51,20 +52,19 @@ struct LightSceneEstimates {
     ResultEstimates estimates;
 };
 
-// Every light group's flux (lm), per Scene::light_groups.
-std::vector<double> light_group_flux_lm(const Scene& scene);
-// E_h,ext of daylight factors: the sum over the lights of their unobstructed horizontal
-// illuminance, each times its group's weight (empty weights: the plain run, all at 1).
-double daylight_reference_lx(const Scene& scene, std::span<const double> weights);
-
-// e0 = flux per photon (lm), photons = N, the photons emitted so far.
+// e0 = flux per photon (lm), photons = N, the photons emitted so far: the plain run's
+// estimates and every [[light_scene]]'s.
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,
                                 double e0, std::uint64_t photons);
-// The same on a light scene's weights (one per group; empty: the plain run). UGR takes each
-// luminaire's luminance times its group's weight; the maintenance factors stay the plain
-// run's.
-ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& tallies, double e0, std::uint64_t photons);
-LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& light_scene, const TallyLayout& layout,
-                                         std::span<const std::uint64_t> data, double e0, std::uint64_t photons);
+// The same on the tallies as a light scene weights them (all weights 1: the plain run). UGR
+// takes each luminaire's luminance times its group's weight; the maintenance factors stay
+// the plain run's.
+ResultEstimates estimate_result(const EstimateScene& scene, const WeightedTallies& tallies, double e0,
+                                std::uint64_t photons);
+// A light scene's estimates: a run's [[light_scene]], or, after the run, any combination of
+// a result's light groups (`luxtrace info --scene`, io/light_group_tallies.hpp).
+LightSceneEstimates estimate_light_scene(const EstimateScene& scene, const LightScene& light_scene,
+                                         const TallyLayout& layout, std::span<const std::uint64_t> data, double e0,
+                                         std::uint64_t photons);
 
 }  // namespace luxtrace

@@ -1,8 +1,8 @@
 #pragma once
 // An annual run's figures per detector (issue 24, docs/ANNUAL.md): every hour's illuminance
-// and direct sun with their standard errors (annual_illuminance.hpp), and the annual metrics
+// and direct sun with their standard errors (annual_coefficients.hpp), and the annual metrics
 // with their errors, biases and verdict flip probabilities (stats/annual_metrics.hpp).
-#include "luxtrace/annual/annual_illuminance.hpp"
+#include "luxtrace/estimate/annual_coefficients.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 
 #include <cstdint>
@@ -13,7 +13,6 @@
 namespace luxtrace {
 
 struct Scene;
-struct Detector;
 
 struct AnnualDetectorEstimate {
     AnnualSeries value, sigma;
@@ -24,13 +23,10 @@ struct AnnualDetectorEstimate {
 // year with the most diffuse horizontal illuminance, annual_metrics.hpp).
 AnnualHours annual_hours(const AnnualSetup& annual);
 
-// Whether a detector is a sensor grid of an annual run: illuminance and points detectors.
-bool annual_grid(const Detector& d);
-
-// One sensor grid (Scene::detectors[det], annual_grid): its metrics with their errors from
-// `replicates` replicate years (0: the values alone), and, with `series`, every hour's
-// values and their errors (value, sigma). The replicates' draws depend on the run's seed and
-// the detector, so a target and the result agree.
+// One sensor grid (Scene::detectors[det], annual/annual_grid.hpp): its metrics with their
+// errors from `replicates` replicate years (0: the values alone), and, with `series`, every
+// hour's values and their errors (value, sigma). The replicates' draws depend on the run's
+// seed and the detector, so a target and the result agree.
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                             int replicates, bool series);

@@ -1,4 +1,4 @@
-#include "luxtrace/stats/result_estimates.hpp"
+#include "luxtrace/estimate/result_estimates.hpp"
 
 #include "luxtrace/scene/scene.hpp"
 
@@ -6,20 +6,21 @@ namespace luxtrace {
 
 ResultEstimates estimate_result(const Scene& scene, const TallyLayout& layout, std::span<const std::uint64_t> data,
                                 double e0, std::uint64_t photons) {
-    ResultEstimates r = estimate_result(scene, WeightedTallies(layout, data), e0, photons);
+    const EstimateScene s = estimate_scene(scene);
+    ResultEstimates r = estimate_result(s, WeightedTallies(layout, data), e0, photons);
     for (const LightScene& ls : scene.light_scenes)
-        r.light_scenes.push_back(estimate_light_scene(scene, ls, layout, data, e0, photons));
+        r.light_scenes.push_back(estimate_light_scene(s, ls, layout, data, e0, photons));
     return r;
 }
 
 namespace {
 // The observer as a light scene sees it: each luminaire's luminance times its group's
 // weight, the luminaires switched off left out.
-Observer dimmed(const Observer& o, const Scene& scene, std::span<const double> weights) {
+Observer dimmed(const Observer& o, const EstimateScene& scene, std::span<const double> weights) {
     Observer d = o;
     d.sources.clear();
     for (GlareSource s : o.sources) {
-        const double w = weights[scene.lights.lights()[s.light].group];
+        const double w = weights[scene.light_group[s.light]];
         if (w <= 0.0) continue;
         s.luminance_cd_m2 *= w;
         s.intensity_cd *= w;
@@ -29,33 +30,20 @@ Observer dimmed(const Observer& o, const Scene& scene, std::span<const double> w
 }
 }  // namespace
 
-std::vector<double> light_group_flux_lm(const Scene& scene) {
-    std::vector<double> flux(scene.light_groups.size(), 0.0);
-    for (const Light& l : scene.lights.lights()) flux[l.group] += l.flux_lm;
-    return flux;
-}
-
-double daylight_reference_lx(const Scene& scene, std::span<const double> weights) {
-    double e = 0.0;
-    for (const Light& l : scene.lights.lights())
-        e += (weights.empty() ? 1.0 : weights[l.group]) * l.unobstructed_horizontal_lx;
-    return e;
-}
-
-LightSceneEstimates estimate_light_scene(const Scene& scene, const LightScene& ls, const TallyLayout& layout,
+LightSceneEstimates estimate_light_scene(const EstimateScene& scene, const LightScene& ls, const TallyLayout& layout,
                                          std::span<const std::uint64_t> data, double e0, std::uint64_t photons) {
     LightSceneEstimates e;
     e.name = ls.name;
     e.weights = ls.weights;
-    const std::vector<double> flux = light_group_flux_lm(scene);
-    for (std::size_t g = 0; g < flux.size(); ++g) e.flux_lm += ls.weights[g] * flux[g];
+    for (std::size_t g = 0; g < scene.group_flux_lm.size(); ++g) e.flux_lm += ls.weights[g] * scene.group_flux_lm[g];
     const WeightedTallies w(layout, data, ls.weights);
     e.surface_available = w.map_available();
     e.estimates = estimate_result(scene, w, e0, photons);
     return e;
 }
 
-ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, double e0, std::uint64_t photons) {
+ResultEstimates estimate_result(const EstimateScene& scene, const WeightedTallies& w, double e0,
+                                std::uint64_t photons) {
     ResultEstimates r;
     if (w.map_available()) {
         r.global = estimate_global(w, scene.triangle_area_m2, e0, photons);
@@ -63,7 +51,7 @@ ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, do
     }
     for (std::size_t d = 0; d < scene.detectors.size(); ++d)
         r.detectors.push_back(estimate_detector(scene.detectors[d], d, w, e0, photons));
-    const double mf = scene.lights.maintenance_factor();
+    const double mf = scene.maintenance_factor;
     for (const DetectorEstimate& e : r.detectors) {
         std::vector<IlluminanceMetrics> m;
         for (const IlluminanceMetrics& initial : e.metrics) m.push_back(maintained(initial, mf));
@@ -74,7 +62,7 @@ ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, do
         if (det.cylinders() && det.horizontal_index >= 0)
             r.modelling.emplace_back(modelling_ratio(r.detectors[d],
                                                      r.detectors[static_cast<std::size_t>(det.horizontal_index)],
-                                                     scene.bands.size()));
+                                                     scene.bands));
         else r.modelling.emplace_back();
     }
     const double reference_lx = daylight_reference_lx(scene, w.plain() ? std::span<const double>{} : w.weights());
@@ -87,8 +75,7 @@ ResultEstimates estimate_result(const Scene& scene, const WeightedTallies& w, do
     }
     for (const Observer& o : scene.observers)
         r.observers.push_back(estimate_observer(w.plain() ? o : dimmed(o, scene, w.weights()),
-                                                r.detectors[o.eye_detector], mf,
-                                                scene.lights.maintenance_factor_uniform()));
+                                                r.detectors[o.eye_detector], mf, scene.maintenance_factor_uniform));
     return r;
 }
 

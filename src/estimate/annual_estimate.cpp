@@ -1,7 +1,8 @@
-#include "luxtrace/annual/annual_estimate.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 
+#include "luxtrace/annual/annual_grid.hpp"
+#include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/scene/scene.hpp"
-#include "luxtrace/stats/result_estimates.hpp"
 
 namespace luxtrace {
 
@@ -15,10 +16,6 @@ AnnualHours annual_hours(const AnnualSetup& annual) {
     }
     out.en17037_hours = en17037_daylight_hours(outdoor);
     return out;
-}
-
-bool annual_grid(const Detector& d) {
-    return (d.type == DetectorType::illuminance || d.type == DetectorType::points) && !d.indirect_only;
 }
 
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,

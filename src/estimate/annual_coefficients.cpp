@@ -1,4 +1,4 @@
-#include "luxtrace/annual/annual_illuminance.hpp"
+#include "luxtrace/estimate/annual_coefficients.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,177 +10,224 @@
 
 namespace luxtrace {
 
+namespace {
+// The suns of one clock hour share an empirical-Bayes prior (sun_priors).
+constexpr std::size_t kClockHours = 24;
+}  // namespace
+
+// The detector's counts per light group, as the constructor's steps read them.
+struct AnnualCoefficients::Counts {
+    const AnnualSetup& annual;
+    const TallyLayout& layout;
+    std::span<const std::uint64_t> data;
+    std::size_t det = 0;
+    std::span<const double> group_flux_lm;
+
+    double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
+    double n(std::size_t cell, std::size_t group) const {
+        return static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
+    }
+    double q(std::size_t cell, std::size_t group) const {
+        return static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
+    }
+    double direct(std::size_t cell, std::size_t group) const {
+        return layout.direct_scores() ? static_cast<double>(data[layout.detector_direct(det, cell, group)]) : 0.0;
+    }
+    // Sky entry e's group (AnnualSky's sky vector order: the patches, then the ground), and
+    // sun s's.
+    std::size_t sky_group(std::size_t e) const {
+        return e == annual.sky->ground_entry() ? annual.ground_group : annual.first_patch_group + e;
+    }
+    std::size_t sun_group(std::size_t s) const { return annual.first_sun_group + s; }
+    bool sun_emits(std::size_t s) const { return flux(sun_group(s)) > 0.0; }
+    // Per (sun, cell): the direct count d, the other (interreflected) registrations
+    // i = n - d and their second moment v = q - d (a photon's direct count in a cell is 0 or
+    // 1, its square itself, tally.hpp; a photon registering a cell both directly and after a
+    // reflection is taken as rare).
+    double sun_direct(std::size_t s, std::size_t cell) const { return direct(cell, sun_group(s)); }
+    double sun_indirect(std::size_t s, std::size_t cell) const {
+        return n(cell, sun_group(s)) - direct(cell, sun_group(s));
+    }
+    double sun_indirect_moment(std::size_t s, std::size_t cell) const {
+        return q(cell, sun_group(s)) - direct(cell, sun_group(s));
+    }
+};
+
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
                                        std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
                                        double per_count, std::uint64_t photons, std::span<const double> group_flux_lm)
     : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0),
       per_count_(per_count) {
-    const AnnualSky& sky = *annual.sky;
-    const std::size_t entries = sky.sky_entries(), suns = sky.suns().size();
-    const double k2 = per_count * per_count;
-    auto flux = [&](std::size_t group) { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; };
-    auto n_of = [&](std::size_t cell, std::size_t group) {
-        return static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
-    };
-    auto direct_of = [&](std::size_t cell, std::size_t group) {
-        return layout.direct_scores() ? static_cast<double>(data[layout.detector_direct(det, cell, group)]) : 0.0;
-    };
-    std::vector<std::size_t> sky_groups, sun_groups;
-    for (std::size_t e = 0; e < entries; ++e)
-        sky_groups.push_back(e == sky.ground_entry() ? annual.ground_group : annual.first_patch_group + e);
-    for (std::size_t s = 0; s < suns; ++s) sun_groups.push_back(annual.first_sun_group + s);
-    // In an hour's error, a cell that no photon of an emitting group reached is not exact:
-    // its expected count lambda is small but not zero, and its variance is k^2 lambda. The
-    // sky patches and the ground: lambda from the cell's indirect registrations pooled over
-    // all of them, shared out by the groups' fluxes (which decide their photons), lambda =
-    // (I_c + 1/2) Phi_g / Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. A
-    // sun: its counts pooled with those of the same hour on the day before and after, for
-    // the total and for the direct count alike; where all read 0, the mean over all such
-    // dark (sun, cell) pairs of the detector.
-    sky_.assign(entries * cells, 0.0);
+    const Counts counts{annual, layout, data, det, group_flux_lm};
+    sky_coefficients(counts);
+    pool_suns(counts);
+    dark_rates(counts);
+    sun_priors(counts);
+    sun_coefficients(counts);
+}
+
+// In an hour's error, a cell that no photon of an emitting group reached is not exact: its
+// expected count lambda is small but not zero, and its variance is k^2 lambda. The sky
+// patches and the ground: lambda from the cell's indirect registrations pooled over all of
+// them, shared out by the groups' fluxes (which decide their photons), lambda =
+// (I_c + 1/2) Phi_g / Phi_sky, the 1/2 Jeffreys' prior for a Poisson count seen as 0. (The
+// suns: dark_rates.)
+void AnnualCoefficients::sky_coefficients(const Counts& c) {
+    const std::size_t entries = annual_.sky->sky_entries();
+    const double k2 = per_count_ * per_count_;
+    sky_.assign(entries * cells_, 0.0);
     sky_q_ = sky_var_ = sky_;
-    {
-        double sky_flux = 0.0;
-        for (std::size_t g : sky_groups) sky_flux += flux(g);
-        std::vector<double> indirect(cells, 0.5);
-        for (std::size_t g : sky_groups)
-            if (flux(g) > 0.0)
-                for (std::size_t cell = 0; cell < cells; ++cell) indirect[cell] += n_of(cell, g) - direct_of(cell, g);
-        for (std::size_t e = 0; e < entries; ++e) {
-            const std::size_t g = sky_groups[e];
-            if (!(flux(g) > 0.0)) continue;  // emits nothing: exactly zero
-            entries_.push_back(e);
-            const double share = flux(g) / sky_flux;
-            for (std::size_t cell = 0; cell < cells; ++cell) {
-                const double n = n_of(cell, g);
-                const double qq = static_cast<double>(data[layout.detector_q(det, cell, 0, g)]);
-                const std::size_t i = e * cells + cell;
-                sky_[i] = per_count * n;
-                sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
-                // The replicates' variance: the plain counts' (no floor: see the suns below).
-                sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
-            }
+    double sky_flux = 0.0;
+    for (std::size_t e = 0; e < entries; ++e) sky_flux += c.flux(c.sky_group(e));
+    std::vector<double> indirect(cells_, 0.5);
+    for (std::size_t e = 0; e < entries; ++e) {
+        const std::size_t g = c.sky_group(e);
+        if (c.flux(g) > 0.0)
+            for (std::size_t cell = 0; cell < cells_; ++cell) indirect[cell] += c.n(cell, g) - c.direct(cell, g);
+    }
+    for (std::size_t e = 0; e < entries; ++e) {
+        const std::size_t g = c.sky_group(e);
+        if (!(c.flux(g) > 0.0)) continue;  // emits nothing: exactly zero
+        entries_.push_back(e);
+        const double share = c.flux(g) / sky_flux;
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const double n = c.n(cell, g);
+            const double qq = c.q(cell, g);
+            const std::size_t i = e * cells_ + cell;
+            sky_[i] = per_count_ * n;
+            sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
+            // The replicates' variance: the plain counts' (no floor: see sun_coefficients).
+            sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
         }
     }
-    sun_.assign(suns * cells, 0.0);
-    sun_q_ = direct_ = direct_var_ = sun_;
-    rep_direct_mu_.assign(suns * cells, 0.0f);
-    rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
+}
+
+// Per sun: the emitting suns of the same hour on the day before and after (their positions
+// within half a degree: the same shadows and nearly the same reflections), and this sun's
+// share of the photons of the three, pool_share_ = Phi_s / (Phi_s + sum Phi_o) (the groups'
+// fluxes decide their photons); neighbour_share_: of the neighbours' photons alone.
+void AnnualCoefficients::pool_suns(const Counts& c) {
+    const AnnualSky& sky = *annual_.sky;
+    const std::size_t suns = sky.suns().size();
     std::vector<int> sun_at_hour(sky.hours().size(), -1);
     for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
-    // Per sun: the emitting suns of the same hour on the day before and after (their
-    // positions within half a degree: the same shadows and nearly the same reflections), and
-    // this sun's share of the photons of the three, pool_share_ = Phi_s / (Phi_s + sum Phi_o)
-    // (the groups' fluxes decide their photons); share: of the neighbours' photons alone.
     pool_.assign(suns, {});
     pool_share_.assign(suns, 1.0);
-    std::vector<double> share(suns, 0.0);
+    neighbour_share_.assign(suns, 0.0);
     for (std::size_t s = 0; s < suns; ++s) {
-        if (!(flux(sun_groups[s]) > 0.0)) continue;
+        if (!c.sun_emits(s)) continue;
         const std::size_t h = sky.suns()[s];
         double near_flux = 0.0;
         for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
             if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
                 const std::size_t o = static_cast<std::size_t>(sun_at_hour[other]);
-                if (flux(sun_groups[o]) > 0.0) {
+                if (c.sun_emits(o)) {
                     pool_[s].push_back(o);
-                    near_flux += flux(sun_groups[o]);
+                    near_flux += c.flux(c.sun_group(o));
                 }
             }
-        share[s] = near_flux > 0.0 ? flux(sun_groups[s]) / near_flux : 0.0;
-        pool_share_[s] = flux(sun_groups[s]) / (flux(sun_groups[s]) + near_flux);
+        const double flux = c.flux(c.sun_group(s));
+        neighbour_share_[s] = near_flux > 0.0 ? flux / near_flux : 0.0;
+        pool_share_[s] = flux / (flux + near_flux);
     }
+}
+
+// A sun's counts are pooled with those of the same hour on the day before and after, for
+// the total and for the direct count alike. Where the neighbours read nothing either (a
+// shadow, or light too rare to show), the expected count is the mean count of all such
+// (sun, cell) pairs of the detector, with half a count of prior: most are true shadows, and
+// their few counts say how rare. The rate per unit of photon share, as a ratio of sums (a
+// mean of ratios would weigh a weak sun's rare count by its tiny share).
+void AnnualCoefficients::dark_rates(const Counts& c) {
     auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
         double m = 0.0;
-        for (const std::size_t o : pool_[s]) m += direct ? direct_of(cell, sun_groups[o]) : n_of(cell, sun_groups[o]);
+        for (const std::size_t o : pool_[s]) m += direct ? c.sun_direct(o, cell) : c.n(cell, c.sun_group(o));
         return m;
     };
-    // Where the neighbours read nothing either (a shadow, or light too rare to show), the
-    // expected count is the mean count of all such (sun, cell) pairs of the detector, with
-    // half a count of prior: most are true shadows, and their few counts say how rare.
-    // The rate per unit of photon share, as a ratio of sums (a mean of ratios would weigh
-    // a weak sun's rare count by its tiny share).
     double dark_n = 0.5, dark_d = 0.5, dark_share = 0.0, dark_share_d = 0.0;
-    for (std::size_t s = 0; s < suns; ++s) {
-        if (!(flux(sun_groups[s]) > 0.0) || pool_[s].empty()) continue;
-        const double weight = share[s] * static_cast<double>(pool_[s].size());
-        for (std::size_t cell = 0; cell < cells; ++cell) {
+    for (std::size_t s = 0; s < pool_.size(); ++s) {
+        if (!c.sun_emits(s) || pool_[s].empty()) continue;
+        const double weight = neighbour_share_[s] * static_cast<double>(pool_[s].size());
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
             if (near_sum(s, cell, false) == 0.0) {
-                dark_n += n_of(cell, sun_groups[s]);
+                dark_n += c.n(cell, c.sun_group(s));
                 dark_share += weight;
             }
             if (near_sum(s, cell, true) == 0.0) {
-                dark_d += direct_of(cell, sun_groups[s]);
+                dark_d += c.sun_direct(s, cell);
                 dark_share_d += weight;
             }
         }
     }
     // Per neighbour and unit share.
-    const double dark_lambda_n = dark_share > 0.0 ? dark_n / dark_share : 0.5;
-    const double dark_lambda_d = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
-    // Per (sun, cell): the direct count d, the other (interreflected) registrations
-    // i = n - d and their second moment v = q - d (a photon's direct count in a cell is 0 or
-    // 1, its square itself, tally.hpp; a photon registering a cell both directly and after a
-    // reflection is taken as rare).
-    auto direct_count = [&](std::size_t s, std::size_t cell) { return direct_of(cell, sun_groups[s]); };
-    auto indirect_count = [&](std::size_t s, std::size_t cell) {
-        return n_of(cell, sun_groups[s]) - direct_of(cell, sun_groups[s]);
-    };
-    auto indirect_moment = [&](std::size_t s, std::size_t cell) {
-        return static_cast<double>(data[layout.detector_q(det, cell, 0, sun_groups[s])]) -
-               direct_of(cell, sun_groups[s]);
-    };
-    // The replicates' centre for a sun's interreflected count (empirical Bayes): light too
-    // rare to have been seen on any of the three days (a deep cell's rare sun reflection)
-    // must still be drawn now and then, or the bootstrap cannot see the bias it causes. The
-    // suns of one clock hour (similar positions over the year) share a prior per cell: a
-    // Gamma distribution of the count per unit flux, its mean rho the class's ratio of sums
-    // and its shape alpha by the method of moments (Var n = mu + mu^2 / alpha for a
-    // Poisson-Gamma count of mean mu = Phi rho). Each sun's centre is its posterior mean
-    // given the three days' counts N3 over their flux E3: Phi (N3 + alpha) / (E3 + alpha / rho).
-    constexpr std::size_t kClockHours = 24;
-    std::vector<double> eb_rho(kClockHours * cells, 0.0), eb_alpha(kClockHours * cells, 0.0);
-    {
-        std::vector<double> class_flux(kClockHours, 0.0), sum_mu2(kClockHours * cells, 0.0),
-            excess(kClockHours * cells, 0.0);
-        auto clock = [&](std::size_t s) { return sky.suns()[s] % kClockHours; };
-        for (std::size_t s = 0; s < suns; ++s) {
-            if (!(flux(sun_groups[s]) > 0.0)) continue;
-            class_flux[clock(s)] += flux(sun_groups[s]);
-            for (std::size_t cell = 0; cell < cells; ++cell) eb_rho[clock(s) * cells + cell] += indirect_count(s, cell);
-        }
-        for (std::size_t h = 0; h < kClockHours; ++h)
-            for (std::size_t cell = 0; cell < cells; ++cell)
-                eb_rho[h * cells + cell] = class_flux[h] > 0.0 ? eb_rho[h * cells + cell] / class_flux[h] : 0.0;
-        for (std::size_t s = 0; s < suns; ++s) {
-            if (!(flux(sun_groups[s]) > 0.0)) continue;
-            for (std::size_t cell = 0; cell < cells; ++cell) {
-                const std::size_t j = clock(s) * cells + cell;
-                const double mu = flux(sun_groups[s]) * eb_rho[j], n = indirect_count(s, cell);
-                sum_mu2[j] += mu * mu;
-                excess[j] += (n - mu) * (n - mu) - n;
-            }
-        }
-        // No excess over Poisson: the suns of the class share one rate (alpha infinite).
-        for (std::size_t j = 0; j < eb_alpha.size(); ++j)
-            eb_alpha[j] = excess[j] > 0.0 ? sum_mu2[j] / excess[j] : std::numeric_limits<double>::infinity();
+    dark_lambda_n_ = dark_share > 0.0 ? dark_n / dark_share : 0.5;
+    dark_lambda_d_ = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
+}
+
+// The replicates' centre for a sun's interreflected count (empirical Bayes): light too rare
+// to have been seen on any of the three days (a deep cell's rare sun reflection) must still
+// be drawn now and then, or the bootstrap cannot see the bias it causes. The suns of one
+// clock hour (similar positions over the year) share a prior per cell: a Gamma distribution
+// of the count per unit flux, its mean rho the class's ratio of sums and its shape alpha by
+// the method of moments (Var n = mu + mu^2 / alpha for a Poisson-Gamma count of mean
+// mu = Phi rho). Each sun's centre is its posterior mean given the three days' counts N3
+// over their flux E3: Phi (N3 + alpha) / (E3 + alpha / rho) (sun_coefficients).
+void AnnualCoefficients::sun_priors(const Counts& c) {
+    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
+    eb_rho_.assign(kClockHours * cells_, 0.0);
+    eb_alpha_.assign(kClockHours * cells_, 0.0);
+    std::vector<double> class_flux(kClockHours, 0.0), sum_mu2(kClockHours * cells_, 0.0),
+        excess(kClockHours * cells_, 0.0);
+    auto clock = [&](std::size_t s) { return sun_hours[s] % kClockHours; };
+    for (std::size_t s = 0; s < sun_hours.size(); ++s) {
+        if (!c.sun_emits(s)) continue;
+        class_flux[clock(s)] += c.flux(c.sun_group(s));
+        for (std::size_t cell = 0; cell < cells_; ++cell) eb_rho_[clock(s) * cells_ + cell] += c.sun_indirect(s, cell);
     }
+    for (std::size_t h = 0; h < kClockHours; ++h)
+        for (std::size_t cell = 0; cell < cells_; ++cell)
+            eb_rho_[h * cells_ + cell] = class_flux[h] > 0.0 ? eb_rho_[h * cells_ + cell] / class_flux[h] : 0.0;
+    for (std::size_t s = 0; s < sun_hours.size(); ++s) {
+        if (!c.sun_emits(s)) continue;
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const std::size_t j = clock(s) * cells_ + cell;
+            const double mu = c.flux(c.sun_group(s)) * eb_rho_[j], n = c.sun_indirect(s, cell);
+            sum_mu2[j] += mu * mu;
+            excess[j] += (n - mu) * (n - mu) - n;
+        }
+    }
+    // No excess over Poisson: the suns of the class share one rate (alpha infinite).
+    for (std::size_t j = 0; j < eb_alpha_.size(); ++j)
+        eb_alpha_[j] = excess[j] > 0.0 ? sum_mu2[j] / excess[j] : std::numeric_limits<double>::infinity();
+}
+
+// Per (sun, cell): the estimate, its hourly errors and a fresh run's draw (replicate()).
+void AnnualCoefficients::sun_coefficients(const Counts& c) {
+    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
+    const std::size_t suns = sun_hours.size();
+    const double k2 = per_count_ * per_count_;
+    sun_.assign(suns * cells_, 0.0);
+    sun_q_ = direct_ = direct_var_ = sun_;
+    rep_direct_mu_.assign(suns * cells_, 0.0f);
+    rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
     for (std::size_t s = 0; s < suns; ++s) {
-        if (!(flux(sun_groups[s]) > 0.0)) continue;
-        const double dark_scale = pool_[s].empty() ? 1.0 : static_cast<double>(pool_[s].size()) * share[s];
-        const double c = pool_share_[s];
-        for (std::size_t cell = 0; cell < cells; ++cell) {
+        if (!c.sun_emits(s)) continue;
+        const double flux = c.flux(c.sun_group(s));
+        const double dark_scale = pool_[s].empty() ? 1.0 : static_cast<double>(pool_[s].size()) * neighbour_share_[s];
+        const double share = pool_share_[s];
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
             // Pooled over the three days per unit of flux (a ratio of sums: a weak
             // neighbour's few photons count for little), for this sun's photons.
-            double d_sum = direct_count(s, cell), i_sum = indirect_count(s, cell), v_sum = indirect_moment(s, cell);
+            double d_sum = c.sun_direct(s, cell), i_sum = c.sun_indirect(s, cell),
+                   v_sum = c.sun_indirect_moment(s, cell);
             for (const std::size_t o : pool_[s]) {
-                d_sum += direct_count(o, cell);
-                i_sum += indirect_count(o, cell);
-                v_sum += indirect_moment(o, cell);
+                d_sum += c.sun_direct(o, cell);
+                i_sum += c.sun_indirect(o, cell);
+                v_sum += c.sun_indirect_moment(o, cell);
             }
-            const double d = direct_count(s, cell);
-            const double m_d = c * d_sum, m_i = c * i_sum, m_v = c * v_sum;  // pooled means
-            const std::size_t i = s * cells + cell;
+            const double d = c.sun_direct(s, cell);
+            const double m_d = share * d_sum, m_i = share * i_sum, m_v = share * v_sum;  // pooled means
+            const std::size_t i = s * cells_ + cell;
             // The estimate: the hour's own direct sun (a shadow's edge moves between days:
             // ASE's direct sun stays the hour's own), plus the interreflected sun pooled over
             // the three days. The sun moves at most 0.4 degrees a day at a given hour, which
@@ -188,29 +235,29 @@ AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLay
             // at 10 M photons one count is 1,000-3,600 lx on the example's sensors, more
             // than every threshold, so the lumps decide the threshold figures' noise bias
             // (docs/VALIDATION.md "Annual daylight": UDI useful's halved).
-            sun_[i] = per_count * (d + m_i);
-            direct_[i] = per_count * d;
+            sun_[i] = per_count_ * (d + m_i);
+            direct_[i] = per_count_ * d;
             // The hour's errors. Direct: its count's variance, taken from the pooled mean (a
             // few-count cell's own count is a poor guess of it: 0 says "never"). Total: that
             // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
             // neighbours all read nothing, the detector's dark mean (never a variance of 0 for
             // a count that might have been 1).
-            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d * dark_scale);
-            const double total_var = m_d + c * m_v;
-            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n * dark_scale);
+            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d_ * dark_scale);
+            const double total_var = m_d + share * m_v;
+            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n_ * dark_scale);
             // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
-            // count around its empirical-Bayes centre (above), pooled like the estimate. No
-            // dark floor here: over many hours the plain counts are an unbiased variance,
+            // count around its empirical-Bayes centre (sun_priors), pooled like the estimate.
+            // No dark floor here: over many hours the plain counts are an unbiased variance,
             // and a floor on every unreached (group, cell) would add a variance the counts
             // already hold (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma
             // twice, continuous DA's 16 times the scatter); the posterior mean adds none on
             // average over the class.
-            const std::size_t j = (sky.suns()[s] % kClockHours) * cells + cell;
-            const double rho = eb_rho[j], alpha = eb_alpha[j];
-            const double e3 = flux(sun_groups[s]) / c;  // the three days' flux
+            const std::size_t j = (sun_hours[s] % kClockHours) * cells_ + cell;
+            const double rho = eb_rho_[j], alpha = eb_alpha_[j];
+            const double e3 = flux / share;  // the three days' flux
             const double centre_i = !(rho > 0.0)        ? 0.0
-                                    : std::isinf(alpha) ? flux(sun_groups[s]) * rho
-                                                        : flux(sun_groups[s]) * (i_sum + alpha) / (e3 + alpha / rho);
+                                    : std::isinf(alpha) ? flux * rho
+                                                        : flux * (i_sum + alpha) / (e3 + alpha / rho);
             rep_direct_mu_[i] = static_cast<float>(m_d);
             rep_indirect_mu_[i] = static_cast<float>(centre_i);
             // Its variance in the pooled counts' proportion of second moment to count (a

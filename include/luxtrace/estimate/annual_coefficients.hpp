@@ -1,0 +1,109 @@
+#pragma once
+// Each hour's illuminance on a detector from its daylight coefficients (issue 24,
+// docs/ANNUAL.md). A run keeps every detector cell's tallies per light group: the sky
+// patches, the ground and every hour's sun (annual/annual_sky.hpp). Group g's coefficient
+// of cell c is C_gc = k n_gc (k the cell's value per count, eq. 8's n_c), with variance
+// k^2 (q_gc - n_gc^2 / N); hour h's illuminance is E_hc = sum_g w_hg C_gc, w_hg the hour's
+// luminance of the group over what the group emitted, and its variance
+// k^2 (sum_g w_hg^2 q_gc - (sum_g w_hg n_gc)^2 / N): the groups' photons are disjoint, so
+// this is exact for the weighted sum (stats/weighted_tallies.hpp). A cell that no photon of
+// an emitting group reached gets, in its hourly error, the variance of its expected count
+// estimated from data (sky_coefficients, dark_rates), not 0. A sun's interreflected part is
+// pooled over the same hour of the neighbouring days (its direct part stays the hour's
+// own); the replicates draw a sun's direct count around its pooled mean and its
+// interreflected count around an empirical-Bayes centre. The direct sun (LM-83's ASE) is
+// the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
+#include "luxtrace/annual/annual_sky.hpp"
+#include "luxtrace/stats/annual_metrics.hpp"
+#include "luxtrace/tally/tally.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace luxtrace {
+
+class AnnualCoefficients {
+public:
+    // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of
+    // one registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per
+    // light group (light_group_flux_lm, estimate_scene.hpp): a group that emits nothing (a
+    // patch or sun behind every portal) has exactly zero coefficients, with no error.
+    AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
+                       std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
+                       std::span<const double> group_flux_lm);
+
+    // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
+    // weather file (0 in the dark ones).
+    // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
+    void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
+    // The estimate alone (kept: later calls copy it).
+    void estimate(AnnualSeries& out) const;
+    // What the replicates are drawn around: a fresh run's expected values as the data say
+    // them (the sky and ground at their counts, a sun's direct count at its mean pooled over
+    // the neighbouring days, its interreflected count at its empirical-Bayes centre).
+    void centre(AnnualSeries& out) const;
+    // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
+    // a Poisson count of its variance, for the errors of nonlinear metrics
+    // (stats/annual_metrics.hpp).
+    void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
+
+private:
+    // The constructor reads the detector's counts per light group (Counts) in five steps,
+    // each filling the members under its name below:
+    //   sky_coefficients  the sky patches' and the ground's coefficients and their errors
+    //   pool_suns         per sun, the suns of the same hour on the neighbouring days
+    //   dark_rates        the expected count of a cell that a sun and its neighbours all missed
+    //   sun_priors        per clock hour and cell, the prior of a sun's interreflected count
+    //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
+    struct Counts;
+    void sky_coefficients(const Counts& counts);
+    void pool_suns(const Counts& counts);
+    void dark_rates(const Counts& counts);
+    void sun_priors(const Counts& counts);
+    void sun_coefficients(const Counts& counts);
+
+    // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
+    void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
+    void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
+                 AnnualSeries& out) const;
+    // [sun][cell]: sun = direct + the indirect pooled over the sun's day and its neighbours
+    // (pool_share_ times their sum).
+    void pool(const std::vector<double>& indirect, const std::vector<double>& direct, std::vector<double>& sun) const;
+
+    const AnnualSetup& annual_;
+    std::size_t cells_ = 0;
+    double inv_photons_ = 0.0;
+    double per_count_ = 0.0;  // k
+
+    // sky_coefficients, [entry][cell] (sky patches then the ground, AnnualSky's sky vector
+    // order): the coefficients (lx per unit weight), k^2 q for the hourly error (with a floor
+    // where the cell saw nothing) and the plain counts' variances for the replicates.
+    std::vector<double> sky_, sky_q_, sky_var_;
+    std::vector<std::size_t> entries_;  // the sky entries whose groups emit
+
+    // pool_suns, per sun: the suns of the same hour on the neighbouring days, this sun's
+    // share of the three's photons and its share of the neighbours' photons alone.
+    std::vector<std::vector<std::size_t>> pool_;
+    std::vector<double> pool_share_, neighbour_share_;
+
+    // dark_rates: the total and the direct count of a (sun, cell) pair whose neighbours read
+    // nothing, per neighbour and unit share.
+    double dark_lambda_n_ = 0.0, dark_lambda_d_ = 0.0;
+
+    // sun_priors, [clock hour][cell]: the prior's mean count per unit flux and its shape.
+    std::vector<double> eb_rho_, eb_alpha_;
+
+    // sun_coefficients, [sun][cell]: the coefficients (lx per unit weight) and the direct
+    // sun's; for the hourly errors k^2 q of the pooled estimate (with a dark floor) and the
+    // direct sun's variance; a fresh run's draw, in counts: the direct count's pooled mean,
+    // and the indirect count's empirical-Bayes centre and its variance.
+    std::vector<double> sun_, direct_, sun_q_, direct_var_;
+    std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
+
+    // The estimate, made once.
+    mutable AnnualSeries estimate_;
+    mutable bool have_estimate_ = false;
+};
+
+}  // namespace luxtrace

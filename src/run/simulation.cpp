@@ -2,19 +2,9 @@
 
 #include "luxtrace/run/run_loop.hpp"
 
-#include <sched.h>
-
-#include <algorithm>
 #include <thread>
 
 namespace luxtrace {
-
-int available_cores() {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    if (sched_getaffinity(0, sizeof(set), &set) == 0) return std::max(1, CPU_COUNT(&set));
-    return std::max(1u, std::thread::hardware_concurrency());
-}
 
 RunSummary run_simulation(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out) {
     RunLoop loop(scene, comm, opt, out);  // restore

@@ -22,7 +22,7 @@
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/run/restart.hpp"
 #include "luxtrace/run/run_control.hpp"
-#include "luxtrace/run/simulation.hpp"
+#include "luxtrace/run/run_options.hpp"
 #include "luxtrace/run/targets.hpp"
 #include "luxtrace/run/work_plan.hpp"
 #include "luxtrace/run/worker_pool.hpp"

@@ -14,18 +14,8 @@ double PointLight::intensity_cd(const Vec3& out, double flux_lm) const {
 }
 
 bool PointLight::incident(const Vec3& p, const Vec3& n, double flux_lm, double, double, int, IncidentLight& in) const {
-    const Vec3 v = position - p;
-    in.distance_m = glm::length(v);
-    in.direction = v / in.distance_m;
-    const double cos_s = glm::dot(n, in.direction);
-    if (!(in.distance_m > 0.0) || cos_s <= 0.0) return false;
-    const double i_cd = intensity_cd(-in.direction, flux_lm);
-    if (!(i_cd > 0.0)) return false;
-    in.distant = false;
-    in.end = position;
-    in.end_margin = 1.0;
-    in.illuminance_lx = i_cd * cos_s / (in.distance_m * in.distance_m);
-    return true;
+    return incident_from_point(
+        position, p, n, [&](const Vec3& out) { return intensity_cd(out, flux_lm); }, in);
 }
 
 LuminaireView PointLight::view_from(const Vec3& eye, double flux_lm) const {

@@ -44,6 +44,25 @@ struct IncidentLight {
     double illuminance_lx = 0.0;
 };
 
+// The light a point source at `position` sends to p on a surface of normal n: the inverse
+// square law from its intensity toward p, intensity_cd(direction from the source).
+template <class Intensity>
+bool incident_from_point(const Vec3& position, const Vec3& p, const Vec3& n, Intensity intensity_cd,
+                         IncidentLight& in) {
+    const Vec3 v = position - p;
+    in.distance_m = glm::length(v);
+    in.direction = v / in.distance_m;
+    const double cos_s = glm::dot(n, in.direction);
+    if (!(in.distance_m > 0.0) || cos_s <= 0.0) return false;
+    const double i_cd = intensity_cd(-in.direction);
+    if (!(i_cd > 0.0)) return false;
+    in.distant = false;
+    in.end = position;
+    in.end_margin = 1.0;
+    in.illuminance_lx = i_cd * cos_s / (in.distance_m * in.distance_m);
+    return true;
+}
+
 // How the light arriving at a point is sampled: not at all (count 0), by one fixed sample
 // (point lights, beams), or by `count` stratified random ones (areas, skies).
 struct IncidentSampling {

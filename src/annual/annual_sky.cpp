@@ -129,8 +129,7 @@ AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, d
         if (sun.above_horizon() && !(w.diffuse_horizontal_w_m2 == 0.0 && w.direct_normal_w_m2 == 0.0)) {
             require_sky_inputs(weather.path, i, h, w);
             // No diffuse irradiance, no sky to model (a real file's dawn may say so): dark.
-            if (!(w.diffuse_horizontal_w_m2 > 0.0)) ++no_diffuse_;
-            else add_sky_row(h, i, w, sun, year, options);
+            if (w.diffuse_horizontal_w_m2 > 0.0) add_sky_row(h, i, w, sun, year, options);
         }
         hours_.push_back(h);
     }

@@ -248,21 +248,9 @@ GlobalEstimate estimate_global(const WeightedTallies& w, std::span<const double>
     return global_estimate(chunk_sums(w, area, e0, photons, {0, chunk_count(w.layout())}), w.layout().replicates() > 0);
 }
 
-std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                                        std::span<const double> area, double e0) {
-    return side_illuminance_lx(WeightedTallies(layout, data), area, e0);
-}
-std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                                  std::span<const double> area, double e0, std::uint64_t photons) {
-    return side_sigma_lx(WeightedTallies(layout, data), area, e0, photons);
-}
 GlobalEstimate estimate_global(const TallyLayout& layout, std::span<const std::uint64_t> data,
                                std::span<const double> area, double e0, std::uint64_t photons) {
     return estimate_global(WeightedTallies(layout, data), area, e0, photons);
-}
-SurfaceMaps surface_maps(const TallyLayout& layout, std::span<const std::uint64_t> data, std::span<const double> area,
-                         double e0, std::uint64_t photons) {
-    return surface_maps(WeightedTallies(layout, data), area, e0, photons);
 }
 DetectorEstimate estimate_detector(const Detector& det, std::size_t di, const TallyLayout& layout,
                                    std::span<const std::uint64_t> data, double e0, std::uint64_t photons,

@@ -82,7 +82,6 @@ public:
     // Hours whose Perez clearness or brightness lay outside the model's fitted range.
     std::size_t clamped_hours() const { return clamped_; }
     // Hours with the sun up and a direct but no diffuse irradiance (no sky to model): left dark.
-    std::size_t no_diffuse_hours() const { return no_diffuse_; }
 
 private:
     // Hour `index` has a sky: its sky vector (the patches and the ground) becomes the next
@@ -92,7 +91,7 @@ private:
 
     SkyPatches patches_;
     std::vector<AnnualHour> hours_;
-    std::size_t rows_ = 0, clamped_ = 0, no_diffuse_ = 0;
+    std::size_t rows_ = 0, clamped_ = 0;
     std::vector<double> luminance_, yearly_;
     std::vector<std::size_t> suns_;
 };

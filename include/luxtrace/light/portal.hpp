@@ -45,7 +45,6 @@ public:
     // the opening. 0 when nothing there emits (then sample() must not be called).
     double illuminance_lx() const { return illuminance_lx_; }
     Vec3 sample(double u1, double u2) const { return portal_.to_world(table_.sample(u1, u2)); }
-    const DirectionTable& table() const { return table_; }
 
 private:
     Frame portal_;

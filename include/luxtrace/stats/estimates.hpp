@@ -70,15 +70,11 @@ struct GlobalEstimate {
 // Band-summed illuminance of every triangle side, [2 t + side] (the result file's order,
 // not the tallies'); E0 = flux per photon (lm).
 std::vector<double> side_illuminance_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0);
-std::vector<double> side_illuminance_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                                        std::span<const double> area_m2, double e0);
 // Per side [2 t + side]: the standard error of the band-summed illuminance from the second
 // moment (NaN for photons = 0); side_replicate_sigma_lx: from the spread of the side's
 // replicate maps (sobol; empty without replicates).
 std::vector<double> side_sigma_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                                   std::uint64_t photons);
-std::vector<double> side_sigma_lx(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                                  std::span<const double> area_m2, double e0, std::uint64_t photons);
 std::vector<double> side_replicate_sigma_lx(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                                             std::uint64_t photons);
 // The surface map's illuminance as the result stores it, per triangle side (front 0).
@@ -91,8 +87,6 @@ struct SurfaceMaps {
 };
 SurfaceMaps surface_maps(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,
                          std::uint64_t photons);
-SurfaceMaps surface_maps(const TallyLayout& layout, std::span<const std::uint64_t> data,
-                         std::span<const double> area_m2, double e0, std::uint64_t photons);
 // photons = N, the photons emitted so far. Primary: the second moment for random runs,
 // the replicate spread for sobol (layout with replicates).
 GlobalEstimate estimate_global(const WeightedTallies& tallies, std::span<const double> area_m2, double e0,

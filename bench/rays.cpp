@@ -11,7 +11,7 @@ namespace luxtrace::bench {
 
 std::vector<RecordedRay> record_tracer_rays(const Scene& scene, const EmbreeScene& embree, std::uint64_t n,
                                             std::uint64_t seed) {
-    const TallyLayout layout(scene);
+    const TallyLayout layout = tally_layout(scene);
     TallyStore store(layout);
     std::vector<RecordedRay> rays;
     {

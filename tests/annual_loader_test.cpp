@@ -43,7 +43,7 @@ TEST_F(Loader, AnnualScenesLightsAreThePatchesTheGroundAndEverySunHour) {
     EXPECT_NEAR(s.site.sun_site.longitude_deg, -87.92, 1e-9);
     EXPECT_EQ(s.site.utc_offset_h, -6.0);
     // The tallies keep direct counts and one surface map.
-    const TallyLayout layout(s);
+    const TallyLayout layout = tally_layout(s);
     EXPECT_TRUE(layout.direct_scores());
     EXPECT_EQ(layout.map_groups(), 1u);
     EXPECT_FALSE(s.run.group_maps);

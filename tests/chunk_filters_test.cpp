@@ -179,7 +179,7 @@ flux_lm = 1000
     ASSERT_TRUE(fs::exists(ck)) << run.out;
     const Scene scene = load_scene(scene_file);
     ASSERT_EQ(scene.triangle_count(), 76800u);
-    const TallyLayout L(scene);
+    const TallyLayout L = tally_layout(scene);
     const ResultFile c(ck);
     ASSERT_TRUE(c.is_checkpoint());
     const std::vector<std::uint64_t> tallies = ResultReader(ck).u64("/checkpoint/tallies");

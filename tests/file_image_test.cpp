@@ -64,7 +64,7 @@ std::unique_ptr<Content> content_of(const fs::path& scene_file, const std::strin
     if (run.code != 0 || !fs::exists(ck)) throw std::runtime_error("run failed: " + run.out);
     auto c = std::make_unique<Content>();
     c->scene = load_scene(scene_file);
-    c->layout = std::make_unique<TallyLayout>(c->scene);
+    c->layout = std::make_unique<TallyLayout>(tally_layout(c->scene));
     const CheckpointState s = read_checkpoint(ck);
     const ResultFile r(ck);
     c->checkpoint.tallies = s.tallies;

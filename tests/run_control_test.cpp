@@ -202,7 +202,7 @@ TEST(Forecast, NoForecastWithoutProgress) {
 // reports every photon traced: no clock involved).
 std::vector<std::uint64_t> trace_sobol(const Scene& scene, const EmbreeScene& embree, std::uint64_t photons,
                                        std::uint64_t seed, int threads) {
-    TallyStore store{TallyLayout(scene)};
+    TallyStore store{tally_layout(scene)};
     const WorkPlan plan({}, photons, 4096, 1);
     RankWork work(plan, 0);
     TraceOptions opt;
@@ -237,7 +237,7 @@ TEST(WorkerPool, SobolTalliesAreBitIdenticalOverThreadsAndReplicatesAddUp) {
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
     scene.run.sampler = "sobol";
     const EmbreeScene embree(scene);
-    const TallyLayout layout(scene);
+    const TallyLayout layout = tally_layout(scene);
     ASSERT_EQ(layout.replicates(), scene.run.replicates);
     std::vector<std::vector<std::uint64_t>> runs;
     for (const int threads : {1, 2}) {
@@ -274,14 +274,14 @@ Calibration calibrate_sobol_cells(const std::string& scene_file) {
     Scene scene = load_scene(scene_file);
     scene.run.sampler = "sobol";
     const EmbreeScene embree(scene);
-    const TallyLayout layout(scene);
+    const TallyLayout layout = tally_layout(scene);
     constexpr int kSeeds = 24;
     constexpr std::uint64_t N = 100000;
     const Detector& det = scene.detectors[0];
     const int cells = det.cells();
     std::vector<std::vector<double>> value(cells), var_est(cells), var_eq8(cells);
     for (int seed = 1; seed <= kSeeds; ++seed) {
-        TallyStore store{TallyLayout(scene)};
+        TallyStore store{tally_layout(scene)};
         store.assign(trace_sobol(scene, embree, N, static_cast<std::uint64_t>(seed) * 7919, 2));
         const DetectorEstimate e = estimate_detector(det, 0, layout, store.data(), 1.0, N);
         EXPECT_TRUE(e.replicate_spread);
@@ -373,7 +373,7 @@ TEST(RunSimulation, SobolResultNamesItsEstimatorAndKeepsTheReplicates) {
 TEST(WorkerPool, AThreadsExceptionIsKeptAndThePoolStillPausesAndStops) {
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
     const EmbreeScene embree(scene);
-    TallyStore store{TallyLayout(scene)};
+    TallyStore store{tally_layout(scene)};
     const WorkPlan plan({}, 100000, 4096, 1);
     RankWork work(plan, 0);
     TraceOptions opt;
@@ -438,7 +438,7 @@ struct RankTrace {
     RankProgress progress;
 };
 RankTrace trace_rank(const Scene& scene, const EmbreeScene& embree, const WorkPlan& plan, int rank) {
-    TallyStore store{TallyLayout(scene)};
+    TallyStore store{tally_layout(scene)};
     RankWork work(plan, rank);
     TraceOptions opt;
     opt.seed = scene.run.seed;
@@ -475,7 +475,7 @@ TEST(DistributedReduction, OwnersSumsAndChunkEstimatesAreTheOneRankOnes) {
         scene.run.sampler = sampler;
         if (scene.run.sampler == "sobol") scene.run.replicates = 4;
         const EmbreeScene embree(scene);
-        const TallyLayout L(scene);
+        const TallyLayout L = tally_layout(scene);
         constexpr std::uint64_t kBudget = 30000;
         constexpr int kRanks = 3;
         const WorkPlan plan({}, kBudget, 4096, kRanks);
@@ -636,7 +636,7 @@ struct ControlRow {
 // runs: the end-to-end stop tests (stop_criteria_test) keep the runs that check real files.
 TEST(RunController, DecidesEachRuleAsTabled) {
     Scene scene = load_scene(std::string(LUXTRACE_TEST_DATA_DIR) + "/run/room.toml");
-    const TallyLayout layout(scene);
+    const TallyLayout layout = tally_layout(scene);
     const std::vector<std::uint64_t>& tallies = room_tallies(scene);
     constexpr std::uint64_t kPhotons = 20000;
     // The table detector's photons received in these tallies: goals on either side of it.

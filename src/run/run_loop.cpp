@@ -75,7 +75,7 @@ std::vector<MessagePart> every_rank_sides(const TallyLayout& layout, int ranks) 
 
 RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
     : scene_(scene), run_(scene.run), comm_(comm), opt_(opt), out_(out), t0_(comm.wtime()), ranks_(comm.size()),
-      threads_(opt.threads > 0 ? opt.threads : available_cores()), layout_(scene), store_(layout_),
+      threads_(opt.threads > 0 ? opt.threads : available_cores()), layout_(tally_layout(scene)), store_(layout_),
       restored_(opt.restart.empty() ? RestartState{}
                                     : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups)),
       plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),

@@ -16,4 +16,24 @@ double Scene::ray_epsilon_m() const {
     return 2e-6 * std::max(glm::length(bounds_max - bounds_min), 1e-3);
 }
 
+namespace {
+std::vector<int> cells_of(const Scene& scene) {
+    std::vector<int> cells;
+    for (const Detector& d : scene.detectors) cells.push_back(d.cells());
+    return cells;
+}
+
+TallyDims dims_of(const Scene& scene) {
+    TallyDims d;
+    d.bands = scene.bands.size();
+    d.groups = scene.light_groups.size();
+    d.map_groups = scene.run.group_maps ? d.groups : 1;
+    d.replicates = scene.run.sampler == "sobol" ? scene.run.replicates : 0;
+    d.direct_scores = scene.annual.has_value();
+    return d;
+}
+}  // namespace
+
+TallyLayout tally_layout(const Scene& scene) { return {scene.triangle_count(), dims_of(scene), cells_of(scene)}; }
+
 }  // namespace luxtrace

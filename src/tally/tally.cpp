@@ -1,7 +1,5 @@
 #include "luxtrace/tally/tally.hpp"
 
-#include "luxtrace/scene/scene.hpp"
-
 #include <algorithm>
 #include <stdexcept>
 #include <utility>
@@ -28,26 +26,6 @@ TallyLayout::TallyLayout(std::size_t triangles, const TallyDims& dims, const std
     }
     size_ += dims_.replicates;  // photons per replicate
 }
-
-namespace {
-std::vector<int> cells_of(const Scene& scene) {
-    std::vector<int> cells;
-    for (const Detector& d : scene.detectors) cells.push_back(d.cells());
-    return cells;
-}
-
-TallyDims dims_of(const Scene& scene) {
-    TallyDims d;
-    d.bands = scene.bands.size();
-    d.groups = scene.light_groups.size();
-    d.map_groups = scene.run.group_maps ? d.groups : 1;
-    d.replicates = scene.run.sampler == "sobol" ? scene.run.replicates : 0;
-    d.direct_scores = scene.annual.has_value();
-    return d;
-}
-}  // namespace
-
-TallyLayout::TallyLayout(const Scene& scene) : TallyLayout(scene.triangle_count(), dims_of(scene), cells_of(scene)) {}
 
 void TallyStore::assign(std::span<const std::uint64_t> words) {
     if (words.size() != layout_.size()) throw std::logic_error("TallyStore::assign: the words do not fit the layout");

@@ -10,6 +10,7 @@
 #include "luxtrace/light/site.hpp"
 #include "luxtrace/material/material.hpp"
 #include "luxtrace/scene/run_config.hpp"
+#include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -98,5 +99,9 @@ Scene load_scene(const std::filesystem::path& file);
 Scene load_radiance_scene(const RadianceRun& run);
 // Whether a file given as a scene is a Radiance model (.rad, .mat, .sky) by its extension.
 bool is_radiance_file(const std::filesystem::path& file);
+
+// The layout of the scene's tallies: its triangles, bands, light groups, replicates and
+// detector cells (tally.hpp).
+TallyLayout tally_layout(const Scene& scene);
 
 }  // namespace luxtrace

@@ -16,8 +16,6 @@
 
 namespace luxtrace {
 
-struct Scene;
-
 // The dimensions every score is kept apart by besides its site (a triangle side, a
 // detector cell): the photon's band, its light group (issue 22: light scenes recombine
 // the groups after the run) and, for the sobol sampler, its replicate (docs/QMC.md).
@@ -66,7 +64,6 @@ public:
     TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
                 std::size_t replicates = 0)
         : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates}, detector_cells) {}
-    explicit TallyLayout(const Scene& scene);
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }

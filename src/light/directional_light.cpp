@@ -11,17 +11,11 @@ double DirectionalLight::place(const SceneSphere& sphere) {
 }
 
 bool DirectionalLight::incident(const Vec3&, const Vec3& n, double, double, double, int, IncidentLight& in) const {
-    const double cos_s = -glm::dot(n, aim);
-    if (cos_s <= 0.0) return false;
-    in.direction = -aim;
-    in.illuminance_lx = illuminance_lx * cos_s;
-    return true;
+    return incident_from_beam(aim, illuminance_lx, n, in);
 }
 
 LuminaireView DirectionalLight::view_from(const Vec3&, double) const {
-    LuminaireView v;
-    v.why_not = "a directional beam is not a luminaire (CIE 117 rates luminaires)";
-    return v;
+    return not_a_luminaire("a directional beam is not a luminaire (CIE 117 rates luminaires)");
 }
 
 }  // namespace luxtrace

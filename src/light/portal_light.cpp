@@ -110,11 +110,7 @@ double PortalLight::luminance_seen_cd_m2(const Vec3& direction) const {
     return sky != nullptr && portal_index == 0 ? sky->luminance_seen_cd_m2(direction) : 0.0;
 }
 
-LuminaireView PortalLight::view_from(const Vec3&, double) const {
-    LuminaireView v;
-    v.why_not = "daylight is not a luminaire (CIE 117 rates luminaires)";
-    return v;
-}
+LuminaireView PortalLight::view_from(const Vec3&, double) const { return not_a_luminaire(kDaylightIsNotALuminaire); }
 
 std::optional<DaylightReference> PortalLight::daylight() const {
     if (const auto* sun = std::get_if<SunLight>(&source)) return sun->daylight();

@@ -20,11 +20,7 @@ bool SkyLight::incident(const Vec3&, const Vec3& n, double, double u1, double u2
     return true;
 }
 
-LuminaireView SkyLight::view_from(const Vec3&, double) const {
-    LuminaireView v;
-    v.why_not = "daylight is not a luminaire (CIE 117 rates luminaires)";
-    return v;
-}
+LuminaireView SkyLight::view_from(const Vec3&, double) const { return not_a_luminaire(kDaylightIsNotALuminaire); }
 
 void SkyLight::describe(std::ostream& out, double unobstructed_horizontal_lx) const {
     out << ", " << description;

@@ -13,10 +13,6 @@ double SkyPatchLight::place(const SceneSphere& sphere) {
     return luminance_cd_m2 * patch.solid_angle_sr() * kPi * sphere.radius * sphere.radius;
 }
 
-LuminaireView SkyPatchLight::view_from(const Vec3&, double) const {
-    LuminaireView v;
-    v.why_not = "daylight is not a luminaire (CIE 117 rates luminaires)";
-    return v;
-}
+LuminaireView SkyPatchLight::view_from(const Vec3&, double) const { return not_a_luminaire(kDaylightIsNotALuminaire); }
 
 }  // namespace luxtrace

@@ -17,18 +17,10 @@ double SunLight::place(const SceneSphere& sphere) {
 }
 
 bool SunLight::incident(const Vec3&, const Vec3& n, double, double, double, int, IncidentLight& in) const {
-    const double cos_s = -glm::dot(n, aim);
-    if (cos_s <= 0.0) return false;
-    in.direction = -aim;
-    in.illuminance_lx = illuminance_lx * cos_s;
-    return true;
+    return incident_from_beam(aim, illuminance_lx, n, in);
 }
 
-LuminaireView SunLight::view_from(const Vec3&, double) const {
-    LuminaireView v;
-    v.why_not = "daylight is not a luminaire (CIE 117 rates luminaires)";
-    return v;
-}
+LuminaireView SunLight::view_from(const Vec3&, double) const { return not_a_luminaire(kDaylightIsNotALuminaire); }
 
 void SunLight::describe(std::ostream& out, double unobstructed_horizontal_lx) const {
     out << ", sun at altitude " << std::setprecision(4) << sun_altitude_deg << " deg, azimuth " << sun_azimuth_deg

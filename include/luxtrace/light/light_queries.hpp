@@ -63,6 +63,16 @@ bool incident_from_point(const Vec3& position, const Vec3& p, const Vec3& n, Int
     return true;
 }
 
+// The light a beam of illuminance_lx (normal to it) travelling along `aim` sends to a
+// surface of normal n: Lambert's cosine, from infinity.
+inline bool incident_from_beam(const Vec3& aim, double illuminance_lx, const Vec3& n, IncidentLight& in) {
+    const double cos_s = -glm::dot(n, aim);
+    if (cos_s <= 0.0) return false;
+    in.direction = -aim;
+    in.illuminance_lx = illuminance_lx * cos_s;
+    return true;
+}
+
 // How the light arriving at a point is sampled: not at all (count 0), by one fixed sample
 // (point lights, beams), or by `count` stratified random ones (areas, skies).
 struct IncidentSampling {
@@ -84,6 +94,14 @@ struct LuminaireView {
     double distance_m = 0.0, intensity_cd = 0.0, projected_area_m2 = 0.0, luminance_cd_m2 = 0.0, solid_angle_sr = 0.0;
     std::string why_not;  // when not luminous: why it cannot enter a glare sum
 };
+
+// How a light without a luminous area looks to an eye: not at all, and why.
+inline LuminaireView not_a_luminaire(const char* why_not) {
+    LuminaireView v;
+    v.why_not = why_not;
+    return v;
+}
+inline constexpr const char* kDaylightIsNotALuminaire = "daylight is not a luminaire (CIE 117 rates luminaires)";
 
 // A daylight source's reference (docs/DAYLIGHT.md): its model, the sun's position it uses
 // and, for the sun, its direct normal illuminance.

@@ -100,15 +100,11 @@ std::vector<SpecularBranch> transparent_branches(const Material& m, const Vec3& 
 Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<double> secondary_lx,
                    std::vector<double> light_weight)
     : scene_(scene), embree_(embree), bands_(scene.band_count()), eps_(4.0 * scene.ray_epsilon_m()),
-      light_weight_(std::move(light_weight)) {
+      shadow_(scene, embree, eps_), light_weight_(std::move(light_weight)) {
     if (light_weight_.empty()) light_weight_.assign(scene.lights.lights().size(), 1.0);
     if (light_weight_.size() != scene.lights.lights().size()) throw std::logic_error("Renderer: one weight per light");
     if (bands_ > kMaxBands)
         throw InputError(scene.file.string() + ": rendering supports up to " + std::to_string(kMaxBands) + " bands");
-    for (const Material& m : scene.materials)
-        has_glazing_ = has_glazing_ || m.type == MaterialType::glazing ||
-                       (m.type == MaterialType::general && !m.specular_transmittance.empty()) ||
-                       (m.type == MaterialType::glass && m.ior == 1.0);
     const std::size_t T = scene.triangle_count(), B = static_cast<std::size_t>(bands_);
     constexpr std::size_t kS = TallyLayout::kSides;
     if (!secondary_lx.empty() && secondary_lx.size() != T * kS * B)
@@ -144,34 +140,6 @@ Renderer::Renderer(const Scene& scene, const EmbreeScene& embree, std::vector<do
     }
 }
 
-bool Renderer::passes(const Vec3& o, const Vec3& d, double t_far, double* share) const {
-    for (int b = 0; b < bands_; ++b) share[b] = 1.0;
-    const float far = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
-    if (!embree_.occluded(o, d, far)) return true;
-    if (!has_glazing_) return false;
-    // Straight through glazing (and a general material's specular transmittance) light
-    // keeps its direction and the tracer counts it as direct, not in the stored secondary
-    // map: follow the ray through each such surface, times its transmittance.
-    float near = 0.0f;
-    for (int pane = 0; pane < 64; ++pane) {
-        const Hit h = embree_.intersect(o, d, near, far);
-        if (!h.found) return true;
-        const Material& m = scene_.materials[scene_.triangle_material[h.triangle]];
-        const double cos_i = std::abs(glm::dot(d, scene_.triangle_normal[h.triangle]));
-        for (int b = 0; b < bands_; ++b) {
-            const auto band = static_cast<std::size_t>(b);
-            if (m.type == MaterialType::glazing && m.glazing) share[b] *= (*m.glazing)[band].at(cos_i).transmittance;
-            else if (m.type == MaterialType::glass && m.ior == 1.0)  // an open hole (material.hpp)
-                share[b] *= m.transmittance.empty() ? 1.0 : m.transmittance[band];
-            else if (m.type == MaterialType::general && !m.specular_transmittance.empty())
-                share[b] *= m.specular_transmittance[band];
-            else return false;
-        }
-        near = h.t + std::max(1e-6f * h.t, static_cast<float>(eps_));
-    }
-    return false;
-}
-
 void Renderer::direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const {
     const Vec3 o = p + eps_ * n;  // leave the surface on the lit side
     const auto& lights = scene_.lights.lights();
@@ -201,9 +169,9 @@ bool Renderer::direct_from(const Light& l, const Vec3& p, const Vec3& n, const V
         if (!in.distant && !(in.distance_m > 2.0 * eps_)) continue;  // the light's own point
         const double far = in.distant ? std::numeric_limits<double>::infinity()
                                       : glm::length(in.end - o) - in.end_margin * eps_;
-        if (!passes(o, in.direction, far, share)) continue;
-        if (in.beyond_opening &&
-            !passes(in.end + eps_ * in.opening_outward, in.direction, std::numeric_limits<double>::infinity(), beyond))
+        if (!shadow_.passes(o, in.direction, far, share)) continue;
+        if (in.beyond_opening && !shadow_.passes(in.end + eps_ * in.opening_outward, in.direction,
+                                                 std::numeric_limits<double>::infinity(), beyond))
             continue;
         for (int b = 0; b < bands_; ++b) sum[b] += in.illuminance_lx * share[b] * (in.beyond_opening ? beyond[b] : 1.0);
     }

@@ -12,6 +12,7 @@
 #include "luxtrace/render/camera.hpp"
 #include "luxtrace/render/image_io.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/shadow_ray.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -59,12 +60,6 @@ private:
                double* out) const;
     void direct(const Vec3& p, const Vec3& n, Rng& rng, const RenderOptions& opt, double* e) const;
     void add_secondary(std::size_t tri, std::size_t side, const Vec3& p, double* e) const;
-    // Whether light travels from o along d to t_far (scene coordinates), and the share of
-    // each band that does (share[b]: 1 in the open, the panes' T(theta) through glazing,
-    // a general material's specular transmittance through it).
-    bool passes(const Vec3& o, const Vec3& d, double t_far, double* share) const;
-    // Sky light `l` through its portal onto point p (normal n, shadow rays from o): the
-    // illuminance per band into sum[] (share[]: scratch).
     // What a ray leaving the scene along d sees: the skies and ground glows.
     void add_sky(const Vec3& d, const double* weight, double* out) const;
     // The illuminance one light gives p (normal n) per band, before its band shares; false
@@ -76,7 +71,7 @@ private:
     const EmbreeScene& embree_;
     int bands_;
     double eps_;
-    bool has_glazing_ = false;  // or a general material with specular transmittance: shadow rays look through
+    ShadowRay shadow_;                      // through glazing, as the tracer's direct light goes
     std::vector<double> vertex_secondary_;  // [V][2][B]
     std::vector<int> emitter_of_;           // per triangle: area light index or -1
     std::vector<double> emitted_radiance_;  // per light and band: M / pi (area lights), times its weight

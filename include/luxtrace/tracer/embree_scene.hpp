@@ -103,8 +103,9 @@ public:
     bool occluded(const Vec3& o, const Vec3& d, float t_far) const {
         return occluded_local(to_local(o), Vec3f(d), t_far);
     }
-    // The same in local coordinates.
-    bool occluded_local(const Vec3f& lo, const Vec3f& d, float t_far = std::numeric_limits<float>::infinity()) const {
+    // The same in local coordinates, from t_near on.
+    bool occluded_local(const Vec3f& lo, const Vec3f& d, float t_far = std::numeric_limits<float>::infinity(),
+                        float t_near = 0.0f) const {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         RTCRay ray;
@@ -114,7 +115,7 @@ public:
         ray.dir_x = d.x;
         ray.dir_y = d.y;
         ray.dir_z = d.z;
-        ray.tnear = 0.0f;
+        ray.tnear = t_near;
         ray.tfar = t_far;
         ray.time = 0.0f;
         ray.mask = 0xFFFFFFFFu;

@@ -1,0 +1,37 @@
+#pragma once
+// The direct part of an annual sensor grid's daylight coefficients, by shadow rays from
+// the sensors (issue 37, docs/ANNUAL.md "Direct light by shadow rays"): for every cell,
+// the light that reaches it straight from each sky entry (the patches, then the ground,
+// AnnualSky's sky vector order) and from each sun, through glazing at its T(theta), past
+// whatever stands in the way. The photons then count only what arrives after a diffuse
+// or glossy event, and the two parts add (estimate/annual_coefficients.hpp).
+//
+// Units as AnnualCoefficients': lx per unit weight, i.e. the illuminance when the entry
+// emits what its light group emits (the year's sum of its luminance, or for a sun its
+// hour's direct normal illuminance). Each value is a stratified sample mean; `*_var` is
+// the variance of that mean, estimated from its own samples.
+#include <cstddef>
+#include <vector>
+
+namespace luxtrace {
+
+struct DirectCoefficients {
+    std::size_t cells = 0, entries = 0, suns = 0;
+    // [entry][cell], [sun][cell].
+    std::vector<double> sky_lx, sky_var;
+    std::vector<double> sun_lx, sun_var;
+
+    double sky(std::size_t entry, std::size_t cell) const { return sky_lx[entry * cells + cell]; }
+    double sun(std::size_t s, std::size_t cell) const { return sun_lx[s * cells + cell]; }
+    void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_) {
+        cells = cells_;
+        entries = entries_;
+        suns = suns_;
+        sky_lx.assign(entries * cells, 0.0);
+        sky_var = sky_lx;
+        sun_lx.assign(suns * cells, 0.0);
+        sun_var = sun_lx;
+    }
+};
+
+}  // namespace luxtrace

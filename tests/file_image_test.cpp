@@ -75,7 +75,8 @@ std::unique_ptr<Content> content_of(const fs::path& scene_file, const std::strin
     const std::uint64_t n = c->info.photons;
     const double e0 = c->scene.lights.total_flux_lm() / static_cast<double>(n);
     c->estimates = estimate_result(c->scene, *c->layout, c->checkpoint.tallies, e0, n);
-    if (c->scene.annual) c->estimates.annual = estimate_annual(c->scene, *c->layout, c->checkpoint.tallies, e0, n, 0);
+    if (c->scene.annual)
+        c->estimates.annual = estimate_annual(c->scene, *c->layout, c->checkpoint.tallies, e0, n, 0, {});
     return c;
 }
 

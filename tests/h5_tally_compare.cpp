@@ -2,6 +2,7 @@
 // Usage: h5_tally_compare A.h5 B.h5   (exit 0: identical, 1: different, 2: unreadable)
 #include "luxtrace/io/result_reader.hpp"
 
+#include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -38,7 +39,24 @@ int main(int argc, char** argv) {
             for (const char* n : {"count", "sumsq", "direct_count"})
                 if (a.has("/annual/detectors/" + d + "/coefficients/" + n))
                     names.push_back("/annual/detectors/" + d + "/coefficients/" + n);
+        // ... and with direct = "shadow_rays", the direct exposure and every hour's values,
+        // compared bit for bit as the tallies are.
+        std::vector<std::string> reals;
+        for (const std::string& d :
+             a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
+            if (a.has("/annual/detectors/" + d + "/shadow_direct_exposure_lx_h"))
+                for (const char* n : {"shadow_direct_exposure_lx_h", "shadow_direct_exposure_sigma_lx_h",
+                                      "illuminance_lx", "illuminance_sigma_lx", "direct_sun_lx"})
+                    reals.push_back("/annual/detectors/" + d + "/" + n);
         int differ = 0;
+        for (const std::string& n : reals) {
+            const auto va = a.f64(n), vb = b.f64(n);
+            std::size_t diff = va.size() == vb.size() ? 0 : 1;
+            for (std::size_t i = 0; i < va.size() && i < vb.size(); ++i)
+                diff += std::memcmp(&va[i], &vb[i], sizeof(double)) != 0;
+            std::cout << n << ": " << va.size() << " values, " << diff << " differ\n";
+            differ += diff != 0;
+        }
         if (a.attr_u64("/", "photons") != b.attr_u64("/", "photons")) {
             std::cout << "photons differ\n";
             ++differ;

@@ -23,7 +23,7 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
     };
     for (const Case k : {Case{1, 1, 0}, Case{1, 1, 4}, Case{3, 3, 0}, Case{3, 1, 4}, Case{2, 2, 2}}) {
         const std::size_t B = 3;
-        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates}, {4, 9});
+        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates, false, {}}, {4, 9});
         const std::string what = "groups " + std::to_string(k.groups) + ", map groups " + std::to_string(k.map_groups) +
                                  ", R " + std::to_string(k.replicates);
         std::set<std::size_t> seen;
@@ -91,10 +91,10 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
 TEST(TallyLayout, OneGroupWithoutReplicatesKeepsTheRandomLayout) {
     // The group dimension of one group adds no word: a scene without light groups has the
     // layout (and so the checkpoints) of before.
-    const TallyLayout one(7, TallyDims{2, 1, 1, 0}, {4});
+    const TallyLayout one(7, TallyDims{2, 1, 1, 0, false, {}}, {4});
     EXPECT_EQ(one.size(), TallyLayout::kCounters + 7 * 2 * 2 * TallyLayout::kSurfaceSlots + (4 * 2 * 2 + 3));
     // group_maps = false: the map has one column per band whatever the groups.
-    const TallyLayout shared(7, TallyDims{2, 5, 1, 0}, {4});
+    const TallyLayout shared(7, TallyDims{2, 5, 1, 0, false, {}}, {4});
     EXPECT_EQ(shared.surface_end(), one.surface_end());
     EXPECT_EQ(shared.bin(1, 4, 0, true).map_column, 1u);
     EXPECT_EQ(shared.bin(1, 4, 0, true).detector_column, 1u * 5 + 4);

@@ -61,6 +61,9 @@ void print_annual_year(const ResultReader& r, std::ostream& out) {
     if (r.attr_u64(kAnnual, "clamped_hours") > 0)
         out << "; " << r.attr_u64(kAnnual, "clamped_hours") << " hours outside the Perez model's range (clamped)";
     out << "\n               (the plain map and detectors hold the year's exposure, lx h)\n";
+    if (r.has_attr(kAnnual, "direct") && r.attr_str(kAnnual, "direct") == "shadow_rays")
+        out << "               direct light by shadow rays from the sensors: the grids' plain values hold the\n"
+               "               rest, their direct exposure is /annual/detectors/NAME/shadow_direct_exposure_lx_h\n";
     out.flags(flags);
 }
 

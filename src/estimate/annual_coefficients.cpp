@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -22,6 +23,8 @@ struct AnnualCoefficients::Counts {
     std::span<const std::uint64_t> data;
     std::size_t det = 0;
     std::span<const double> group_flux_lm;
+    // The photons' n and q hold no direct registration (shadow rays give the direct light).
+    bool direct_apart = false;
 
     double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
     double n(std::size_t cell, std::size_t group) const {
@@ -46,19 +49,23 @@ struct AnnualCoefficients::Counts {
     // reflection is taken as rare).
     double sun_direct(std::size_t s, std::size_t cell) const { return direct(cell, sun_group(s)); }
     double sun_indirect(std::size_t s, std::size_t cell) const {
-        return n(cell, sun_group(s)) - direct(cell, sun_group(s));
+        return n(cell, sun_group(s)) - (direct_apart ? 0.0 : direct(cell, sun_group(s)));
     }
     double sun_indirect_moment(std::size_t s, std::size_t cell) const {
-        return q(cell, sun_group(s)) - direct(cell, sun_group(s));
+        return q(cell, sun_group(s)) - (direct_apart ? 0.0 : direct(cell, sun_group(s)));
     }
 };
 
 AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
                                        std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
-                                       double per_count, std::uint64_t photons, std::span<const double> group_flux_lm)
-    : annual_(annual), cells_(cells), inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0),
-      per_count_(per_count) {
-    const Counts counts{annual, layout, data, det, group_flux_lm};
+                                       double per_count, std::uint64_t photons, std::span<const double> group_flux_lm,
+                                       const DirectCoefficients* direct)
+    : annual_(annual), shadow_(direct), cells_(cells),
+      inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0), per_count_(per_count) {
+    if (shadow_ != nullptr && (shadow_->cells != cells || shadow_->entries != annual.sky->sky_entries() ||
+                               shadow_->suns != annual.sky->suns().size()))
+        throw std::logic_error("AnnualCoefficients: direct coefficients of another grid or sky");
+    const Counts counts{annual, layout, data, det, group_flux_lm, layout.direct_apart(det)};
     sky_coefficients(counts);
     pool_suns(counts);
     dark_rates(counts);
@@ -83,7 +90,8 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
     for (std::size_t e = 0; e < entries; ++e) {
         const std::size_t g = c.sky_group(e);
         if (c.flux(g) > 0.0)
-            for (std::size_t cell = 0; cell < cells_; ++cell) indirect[cell] += c.n(cell, g) - c.direct(cell, g);
+            for (std::size_t cell = 0; cell < cells_; ++cell)
+                indirect[cell] += c.n(cell, g) - (c.direct_apart ? 0.0 : c.direct(cell, g));
     }
     for (std::size_t e = 0; e < entries; ++e) {
         const std::size_t g = c.sky_group(e);
@@ -94,7 +102,7 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
             const double n = c.n(cell, g);
             const double qq = c.q(cell, g);
             const std::size_t i = e * cells_ + cell;
-            sky_[i] = per_count_ * n;
+            sky_[i] = per_count_ * n + (shadow_ != nullptr ? shadow_->sky_lx[i] : 0.0);
             sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
             // The replicates' variance: the plain counts' (no floor: see sun_coefficients).
             sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
@@ -237,13 +245,19 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // (docs/VALIDATION.md "Annual daylight": UDI useful's halved).
             sun_[i] = per_count_ * (d + m_i);
             direct_[i] = per_count_ * d;
+            if (shadow_ != nullptr) {  // the photons' d is 0 here (direct_apart)
+                sun_[i] = shadow_->sun_lx[i] + per_count_ * m_i;
+                direct_[i] = shadow_->sun_lx[i];
+            }
             // The hour's errors. Direct: its count's variance, taken from the pooled mean (a
             // few-count cell's own count is a poor guess of it: 0 says "never"). Total: that
             // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
             // neighbours all read nothing, the detector's dark mean (never a variance of 0 for
             // a count that might have been 1).
-            direct_var_[i] = k2 * (m_d > 0.0 ? m_d : dark_lambda_d_ * dark_scale);
-            const double total_var = m_d + share * m_v;
+            direct_var_[i] = shadow_ != nullptr ? shadow_->sun_var[i]
+                                                : k2 * (m_d > 0.0 ? m_d : dark_lambda_d_ * dark_scale);
+            // (With shadow rays the photons' direct count is not in the estimate.)
+            const double total_var = (shadow_ != nullptr ? 0.0 : m_d) + share * m_v;
             sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n_ * dark_scale);
             // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
             // count around its empirical-Bayes centre (sun_priors), pooled like the estimate.
@@ -338,7 +352,8 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     sigma.sensors = cells_;
     sigma.total_lx.assign(estimate.total_lx.size(), 0.0);
     sigma.direct_lx.assign(estimate.direct_lx.size(), 0.0);
-    std::vector<double> row(cells_);
+    std::vector<double> row(cells_), direct, direct_var;
+    if (shadow_ != nullptr) direct.resize(cells_), direct_var.resize(cells_);
     for (std::size_t h = 0; h < s.hours().size(); ++h) {
         const AnnualHour& hour = s.hours()[h];
         if (!hour.daylit) continue;
@@ -353,11 +368,30 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
                 dsig[cell] = (std::sqrt(direct_var_[sun * cells_ + cell]));
             }
         }
+        if (shadow_ == nullptr) {
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                const double e = e_h[cell];
+                sig[cell] = (std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_)));
+            }
+            continue;
+        }
+        // The photons' part (the estimate less the shadow rays' direct), plus the shadow
+        // rays' own variance.
+        direct_hour(hour, false, direct);
+        direct_hour(hour, true, direct_var);
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            const double e = e_h[cell];
-            sig[cell] = (std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_)));
+            const double e = e_h[cell] - direct[cell];
+            sig[cell] = std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_) + direct_var[cell]);
         }
     }
+}
+
+void AnnualCoefficients::direct_hour(const AnnualHour& hour, bool variance, std::vector<double>& out) const {
+    sky_row(hour, variance ? shadow_->sky_var : shadow_->sky_lx, variance ? 2 : 1, out);
+    if (hour.sun < 0) return;
+    const std::size_t s = static_cast<std::size_t>(hour.sun) * cells_;
+    const std::vector<double>& sun = variance ? shadow_->sun_var : shadow_->sun_lx;
+    for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] += sun[s + cell];
 }
 
 void AnnualCoefficients::estimate(AnnualSeries& out) const {
@@ -374,7 +408,7 @@ void AnnualCoefficients::centre(AnnualSeries& out) const {
     std::vector<double> indirect(sun_.size()), direct(direct_.size()), sun;
     for (std::size_t i = 0; i < sun_.size(); ++i) {
         indirect[i] = per_count_ * rep_indirect_mu_[i];
-        direct[i] = per_count_ * rep_direct_mu_[i];
+        direct[i] = shadow_ != nullptr ? shadow_->sun_lx[i] : per_count_ * rep_direct_mu_[i];
     }
     pool(indirect, direct, sun);
     combine(sky_, sun, direct, out);
@@ -395,18 +429,22 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         if (mu > 1000.0) return k * std::sqrt(mu) * normal(rng);
         return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(rng)) - mu);
     };
+    // The shadow rays' direct light: normal around its value with its own variance.
+    auto shadow_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(rng) : 0.0; };
     std::vector<double> sky(sky_);
     for (const std::size_t e : entries_)
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
+            if (shadow_ != nullptr) sky[i] += shadow_draw(shadow_->sky_var[i]);
         }
     // A sun: its direct count around its pooled mean, its indirect count too, then pooled
     // over the days as the estimate is.
     std::vector<double> indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
     for (std::size_t i = 0; i < sun_.size(); ++i) {
         const double mu_d = rep_direct_mu_[i], mu_i = rep_indirect_mu_[i], var_i = rep_indirect_var_[i];
-        if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
+        if (shadow_ != nullptr) direct[i] = shadow_->sun_lx[i] + shadow_draw(shadow_->sun_var[i]);
+        else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
         if (mu_i != 0.0 || var_i > 0.0) indirect[i] = k * mu_i + draw(k2 * var_i);
     }
     pool(indirect, direct, sun);

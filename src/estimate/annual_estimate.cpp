@@ -4,6 +4,10 @@
 #include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/scene/scene.hpp"
 
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
 namespace luxtrace {
 
 AnnualHours annual_hours(const AnnualSetup& annual) {
@@ -20,12 +24,27 @@ AnnualHours annual_hours(const AnnualSetup& annual) {
 
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                                            int replicates, bool series) {
+                                            int replicates, bool series, const AnnualDirect& direct) {
     const Detector& d = scene.detectors[det];
+    const bool shadow = det < direct.size() && direct[det].cells > 0;
+    if (scene.annual->options.shadow_rays() != shadow)
+        throw std::logic_error("estimate_annual_grid: direct coefficients missing or not asked for");
     const AnnualCoefficients c(*scene.annual, layout, data, det, static_cast<std::size_t>(d.cells()),
-                               e0 * d.value_per_lm(), photons, light_group_flux_lm(scene));
+                               e0 * d.value_per_lm(), photons, light_group_flux_lm(scene),
+                               shadow ? &direct[det] : nullptr);
     const AnnualHours hours = annual_hours(*scene.annual);
     AnnualDetectorEstimate e;
+    if (shadow) {  // every coefficient's weights sum to 1 over the year (annual_sky.hpp)
+        const DirectCoefficients& dc = direct[det];
+        e.direct_exposure_lx_h.assign(dc.cells, 0.0);
+        e.direct_exposure_sigma_lx_h.assign(dc.cells, 0.0);
+        for (const auto& [x, v] : {std::pair{&dc.sky_lx, &dc.sky_var}, {&dc.sun_lx, &dc.sun_var}})
+            for (std::size_t i = 0; i < x->size(); ++i) {
+                e.direct_exposure_lx_h[i % dc.cells] += (*x)[i];
+                e.direct_exposure_sigma_lx_h[i % dc.cells] += (*v)[i];
+            }
+        for (double& s : e.direct_exposure_sigma_lx_h) s = std::sqrt(s);
+    }
     if (series) c.series(e.value, e.sigma);
     if (replicates > 0) {
         const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
@@ -44,12 +63,13 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
 
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,
-                                                                   std::uint64_t photons, int replicates) {
+                                                                   std::uint64_t photons, int replicates,
+                                                                   const AnnualDirect& direct) {
     std::vector<std::optional<AnnualDetectorEstimate>> out(scene.annual ? scene.detectors.size() : 0);
     if (!scene.annual || photons == 0) return out;
     for (std::size_t d = 0; d < scene.detectors.size(); ++d)
         if (annual_grid(scene.detectors[d]))
-            out[d] = estimate_annual_grid(scene, d, layout, data, e0, photons, replicates, true);
+            out[d] = estimate_annual_grid(scene, d, layout, data, e0, photons, replicates, true, direct);
     return out;
 }
 

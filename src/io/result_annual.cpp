@@ -164,6 +164,7 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
     if (annual.options.sky == "cie") attr(g, "cie_type", static_cast<std::uint64_t>(annual.options.cie_type));
     attr(g, "sky_mf", static_cast<std::uint64_t>(annual.options.sky_mf));
     attr(g, "ground_reflectance", annual.options.ground_reflectance);
+    attr(g, "direct", annual.options.direct);
     attr(g, "occupied_hours", std::vector<double>{annual.options.occupied_from_h, annual.options.occupied_to_h});
     attr(g, "daylit_hours", static_cast<std::uint64_t>(annual.sky->daylit_hours()));
     attr(g, "sun_hours", static_cast<std::uint64_t>(annual.sky->suns().size()));
@@ -183,6 +184,11 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx);
         write_metrics(dg, e.metrics, e.value.sensors);
         write_coefficients(dg, annual, layout, tallies, d, e.value.sensors);
+        if (!e.direct_exposure_lx_h.empty()) {
+            dataset(dg, "shadow_direct_exposure_lx_h", {e.direct_exposure_lx_h.size()}, e.direct_exposure_lx_h.data());
+            dataset(dg, "shadow_direct_exposure_sigma_lx_h", {e.direct_exposure_sigma_lx_h.size()},
+                    e.direct_exposure_sigma_lx_h.data());
+        }
     }
 }
 

@@ -81,7 +81,8 @@ HistoryRow RunController::evaluate_targets(const ReductionInput& in, double e0,
         row{time_offset_s_ + in.elapsed_s, in.photons, global_.target_sigma_rel(false), std::nan(""), {}, {}, {}};
     for (std::size_t i = 0; i < run.targets.size(); ++i) {
         status_.push_back(evaluate_target(run.targets[i], scene_, layout_, in.tallies, e0, in.photons,
-                                          globals[requests_.of_target[i]]));
+                                          globals[requests_.of_target[i]],
+                                          in.annual_direct != nullptr ? *in.annual_direct : AnnualDirect{}));
         const TargetStatus& s = status_.back();
         // Forecasts use this part of the run only: rates differ between parts.
         if (in.photons > photon_offset_ && std::isfinite(s.value))

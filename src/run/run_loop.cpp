@@ -5,6 +5,7 @@
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
 #include "luxtrace/io/sensor_table.hpp"
+#include "luxtrace/run/direct_pass.hpp"
 #include "luxtrace/run/reduction_message.hpp"
 #include "luxtrace/run/write_steps.hpp"
 #include "luxtrace/scene/scene.hpp"
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <ostream>
 #include <thread>
@@ -105,6 +107,14 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
     info_.photon_layout = kPhotonLayout;
     info_.load_s = opt.load_s;  // this rank's; the result takes the slowest rank's (write)
     info_.bvh_build_s = embree_.build_s();
+    if (scene.annual && scene.annual->options.shadow_rays()) {
+        const double d0 = comm.wtime();
+        annual_direct_ = annual_direct_pass(scene, embree_, comm);
+        if (show_)
+            out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
+                 << comm.wtime() - d0 << " s\n"
+                 << std::defaultfloat << std::flush;
+    }
 }
 
 void RunLoop::check_writable() {
@@ -334,6 +344,7 @@ Decision RunLoop::decide() {
     in.stall_s = stall_s_;
     in.work_s = work_s_;
     in.write_s = write_s_;
+    in.annual_direct = &annual_direct_;
     Decision d;
     try {
         d = WriteSteps("run", opt_.inject_fault).run("decide", [&] { return control_->after_reduction(in); });
@@ -414,7 +425,8 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     // The annual metrics' errors take a few dozen replicate years: the final result only.
     if (scene_.annual)
         est.annual = steps.run("annual", [&] {
-            return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates);
+            return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates,
+                                   annual_direct_);
         });
     const RunInfo i = final_info(t, elapsed_s, reason);
     const CheckpointData ck = as_checkpoint ? checkpoint_data(t.done) : CheckpointData{};

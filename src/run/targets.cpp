@@ -23,13 +23,14 @@ namespace {
 constexpr int kAnnualTargetReplicates = 8;
 
 double annual_metric_error(const Target& t, const Scene& scene, const TallyLayout& layout,
-                           std::span<const std::uint64_t> data, double e0, std::uint64_t photons, bool relative) {
+                           std::span<const std::uint64_t> data, double e0, std::uint64_t photons, bool relative,
+                           const AnnualDirect& direct) {
     if (photons == 0) return std::numeric_limits<double>::quiet_NaN();
     const auto it = std::find_if(scene.detectors.begin(), scene.detectors.end(),
                                  [&](const Detector& d) { return d.name == t.detector; });
     const std::size_t d = static_cast<std::size_t>(it - scene.detectors.begin());
     const AnnualEstimate e =
-        estimate_annual_grid(scene, d, layout, data, e0, photons, kAnnualTargetReplicates, false).metrics;
+        estimate_annual_grid(scene, d, layout, data, e0, photons, kAnnualTargetReplicates, false, direct).metrics;
     const auto figure = std::find_if(std::begin(kAnnualTargetFigures), std::end(kAnnualTargetFigures),
                                      [&](const AnnualGridFigure& f) { return t.annual_metric == f.name; });
     // The loader accepts only these names (run_loader.cpp).
@@ -58,7 +59,7 @@ GlobalRequests global_requests(const Scene& scene) {
 
 TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                             const GlobalEstimate& g) {
+                             const GlobalEstimate& g, const AnnualDirect& direct) {
     TargetStatus s;
     s.kind = kind_of(t);
     const bool arith = t.averaging == Averaging::arithmetic;
@@ -86,7 +87,8 @@ TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLay
         break;
     }
     if (!t.annual_metric.empty()) {
-        s.value = annual_metric_error(t, scene, layout, data, e0, photons, s.kind == TargetKind::relative_error);
+        s.value = annual_metric_error(t, scene, layout, data, e0, photons, s.kind == TargetKind::relative_error,
+                                      direct);
     } else if (t.detector.empty()) {
         s.value = s.kind == TargetKind::absolute_error ? g.target_sigma_lx() : g.target_sigma_rel(arith);
     } else {

@@ -1,5 +1,7 @@
 #include "luxtrace/scene/scene.hpp"
 
+#include "luxtrace/annual/annual_grid.hpp"
+
 #include <algorithm>
 
 namespace luxtrace {
@@ -30,6 +32,8 @@ TallyDims dims_of(const Scene& scene) {
     d.map_groups = scene.run.group_maps ? d.groups : 1;
     d.replicates = scene.run.sampler == "sobol" ? scene.run.replicates : 0;
     d.direct_scores = scene.annual.has_value();
+    if (scene.annual && scene.annual->options.shadow_rays())
+        for (const Detector& det : scene.detectors) d.direct_apart.push_back(annual_grid(det) ? 1 : 0);
     return d;
 }
 }  // namespace

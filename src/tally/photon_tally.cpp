@@ -44,8 +44,10 @@ void PhotonTally::add_registrations(const TallyLayout& layout, TallyBuffer& out)
     const std::size_t R = layout.replicates();
     const std::size_t group = bin_.detector_column % layout.groups();
     indices_.clear();
+    const bool apart = layout.any_direct_apart();
     for (const Registration& r : regs_)
-        indices_.push_back(layout.detector_cell(r.detector, r.cell, bin_.detector_column));
+        if (!(apart && r.direct && layout.direct_apart(r.detector)))
+            indices_.push_back(layout.detector_cell(r.detector, r.cell, bin_.detector_column));
     std::sort(indices_.begin(), indices_.end());
     std::size_t det = 0;  // detectors are visited in index order
     std::uint32_t open = UINT32_MAX;

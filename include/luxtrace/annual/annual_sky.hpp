@@ -37,6 +37,13 @@ struct AnnualOptions {
     // write_ladybug false: none.
     std::filesystem::path ladybug_folder;
     bool write_ladybug = true;
+    // How the sensor grids get their direct light (issue 37): "photons" (every arrival
+    // counts), or "shadow_rays" (the direct part by shadow rays from each sensor,
+    // tracer/direct_daylight.hpp; the photons count only what arrives after an event).
+    std::string direct = "photons";
+    int direct_sky_rays = 0;  // per patch and sensor, the square of an even number; 0: about 9,216 per sensor
+    int direct_sun_rays = 4;  // per sun and sensor, likewise
+    bool shadow_rays() const { return direct == "shadow_rays"; }
 };
 
 // One hour of the weather file.

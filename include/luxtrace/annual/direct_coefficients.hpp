@@ -34,4 +34,9 @@ struct DirectCoefficients {
     }
 };
 
+// Per detector of the scene (Scene::detectors' order): the grid's direct coefficients, or
+// none (cells 0) for a detector that is no annual grid. Empty: the direct light comes from
+// the photons ([annual] direct = "photons").
+using AnnualDirect = std::vector<DirectCoefficients>;
+
 }  // namespace luxtrace

@@ -13,7 +13,13 @@
 // own); the replicates draw a sun's direct count around its pooled mean and its
 // interreflected count around an empirical-Bayes centre. The direct sun (LM-83's ASE) is
 // the hour's sun group's direct registrations alone (TallyLayout::detector_direct).
+//
+// With direct coefficients by shadow rays (annual/direct_coefficients.hpp) the photons'
+// counts hold only the light that arrived after an event (TallyLayout::direct_apart), and
+// each coefficient is the shadow rays' direct plus the photons' rest: the two are
+// independent, so their variances add. The direct sun (ASE) is then the shadow rays'.
 #include "luxtrace/annual/annual_sky.hpp"
+#include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
 #include "luxtrace/tally/tally.hpp"
 
@@ -29,9 +35,10 @@ public:
     // one registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per
     // light group (light_group_flux_lm, estimate_scene.hpp): a group that emits nothing (a
     // patch or sun behind every portal) has exactly zero coefficients, with no error.
+    // `direct`: the detector's direct coefficients by shadow rays, or null.
     AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
                        std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
-                       std::span<const double> group_flux_lm);
+                       std::span<const double> group_flux_lm, const DirectCoefficients* direct = nullptr);
 
     // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
     // weather file (0 in the dark ones).
@@ -71,7 +78,12 @@ private:
     // (pool_share_ times their sum).
     void pool(const std::vector<double>& indirect, const std::vector<double>& direct, std::vector<double>& sun) const;
 
+    // The shadow rays' direct light of the hour (sky, ground and sun) into `out` (cells);
+    // with `variance`, its variance instead.
+    void direct_hour(const AnnualHour& hour, bool variance, std::vector<double>& out) const;
+
     const AnnualSetup& annual_;
+    const DirectCoefficients* shadow_ = nullptr;
     std::size_t cells_ = 0;
     double inv_photons_ = 0.0;
     double per_count_ = 0.0;  // k

@@ -17,6 +17,10 @@ struct Scene;
 struct AnnualDetectorEstimate {
     AnnualSeries value, sigma;
     AnnualEstimate metrics;
+    // [annual] direct = "shadow_rays": per cell, the year's direct exposure by shadow rays
+    // (the sum of its direct coefficients, lx h) and its standard error; empty otherwise.
+    // The plain detector then holds the rest: the two add to the year's exposure.
+    std::vector<double> direct_exposure_lx_h, direct_exposure_sigma_lx_h;
 };
 
 // The hours LM-83 and EN 17037 count (occupied; EN 17037's daylight hours: the half of the
@@ -26,16 +30,18 @@ AnnualHours annual_hours(const AnnualSetup& annual);
 // One sensor grid (Scene::detectors[det], annual/annual_grid.hpp): its metrics with their
 // errors from `replicates` replicate years (0: the values alone), and, with `series`, every
 // hour's values and their errors (value, sigma). The replicates' draws depend on the run's
-// seed and the detector, so a target and the result agree.
+// seed and the detector, so a target and the result agree. `direct`: the run's direct
+// coefficients by shadow rays (empty with [annual] direct = "photons").
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                                            int replicates, bool series);
+                                            int replicates, bool series, const AnnualDirect& direct);
 
 // Per Scene::detectors (empty for a scene without [annual]; std::nullopt for detectors that
 // are not sensor grids). e0 = flux per photon, photons = N. `replicates` for the metrics'
 // errors (0: no errors, for checkpoints).
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,
-                                                                   std::uint64_t photons, int replicates);
+                                                                   std::uint64_t photons, int replicates,
+                                                                   const AnnualDirect& direct);
 
 }  // namespace luxtrace

@@ -32,6 +32,8 @@ struct ReductionInput {
     double stall_s = 0.0;          // tracing time lost to the reduction's pause
     double work_s = 0.0;           // the main thread's work on the reduction (taken from tracing)
     double write_s = 0.0;          // time of the latest checkpoint write
+    // The annual grids' direct coefficients by shadow rays (annual targets), or none.
+    const AnnualDirect* annual_direct = nullptr;
 };
 
 class RunController {

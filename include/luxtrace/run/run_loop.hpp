@@ -15,6 +15,7 @@
 //   write      the final reduction, the result file and the final checkpoint (rank 0)
 //
 // The members are the state the phases share.
+#include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/core/word_array.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
@@ -133,6 +134,7 @@ private:
     std::optional<EmbreeScene> own_embree_;
     const EmbreeScene& embree_;
     const SurfaceTable surfaces_;           // the tracing threads' view of the scene, built with the BVH
+    AnnualDirect annual_direct_;            // rank 0: the annual grids' direct light by shadow rays
     std::optional<RunController> control_;  // rank 0
     const std::string checkpoint_path_;
     const bool show_;  // rank 0 prints progress lines

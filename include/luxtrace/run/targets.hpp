@@ -1,6 +1,7 @@
 #pragma once
 // Stop criteria of [[run.target]]: the current value of each target from reduced
 // tallies, and whether it is met.
+#include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/scene/run_config.hpp"
 #include "luxtrace/stats/estimates.hpp"
 
@@ -35,9 +36,10 @@ struct GlobalRequests {
 GlobalRequests global_requests(const Scene& scene);
 
 // `global` is the target's global estimate (GlobalRequests) for the same tallies; a target
-// on a detector or an annual metric reads only the words after the surface map of `data`.
+// on a detector or an annual metric reads only the words after the surface map of `data`;
+// an annual metric, also the run's direct coefficients by shadow rays (`direct`).
 TargetStatus evaluate_target(const Target& t, const Scene& scene, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                             const GlobalEstimate& global);
+                             const GlobalEstimate& global, const AnnualDirect& direct = {});
 
 }  // namespace luxtrace

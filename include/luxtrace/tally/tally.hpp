@@ -27,6 +27,10 @@ struct TallyDims {
     // Also count, per detector cell and column, the registrations of photons still on the
     // straight line from their light (annual daylight's direct sun, issue 24).
     bool direct_scores = false;
+    // Per detector (empty: none): its direct registrations count in the direct slots only,
+    // not in n, q and the totals (annual grids whose direct light comes from shadow rays,
+    // annual_sky.hpp: AnnualOptions::direct).
+    std::vector<std::uint8_t> direct_apart;
 };
 
 // Where one photon's scores go besides the site, fixed when it starts: a column is a
@@ -63,7 +67,7 @@ public:
     // One light group: the layout of a scene without groups.
     TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
                 std::size_t replicates = 0)
-        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates}, detector_cells) {}
+        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates, false, {}}, detector_cells) {}
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }
@@ -151,6 +155,8 @@ public:
     // direct flights lie on one straight line, which crosses a cell once at most: the
     // per-photon count is 0 or 1, so this is also its sum of squares.
     bool direct_scores() const { return dims_.direct_scores; }
+    bool direct_apart(std::size_t det) const { return det < dims_.direct_apart.size() && dims_.direct_apart[det] != 0; }
+    bool any_direct_apart() const { return !dims_.direct_apart.empty(); }
     std::size_t detector_direct(std::size_t det, std::size_t cell, std::size_t column) const {
         return direct_offset_[det] + cell * detector_columns() + column;
     }

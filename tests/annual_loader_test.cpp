@@ -119,6 +119,12 @@ TEST_F(Loader, AnnualBadInputNamesItsKey) {
     expect_bad(kAnnual + "cie_type = 3\n" + kMat + kFloor, "cie_type", {"cie_type"});
     expect_bad(kAnnual + "occupied_hours = [18, 8]\n" + kMat + kFloor, "occupied_hours", {"occupied_hours"});
     expect_bad(kAnnual + "ground_reflectance = 2\n" + kMat + kFloor, "ground_reflectance", {"[0, 1]"});
+    expect_bad(kAnnual + "direct = \"rays\"\n" + kMat + kFloor, "direct =", {"photons", "shadow_rays"});
+    expect_bad(kAnnual + "direct = \"shadow_rays\"\ndirect_sky_rays = 9\n" + kMat + kFloor, "direct_sky_rays",
+               {"square of an even number", "9"});
+    expect_bad(kAnnual + "direct = \"shadow_rays\"\ndirect_sun_rays = 0\n" + kMat + kFloor, "direct_sun_rays",
+               {"square of an even number"});
+    expect_bad(kAnnual + "direct_sun_rays = 16\n" + kMat + kFloor, "direct_sun_rays", {"shadow_rays"});
     // A [site] that contradicts the weather file.
     expect_bad("[site]\nlatitude_deg = 52.5\nlongitude_deg = 13.4\nutc_offset_h = 1\n" + kAnnual + kMat + kFloor,
                "weather", {"latitude_deg", "41.98"});
@@ -126,6 +132,18 @@ TEST_F(Loader, AnnualBadInputNamesItsKey) {
     expect_bad(kAnnual + kMat + kFloor + kLamp, "", {"[annual]", "[[light]]"});
     expect_bad(kAnnual + kMat + kFloor + "[run]\ngroup_maps = true\n", "group_maps", {"annual"});
     expect_bad(kAnnual + "[scene]\nbands = [\"R\", \"G\", \"B\"]\n" + kMat + kFloor, "", {"one band"});
+}
+
+TEST_F(Loader, AnnualDirectByShadowRaysKeepsTheGridsDirectApart) {
+    const Scene photons = load(kAnnual + kMat + kFloor + kGrid);
+    EXPECT_FALSE(photons.annual->options.shadow_rays());
+    EXPECT_FALSE(tally_layout(photons).direct_apart(0));
+    const Scene shadow = load(kAnnual + "direct = \"shadow_rays\"\ndirect_sky_rays = 16\ndirect_sun_rays = 36\n" +
+                              kMat + kFloor + kGrid);
+    EXPECT_TRUE(shadow.annual->options.shadow_rays());
+    EXPECT_EQ(shadow.annual->options.direct_sky_rays, 16);
+    EXPECT_EQ(shadow.annual->options.direct_sun_rays, 36);
+    EXPECT_TRUE(tally_layout(shadow).direct_apart(0));
 }
 
 TEST_F(Loader, AnnualTruncatedWeatherFileNamesItsLine) {

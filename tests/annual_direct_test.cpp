@@ -64,8 +64,15 @@ TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     // The year's exposure per cell.
     const std::vector<double> vp = p.f64("/detectors/desk/value"), rp = p.f64("/detectors/desk/sigma_rel");
     const std::vector<double> vs = s.f64("/detectors/desk/value"), rs = s.f64("/detectors/desk/sigma_rel");
-    const std::vector<double> d = s.f64("/annual/detectors/desk/shadow_direct_exposure_lx_h");
-    const std::vector<double> ds = s.f64("/annual/detectors/desk/shadow_direct_exposure_sigma_lx_h");
+    const std::string g = "/annual/detectors/desk/";
+    const std::vector<double> d_sky = s.f64(g + "shadow_direct_sky_lx_h"), d_sun = s.f64(g + "shadow_direct_sun_lx_h");
+    const std::vector<double> s_sky = s.f64(g + "shadow_direct_sky_sigma_lx_h"),
+                              s_sun = s.f64(g + "shadow_direct_sun_sigma_lx_h");
+    std::vector<double> d(d_sky.size()), ds(d_sky.size());
+    for (std::size_t c = 0; c < d.size(); ++c) {
+        d[c] = d_sky[c] + d_sun[c];
+        ds[c] = std::hypot(s_sky[c], s_sun[c]);
+    }
     ASSERT_EQ(d.size(), vp.size());
     double chi2 = 0.0, sum_z = 0.0, total_p = 0.0, total_s = 0.0, var_p = 0.0, var_s = 0.0;
     for (std::size_t c = 0; c < vp.size(); ++c) {

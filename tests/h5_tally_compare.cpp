@@ -44,9 +44,10 @@ int main(int argc, char** argv) {
         std::vector<std::string> reals;
         for (const std::string& d :
              a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
-            if (a.has("/annual/detectors/" + d + "/shadow_direct_exposure_lx_h"))
-                for (const char* n : {"shadow_direct_exposure_lx_h", "shadow_direct_exposure_sigma_lx_h",
-                                      "illuminance_lx", "illuminance_sigma_lx", "direct_sun_lx"})
+            if (a.has("/annual/detectors/" + d + "/shadow_direct_sky_lx_h"))
+                for (const char* n :
+                     {"shadow_direct_sky_lx_h", "shadow_direct_sky_sigma_lx_h", "shadow_direct_sun_lx_h",
+                      "shadow_direct_sun_sigma_lx_h", "illuminance_lx", "illuminance_sigma_lx", "direct_sun_lx"})
                     reals.push_back("/annual/detectors/" + d + "/" + n);
         int differ = 0;
         for (const std::string& n : reals) {

@@ -36,14 +36,18 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     AnnualDetectorEstimate e;
     if (shadow) {  // every coefficient's weights sum to 1 over the year (annual_sky.hpp)
         const DirectCoefficients& dc = direct[det];
-        e.direct_exposure_lx_h.assign(dc.cells, 0.0);
-        e.direct_exposure_sigma_lx_h.assign(dc.cells, 0.0);
-        for (const auto& [x, v] : {std::pair{&dc.sky_lx, &dc.sky_var}, {&dc.sun_lx, &dc.sun_var}})
-            for (std::size_t i = 0; i < x->size(); ++i) {
-                e.direct_exposure_lx_h[i % dc.cells] += (*x)[i];
-                e.direct_exposure_sigma_lx_h[i % dc.cells] += (*v)[i];
+        auto year = [&](const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& sum,
+                        std::vector<double>& sigma) {
+            sum.assign(dc.cells, 0.0);
+            sigma.assign(dc.cells, 0.0);
+            for (std::size_t i = 0; i < x.size(); ++i) {
+                sum[i % dc.cells] += x[i];
+                sigma[i % dc.cells] += v[i];
             }
-        for (double& s : e.direct_exposure_sigma_lx_h) s = std::sqrt(s);
+            for (double& s : sigma) s = std::sqrt(s);
+        };
+        year(dc.sky_lx, dc.sky_var, e.direct_sky_lx_h, e.direct_sky_sigma_lx_h);
+        year(dc.sun_lx, dc.sun_var, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
     }
     if (series) c.series(e.value, e.sigma);
     if (replicates > 0) {

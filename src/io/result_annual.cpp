@@ -184,10 +184,12 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx);
         write_metrics(dg, e.metrics, e.value.sensors);
         write_coefficients(dg, annual, layout, tallies, d, e.value.sensors);
-        if (!e.direct_exposure_lx_h.empty()) {
-            dataset(dg, "shadow_direct_exposure_lx_h", {e.direct_exposure_lx_h.size()}, e.direct_exposure_lx_h.data());
-            dataset(dg, "shadow_direct_exposure_sigma_lx_h", {e.direct_exposure_sigma_lx_h.size()},
-                    e.direct_exposure_sigma_lx_h.data());
+        if (!e.direct_sky_lx_h.empty()) {
+            const std::size_t n = e.direct_sky_lx_h.size();
+            dataset(dg, "shadow_direct_sky_lx_h", {n}, e.direct_sky_lx_h.data());
+            dataset(dg, "shadow_direct_sky_sigma_lx_h", {n}, e.direct_sky_sigma_lx_h.data());
+            dataset(dg, "shadow_direct_sun_lx_h", {n}, e.direct_sun_lx_h.data());
+            dataset(dg, "shadow_direct_sun_sigma_lx_h", {n}, e.direct_sun_sigma_lx_h.data());
         }
     }
 }

@@ -18,9 +18,10 @@ struct AnnualDetectorEstimate {
     AnnualSeries value, sigma;
     AnnualEstimate metrics;
     // [annual] direct = "shadow_rays": per cell, the year's direct exposure by shadow rays
-    // (the sum of its direct coefficients, lx h) and its standard error; empty otherwise.
-    // The plain detector then holds the rest: the two add to the year's exposure.
-    std::vector<double> direct_exposure_lx_h, direct_exposure_sigma_lx_h;
+    // (the sum of its direct coefficients, lx h) from the sky patches and the ground, and
+    // from the suns, with their standard errors; empty otherwise. The plain detector then
+    // holds the rest: the three add to the year's exposure.
+    std::vector<double> direct_sky_lx_h, direct_sky_sigma_lx_h, direct_sun_lx_h, direct_sun_sigma_lx_h;
 };
 
 // The hours LM-83 and EN 17037 count (occupied; EN 17037's daylight hours: the half of the

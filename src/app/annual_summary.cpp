@@ -62,9 +62,8 @@ void print_annual_year(const ResultReader& r, std::ostream& out) {
         out << "; " << r.attr_u64(kAnnual, "clamped_hours") << " hours outside the Perez model's range (clamped)";
     out << "\n               (the plain map and detectors hold the year's exposure, lx h)\n";
     if (r.has_attr(kAnnual, "direct") && r.attr_str(kAnnual, "direct") == "shadow_rays")
-        out << "               direct light by shadow rays from the sensors: the grids' plain values hold the\n"
-               "               rest, their direct exposure is /annual/detectors/NAME/shadow_direct_sky_lx_h\n"
-               "               (the sky patches and the ground) and shadow_direct_sun_lx_h (the suns)\n";
+        out << "               direct light by shadow rays: the grids' plain values hold the rest, the direct is\n"
+               "               /annual/detectors/NAME/shadow_direct_sky_lx_h (with the ground) and ..._sun_lx_h\n";
     out.flags(flags);
 }
 

@@ -529,6 +529,27 @@ TEST_F(Cli, LightScenesExampleRunsAndRecombinesItsScenes) {
                                                                                                   << o.out;
 }
 
+// An annual checkpoint made with the photons' direct light does not continue with the
+// direct light by shadow rays ([annual] direct): exit 2, naming the key, nothing written.
+TEST_F(Cli, RestartRefusesAnotherAnnualDirect) {
+    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "annual_room.toml";
+    const fs::path ck = dir / "ck.h5", out = dir / "r.h5";
+    ASSERT_EQ(run("run " + scene.string() + " --photons 200k --report-every-photons 100k --checkpoint-every 1e-6 " +
+                  "--threads 1 --quiet --checkpoint " + ck.string() + " --output " + out.string())
+                  .code,
+              0);
+    ASSERT_TRUE(fs::exists(ck));
+    std::ifstream in(scene);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("\"../weather/"), 12, "\"" + (fs::path(LUXTRACE_TEST_DATA_DIR) / "weather").string() + "/");
+    text.replace(text.find("[annual]\n"), 9, "[annual]\ndirect = \"shadow_rays\"\n");
+    const Outcome o = run("run " + write("shadow.toml", text).string() + " --restart " + ck.string() +
+                          " --photons 300k --quiet --output " + (dir / "x.h5").string());
+    EXPECT_EQ(o.code, 2) << o.out;
+    EXPECT_NE(o.out.find("made with [annual] direct = \"photons\""), std::string::npos) << o.out;
+    EXPECT_FALSE(fs::exists(dir / "x.h5"));
+}
+
 // A checkpoint's light groups keep their counts apart: it continues only with the same
 // groups (names and order), and exits 2 naming both otherwise.
 TEST_F(Cli, RestartRefusesOtherLightGroups) {

@@ -91,6 +91,8 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         if (r.has_attr("/", "replicates")) s.replicates = r.attr_u64("/", "replicates");
         if (r.has_attr("/", "light_groups")) s.light_groups = r.attr_strs("/", "light_groups");
         if (r.has_attr("/", "group_maps")) s.group_maps = r.attr_u64("/", "group_maps") != 0;
+        if (r.has("/annual"))
+            s.annual_direct = r.has_attr("/annual", "direct") ? r.attr_str("/annual", "direct") : "photons";
         s.format_version = r.attr_u64("/", "format_version");
         s.elapsed_s = r.attr_f64("/", "elapsed_s");
         const auto t = r.f64("/history/time_s");

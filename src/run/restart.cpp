@@ -47,6 +47,11 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
                          "numbers differently (photon layout " +
                          std::to_string(ck.photon_layout) + ", this one " + std::to_string(kPhotonLayout) +
                          "); continue it with that version or start anew");
+    // Annual grids count the photons' direct arrivals or leave them to shadow rays: the
+    // counts of one way do not continue the other's.
+    if (!ck.annual_direct.empty() && (ck.annual_direct == "shadow_rays") != layout.any_direct_apart())
+        throw InputError(path + ": the checkpoint was made with [annual] direct = \"" + ck.annual_direct +
+                         "\"; restart with the same");
     if (ck.seed != run.seed || ck.sampler != run.sampler)
         throw InputError(path + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " + ck.sampler +
                          "; restart with the same (drop --seed/--sampler)");

@@ -77,6 +77,9 @@ struct CheckpointState {
     std::uint64_t replicates = 0;           // sobol's R; 0 for random (and files before it)
     std::vector<std::string> light_groups;  // empty in files before light groups (one group)
     bool group_maps = true;
+    // An annual checkpoint's [annual] direct ("photons" in files before it); empty without
+    // [annual].
+    std::string annual_direct;
     std::uint64_t format_version = 1;
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;

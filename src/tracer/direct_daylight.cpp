@@ -8,6 +8,7 @@
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/shadow_ray.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -246,17 +247,42 @@ private:
     }
 
     // A sun: its disc's exact mean cosine, sin(alt) (1 + cos a) / 2 for the horizontal, where
-    // the whole disc lies in front (else each sample's own), times what passes along each
-    // stratum's sample. The disc's 0.53 degrees change the cosine by under 0.5 % tan(theta)
-    // across it: taking its mean for the penumbra's samples errs far less than they do.
+    // the whole disc lies in front (else each ray's own), times what passes. The disc's 0.53
+    // degrees change the cosine by under 0.5 % tan(theta) across it: taking its mean for
+    // the penumbra's rays errs far less than they do. A points sensor first looks along
+    // five fixed rays, to the disc's centre and four points of its rim: where all five are
+    // blocked or all pass, so does the whole disc (but for an edge that cuts the disc
+    // between them), and the value is exact (their mean transmittance); where they differ, the disc is cut, and its
+    // rays tell how much (penumbra). An illuminance grid's cell samples its area and the disc together.
     StrataSum disc(std::size_t c, std::uint32_t first, const Sun& sun, const Vec3& n) {
-        StrataSum sum;
-        const int side = targets_.sun_side;
-        const double rays = side * side;
         const double sin_half = std::sqrt(1.0 - targets_.cos_half_sun * targets_.cos_half_sun);
         const double cos_axis = glm::dot(sun.frame.n, n);
         const bool in_front = cos_axis > sin_half;
         const double mean_cos = cos_axis * (1.0 + targets_.cos_half_sun) / 2.0;
+        if (geometry_.point() && in_front) {
+            const PhiloxSampler::Block none{};
+            const double rim = 0.98 * sin_half;
+            double z[5];
+            z[0] = through(c, none, sun.frame.n);
+            for (int i = 0; i < 4; ++i) {
+                const double phi = 0.5 * kPi * i;
+                z[i + 1] = through(c, none,
+                                   glm::normalize(
+                                       sun.frame.to_world(Vec3(rim * std::cos(phi), rim * std::sin(phi), 1.0))));
+            }
+            // The same: all blocked, or all through (glazing's T differs a little between them).
+            const bool seen = z[0] > 0.0;
+            if (std::all_of(z + 1, z + 5, [&](double x) { return (x > 0.0) == seen; })) {
+                StrataSum exact;
+                exact.value = mean_cos * (z[0] + z[1] + z[2] + z[3] + z[4]) / 5.0;
+                return exact;
+            }
+        }
+        // side x side strata of the cone; the plain variance of the mean of their terms.
+        StrataSum sum;
+        const int side = targets_.sun_side;
+        const double rays = side * side;
+        terms_.clear();
         const std::uint64_t k = (static_cast<std::uint64_t>(det_) << 40) | c;
         for (int a = 0; a < side; ++a)
             for (int b = 0; b < side; ++b) {
@@ -264,13 +290,22 @@ private:
                 const Vec3 d = sun.frame.to_world(sample_uniform_cone(targets_.cos_half_sun,
                                                                       (a + PhiloxSampler::uniform(w[0])) / side,
                                                                       (b + PhiloxSampler::uniform(w[1])) / side));
-                const double weight = (in_front ? mean_cos : std::max(0.0, glm::dot(d, n))) / rays;
-                sum.add(weight, weight > 0.0 ? through(c, w, d) : 0.0);
+                const double weight = in_front ? mean_cos : std::max(0.0, glm::dot(d, n));
+                terms_.push_back(weight > 0.0 ? weight * through(c, w, d) : 0.0);
             }
+        if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return t == terms_.front(); })) {
+            sum.value = terms_.front();  // all alike: exact, and no rounding to call noise
+            return sum;
+        }
+        for (const double t : terms_) sum.value += t;
+        sum.value /= rays;
+        for (const double t : terms_) sum.variance += (t - sum.value) * (t - sum.value);
+        sum.variance /= rays * (rays - 1.0);
         return sum;
     }
 
     CellGeometry geometry_;
+    std::vector<double> terms_;  // disc's scratch
     ShadowRay shadow_;
     PhiloxSampler sampler_;
     const Targets& targets_;

@@ -41,8 +41,8 @@ struct AnnualOptions {
     // counts), or "shadow_rays" (the direct part by shadow rays from each sensor,
     // tracer/direct_daylight.hpp; the photons count only what arrives after an event).
     std::string direct = "photons";
-    int direct_sky_rays = 0;  // per patch and sensor, the square of an even number; 0: about 9,216 per sensor
-    int direct_sun_rays = 4;  // per sun and sensor, likewise
+    int direct_sky_rays = 0;   // per patch and sensor, the square of an even number; 0: about 9,216 per sensor
+    int direct_sun_rays = 16;  // per sun and sensor where its disc is cut (points), or always (cells)
     bool shadow_rays() const { return direct == "shadow_rays"; }
 };
 

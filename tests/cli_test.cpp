@@ -34,6 +34,18 @@ protected:
         std::ofstream(dir / name) << text;
         return dir / name;
     }
+    // Runs `scene` (`photons`, 1 thread) with checkpoints at every reduction into dir/ck.h5;
+    // the scene file's text, for a test to change.
+    std::string checkpointed_run(const fs::path& scene, const std::string& photons) {
+        EXPECT_EQ(run("run " + scene.string() + " --photons " + photons +
+                      " --report-every-photons 100k --checkpoint-every 1e-6 --threads 1 --quiet --checkpoint " +
+                      (dir / "ck.h5").string() + " --output " + (dir / "r.h5").string())
+                      .code,
+                  0);
+        EXPECT_TRUE(fs::exists(dir / "ck.h5"));
+        std::ifstream in(scene);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
     fs::path dir;
 };
 
@@ -532,15 +544,8 @@ TEST_F(Cli, LightScenesExampleRunsAndRecombinesItsScenes) {
 // An annual checkpoint made with the photons' direct light does not continue with the
 // direct light by shadow rays ([annual] direct): exit 2, naming the key, nothing written.
 TEST_F(Cli, RestartRefusesAnotherAnnualDirect) {
-    const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "annual_room.toml";
-    const fs::path ck = dir / "ck.h5", out = dir / "r.h5";
-    ASSERT_EQ(run("run " + scene.string() + " --photons 200k --report-every-photons 100k --checkpoint-every 1e-6 " +
-                  "--threads 1 --quiet --checkpoint " + ck.string() + " --output " + out.string())
-                  .code,
-              0);
-    ASSERT_TRUE(fs::exists(ck));
-    std::ifstream in(scene);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const fs::path ck = dir / "ck.h5";
+    std::string text = checkpointed_run(fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "annual_room.toml", "200k");
     text.replace(text.find("\"../weather/"), 12, "\"" + (fs::path(LUXTRACE_TEST_DATA_DIR) / "weather").string() + "/");
     text.replace(text.find("[annual]\n"), 9, "[annual]\ndirect = \"shadow_rays\"\n");
     const Outcome o = run("run " + write("shadow.toml", text).string() + " --restart " + ck.string() +
@@ -554,14 +559,8 @@ TEST_F(Cli, RestartRefusesAnotherAnnualDirect) {
 // groups (names and order), and exits 2 naming both otherwise.
 TEST_F(Cli, RestartRefusesOtherLightGroups) {
     const fs::path scene = fs::path(LUXTRACE_TEST_DATA_DIR) / "run" / "two_groups.toml";
-    const fs::path ck = dir / "ck.h5", out = dir / "r.h5";
-    ASSERT_EQ(run("run " + scene.string() + " --photons 300k --report-every-photons 100k --checkpoint-every 1e-6 " +
-                  "--threads 1 --quiet --checkpoint " + ck.string() + " --output " + out.string())
-                  .code,
-              0);
-    ASSERT_TRUE(fs::exists(ck));
-    std::ifstream in(scene);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const fs::path ck = dir / "ck.h5";
+    std::string text = checkpointed_run(scene, "300k");
     text.replace(text.find("group = \"b\""), 11, "group = \"c\"");
     text.replace(text.find("b = 1.0 }"), 9, "c = 1.0 }");
     const Outcome o = run("run " + write("renamed.toml", text).string() + " --restart " + ck.string() +

@@ -259,6 +259,7 @@ private:
         const double cos_axis = glm::dot(sun.frame.n, n);
         const bool in_front = cos_axis > sin_half;
         const double mean_cos = cos_axis * (1.0 + targets_.cos_half_sun) / 2.0;
+        bool cut = false;  // the five fixed rays disagreed
         if (geometry_.point() && in_front) {
             const PhiloxSampler::Block none{};
             const double rim = 0.98 * sin_half;
@@ -277,6 +278,7 @@ private:
                 exact.value = mean_cos * (z[0] + z[1] + z[2] + z[3] + z[4]) / 5.0;
                 return exact;
             }
+            cut = true;
         }
         // side x side strata of the cone; the plain variance of the mean of their terms.
         StrataSum sum;
@@ -294,7 +296,13 @@ private:
                 terms_.push_back(weight > 0.0 ? weight * through(c, w, d) : 0.0);
             }
         if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return t == terms_.front(); })) {
-            sum.value = terms_.front();  // all alike: exact, and no rounding to call noise
+            sum.value = terms_.front();  // all alike: no rounding to call noise
+            // A disc known to be cut whose rays all agreed: the part they missed is not 0.
+            // The variance of a Bernoulli mean with Jeffreys' p = 1 / (2 (n + 1)) stands in.
+            if (cut) {
+                const double p = 0.5 / (rays + 1.0);
+                sum.variance = mean_cos * mean_cos * p * (1.0 - p) / rays;
+            }
             return sum;
         }
         for (const double t : terms_) sum.value += t;

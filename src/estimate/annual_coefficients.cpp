@@ -23,7 +23,8 @@ struct AnnualCoefficients::Counts {
     std::span<const std::uint64_t> data;
     std::size_t det = 0;
     std::span<const double> group_flux_lm;
-    // The photons' n and q hold no direct registration (shadow rays give the direct light).
+    // The photons' n and q hold no direct registration (shadow rays give the direct light):
+    // for the estimate their direct count is then 0.
     bool direct_apart = false;
 
     double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
@@ -34,7 +35,9 @@ struct AnnualCoefficients::Counts {
         return static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
     }
     double direct(std::size_t cell, std::size_t group) const {
-        return layout.direct_scores() ? static_cast<double>(data[layout.detector_direct(det, cell, group)]) : 0.0;
+        return layout.direct_scores() && !direct_apart
+                   ? static_cast<double>(data[layout.detector_direct(det, cell, group)])
+                   : 0.0;
     }
     // Sky entry e's group (AnnualSky's sky vector order: the patches, then the ground), and
     // sun s's.
@@ -49,10 +52,10 @@ struct AnnualCoefficients::Counts {
     // reflection is taken as rare).
     double sun_direct(std::size_t s, std::size_t cell) const { return direct(cell, sun_group(s)); }
     double sun_indirect(std::size_t s, std::size_t cell) const {
-        return n(cell, sun_group(s)) - (direct_apart ? 0.0 : direct(cell, sun_group(s)));
+        return n(cell, sun_group(s)) - direct(cell, sun_group(s));
     }
     double sun_indirect_moment(std::size_t s, std::size_t cell) const {
-        return q(cell, sun_group(s)) - (direct_apart ? 0.0 : direct(cell, sun_group(s)));
+        return q(cell, sun_group(s)) - direct(cell, sun_group(s));
     }
 };
 
@@ -90,8 +93,7 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
     for (std::size_t e = 0; e < entries; ++e) {
         const std::size_t g = c.sky_group(e);
         if (c.flux(g) > 0.0)
-            for (std::size_t cell = 0; cell < cells_; ++cell)
-                indirect[cell] += c.n(cell, g) - (c.direct_apart ? 0.0 : c.direct(cell, g));
+            for (std::size_t cell = 0; cell < cells_; ++cell) indirect[cell] += c.n(cell, g) - c.direct(cell, g);
     }
     for (std::size_t e = 0; e < entries; ++e) {
         const std::size_t g = c.sky_group(e);
@@ -243,12 +245,10 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // at 10 M photons one count is 1,000-3,600 lx on the example's sensors, more
             // than every threshold, so the lumps decide the threshold figures' noise bias
             // (docs/VALIDATION.md "Annual daylight": UDI useful's halved).
-            sun_[i] = per_count_ * (d + m_i);
-            direct_[i] = per_count_ * d;
-            if (shadow_ != nullptr) {  // the photons' d is 0 here (direct_apart)
-                sun_[i] = shadow_->sun_lx[i] + per_count_ * m_i;
-                direct_[i] = shadow_->sun_lx[i];
-            }
+            // With shadow rays the photons' d is 0 (direct_apart) and the direct sun theirs.
+            const double shadow_sun = shadow_ != nullptr ? shadow_->sun_lx[i] : 0.0;
+            sun_[i] = per_count_ * (d + m_i) + shadow_sun;
+            direct_[i] = shadow_ != nullptr ? shadow_sun : per_count_ * d;
             // The hour's errors. Direct: its count's variance, taken from the pooled mean (a
             // few-count cell's own count is a poor guess of it: 0 says "never"). Total: that
             // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
@@ -256,8 +256,7 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // a count that might have been 1).
             direct_var_[i] = shadow_ != nullptr ? shadow_->sun_var[i]
                                                 : k2 * (m_d > 0.0 ? m_d : dark_lambda_d_ * dark_scale);
-            // (With shadow rays the photons' direct count is not in the estimate.)
-            const double total_var = (shadow_ != nullptr ? 0.0 : m_d) + share * m_v;
+            const double total_var = m_d + share * m_v;
             sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n_ * dark_scale);
             // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
             // count around its empirical-Bayes centre (sun_priors), pooled like the estimate.

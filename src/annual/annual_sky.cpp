@@ -16,6 +16,12 @@ double AnnualHour::global_horizontal_lx() const {
     return diffuse_horizontal_lx + direct_normal_lx * std::sin(sun_altitude_deg * kPi / 180.0);
 }
 
+bool AnnualOptions::valid_direct_rays(std::int64_t rays) {
+    const auto side = static_cast<std::int64_t>(
+        std::llround(std::sqrt(static_cast<double>(std::max<std::int64_t>(rays, 0)))));
+    return rays >= 4 && rays <= 4096 && side * side == rays && side % 2 == 0;
+}
+
 double hour_middle(const weather::WeatherHour& h, weather::WeatherFormat format) {
     return format == weather::WeatherFormat::epw ? h.hour - 0.5 : h.hour;
 }

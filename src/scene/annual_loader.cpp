@@ -6,7 +6,6 @@
 #include "luxtrace/light/sky_directions.hpp"
 #include "scene_loader.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -58,18 +57,20 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
             r.fail("direct", "must be \"photons\" or \"shadow_rays\", got '" + *direct + "'");
         o.direct = *direct;
     }
-    for (const auto& [key, rays] :
-         {std::pair{"direct_sky_rays", &o.direct_sky_rays}, {"direct_sun_rays", &o.direct_sun_rays}})
-        if (const auto n = r.integer(key)) {
-            const auto side = static_cast<std::int64_t>(
-                std::llround(std::sqrt(static_cast<double>(std::max<std::int64_t>(*n, 0)))));
-            const bool zero_ok = std::string(key) == "direct_sky_rays" && *n == 0;
-            if (!zero_ok && !(*n >= 4 && *n <= 4096 && side * side == *n && side % 2 == 0))
-                r.fail(key, std::string("must be the square of an even number, 4 to 4096 (4, 16, 36, 64, ...)") +
-                                (std::string(key) == "direct_sky_rays" ? ", or 0 for about 9,216 per sensor" : "") +
-                                ", got " + std::to_string(*n));
-            if (o.direct != "shadow_rays") r.fail(key, "is for direct = \"shadow_rays\"");
-            *rays = static_cast<int>(*n);
+    struct RaysKey {
+        const char* key;
+        int* rays;
+        const char* zero;  // what 0 means, if allowed
+    };
+    for (const RaysKey k : {RaysKey{"direct_sky_rays", &o.direct_sky_rays, "about 9,216 per sensor"},
+                            RaysKey{"direct_sun_rays", &o.direct_sun_rays, nullptr}})
+        if (const auto n = r.integer(k.key)) {
+            if (!(AnnualOptions::valid_direct_rays(*n) || (k.zero != nullptr && *n == 0)))
+                r.fail(k.key, std::string("must be the square of an even number, 4 to 4096 (4, 16, 36, 64, ...)") +
+                                  (k.zero != nullptr ? std::string(", or 0 for ") + k.zero : "") + ", got " +
+                                  std::to_string(*n));
+            if (!o.shadow_rays()) r.fail(k.key, "is for direct = \"shadow_rays\"");
+            *k.rays = static_cast<int>(*n);
         }
     if (const auto year = r.integer("year")) {
         if (*year < 1900 || *year > 2200) r.fail("year", "must lie in 1900 to 2200");

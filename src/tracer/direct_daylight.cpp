@@ -202,6 +202,9 @@ public:
     }
 
 private:
+    // Cell c's Philox key: its detector above any cell index.
+    std::uint64_t key(std::size_t c) const { return (static_cast<std::uint64_t>(det_) << 40) | c; }
+
     // +1: the whole region lies in front of the cell's plane, -1: behind it, 0: across it.
     static int facing(const Region& r, const Vec3& n_sky) {
         const auto [lo, hi] = r.cos_range(n_sky);
@@ -226,7 +229,7 @@ private:
     StrataSum patch(std::size_t c, std::uint32_t first, const Entry& entry, const Vec3& n, const Vec3& n_sky) {
         StrataSum sum;
         const int side = entry.side;
-        const std::uint64_t k = (static_cast<std::uint64_t>(det_) << 40) | c;
+        const std::uint64_t k = key(c);
         for (int a = 0; a < side; ++a)
             for (int b = 0; b < side; ++b) {
                 const auto w = sampler_.block(k, first + static_cast<std::uint32_t>(a * side + b));
@@ -252,8 +255,9 @@ private:
     // the penumbra's rays errs far less than they do. A points sensor first looks along
     // five fixed rays, to the disc's centre and four points of its rim: where all five are
     // blocked or all pass, so does the whole disc (but for an edge that cuts the disc
-    // between them), and the value is exact (their mean transmittance); where they differ, the disc is cut, and its
-    // rays tell how much (penumbra). An illuminance grid's cell samples its area and the disc together.
+    // between them), and the value is exact (their mean transmittance); where they differ,
+    // the disc is cut, and its rays tell how much (penumbra). An illuminance grid's cell
+    // samples its area and the disc together.
     StrataSum disc(std::size_t c, std::uint32_t first, const Sun& sun, const Vec3& n) {
         const double sin_half = std::sqrt(1.0 - targets_.cos_half_sun * targets_.cos_half_sun);
         const double cos_axis = glm::dot(sun.frame.n, n);
@@ -285,7 +289,7 @@ private:
         const int side = targets_.sun_side;
         const double rays = side * side;
         terms_.clear();
-        const std::uint64_t k = (static_cast<std::uint64_t>(det_) << 40) | c;
+        const std::uint64_t k = key(c);
         for (int a = 0; a < side; ++a)
             for (int b = 0; b < side; ++b) {
                 const auto w = sampler_.block(k, first + static_cast<std::uint32_t>(a * side + b));
@@ -323,16 +327,12 @@ private:
 
 }  // namespace
 
-bool valid_direct_rays(int rays) {
-    const int s = side_of(rays);
-    return rays >= 4 && s * s == rays && s % 2 == 0;
-}
-
 void direct_daylight(const Scene& scene, const EmbreeScene& embree, std::size_t det,
                      const DirectDaylightOptions& options, std::size_t first, std::size_t last,
                      DirectCoefficients& out) {
     if (!scene.annual) throw std::logic_error("direct_daylight: not an annual scene");
-    if ((options.sky_rays != 0 && !valid_direct_rays(options.sky_rays)) || !valid_direct_rays(options.sun_rays))
+    if ((options.sky_rays != 0 && !AnnualOptions::valid_direct_rays(options.sky_rays)) ||
+        !AnnualOptions::valid_direct_rays(options.sun_rays))
         throw std::logic_error("direct_daylight: rays per target must be the square of an even number");
     if (scene.band_count() != 1) throw std::logic_error("direct_daylight: annual scenes have one band");
     const Targets targets(scene, options);

@@ -14,6 +14,7 @@
 #include "luxtrace/weather/weather_file.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -44,6 +45,8 @@ struct AnnualOptions {
     int direct_sky_rays = 0;   // per patch and sensor, the square of an even number; 0: about 9,216 per sensor
     int direct_sun_rays = 16;  // per sun and sensor where its disc is cut (points), or always (cells)
     bool shadow_rays() const { return direct == "shadow_rays"; }
+    // The rays' rule (but direct_sky_rays' 0): n x n strata, n even, 4 to 4096 rays.
+    static bool valid_direct_rays(std::int64_t rays);
 };
 
 // One hour of the weather file.

@@ -23,18 +23,15 @@ class EmbreeScene;
 struct Scene;
 
 struct DirectDaylightOptions {
-    // Per sky patch and cell: the square of an even number (n x n strata); 0: about 9,216
+    // Per sky patch and cell, AnnualOptions::valid_direct_rays (n x n strata); 0: about 9,216
     // per cell over all patches (64 per patch at MF 1, 16 at MF 2, 4 at MF 4). The ground
     // takes 256.
     int sky_rays = 0;
-    // Per sun and cell, the square of an even number: an illuminance grid's cell always, a
+    // Per sun and cell, AnnualOptions::valid_direct_rays: an illuminance grid's cell always, a
     // points sensor where five fixed rays find the sun's disc cut (direct_daylight.cpp).
     int sun_rays = 16;
     std::uint64_t seed = 1;
 };
-
-// Whether `rays` is the square of an even number (the options' rule).
-bool valid_direct_rays(int rays);
 
 // Cells [first, last) of Scene::detectors[det] (an annual scene's illuminance or points
 // grid) into `out`, which must be sized for the detector's cells (out.resize). Spread over

@@ -4,7 +4,7 @@
 // general material's specular transmittance) is what the photon tracer counts as direct
 // (tracer.hpp, Photon::direct), so a shadow ray passes such surfaces times their
 // transmittance at its incidence and stops at any other. Used for the renderer's direct
-// light and for the direct daylight at sensor points (direct/direct_coefficients.hpp).
+// light and for the direct daylight at sensor points (direct_daylight.hpp).
 #include "luxtrace/core/math.hpp"
 
 #include <limits>
@@ -20,7 +20,6 @@ public:
     // this.
     ShadowRay(const Scene& scene, const EmbreeScene& embree, double step_m);
 
-    int bands() const { return bands_; }
     // The share of each band (share[0 .. bands()-1]) that the path o + t d,
     // t_near <= t < t_far, lets through; false, with every share 0, if a surface stops it.
     bool passes(const Vec3& o, const Vec3& d, double t_far, double* share, double t_near = 0.0) const;

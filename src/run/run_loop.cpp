@@ -107,14 +107,6 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
     info_.photon_layout = kPhotonLayout;
     info_.load_s = opt.load_s;  // this rank's; the result takes the slowest rank's (write)
     info_.bvh_build_s = embree_.build_s();
-    if (scene.annual && scene.annual->options.shadow_rays()) {
-        const double d0 = comm.wtime();
-        annual_direct_ = annual_direct_pass(scene, embree_, comm);
-        if (show_)
-            out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
-                 << comm.wtime() - d0 << " s\n"
-                 << std::defaultfloat << std::flush;
-    }
 }
 
 void RunLoop::check_writable() {
@@ -136,6 +128,15 @@ void RunLoop::check_writable() {
 }
 
 void RunLoop::trace() {
+    // Once the output is known to be writable, and before the tracing's clock starts.
+    if (scene_.annual && scene_.annual->options.shadow_rays()) {
+        const double d0 = comm_.wtime();
+        annual_direct_ = annual_direct_pass(scene_, embree_, comm_);
+        if (show_)
+            out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
+                 << comm_.wtime() - d0 << " s\n"
+                 << std::defaultfloat << std::flush;
+    }
     fence_ = fence_step_;
     if (fence_step_ > 0) work_.set_fence(fence_);
     TraceOptions topt;

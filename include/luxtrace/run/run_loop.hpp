@@ -3,7 +3,8 @@
 // openmc_next_batch); run_simulation (simulation.hpp) calls them in this order:
 //
 //   restore    (constructor) a checkpoint's tallies, traced ranges and history; the work plan
-//   trace      the rank's tracing threads start
+//   trace      the annual grids' direct light by shadow rays (if asked), then the rank's
+//              tracing threads start
 //   snapshot   they park at chunk boundaries; the store hands over the counts added since
 //              the previous reduction, and the rank's ReductionMessage is encoded
 //   reduce     each rank receives the sum of the sides it owns, rank 0 also of the

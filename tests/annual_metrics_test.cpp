@@ -3,9 +3,12 @@
 #include "luxtrace/stats/annual_metrics.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <stdexcept>
 
@@ -112,6 +115,110 @@ TEST(AnnualMetrics, BadSizesAreTheCallersBug) {
     EXPECT_THROW(annual_metrics(s, h), std::invalid_argument);
     s.direct_lx.pop_back();
     EXPECT_THROW(annual_metrics(s, all_hours(2)), std::invalid_argument);
+}
+
+// A grid's metrics gathered block by block (AnnualMetricSums, issue 37): every figure the
+// same, to the bit, whatever the blocks and the order they come in. Area weights in
+// thirds and sevenths, and values on the thresholds, so that a rounding could show.
+AnnualSeries random_series(std::size_t hours, std::size_t sensors, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> pick(0, 6);
+    const double levels[] = {50.0, 100.0, 299.0, 300.0, 750.0, 3000.0, 3001.0};
+    std::vector<double> total(hours * sensors), direct(hours * sensors);
+    for (std::size_t i = 0; i < total.size(); ++i) {
+        total[i] = levels[pick(rng)] * (1.0 + 0.01 * pick(rng));
+        direct[i] = pick(rng) > 3 ? 1000.0 : 999.0;
+    }
+    return series_of(sensors, total, direct);
+}
+
+AnnualSeries columns(const AnnualSeries& s, std::size_t first, std::size_t count) {
+    std::vector<double> total, direct;
+    for (std::size_t h = 0; h < s.hours; ++h)
+        for (std::size_t c = first; c < first + count; ++c) {
+            total.push_back(s.total_lx[h * s.sensors + c]);
+            direct.push_back(s.direct_lx[h * s.sensors + c]);
+        }
+    return series_of(count, total, direct);
+}
+
+std::vector<double> every_figure(const AnnualMetrics& m) {
+    std::vector<double> out;
+    for (const auto* v : {&m.sensors.da, &m.sensors.continuous_da, &m.sensors.udi_fell_short, &m.sensors.udi_useful,
+                          &m.sensors.udi_exceeded, &m.sensors.ase_hours})
+        out.insert(out.end(), v->begin(), v->end());
+    for (const double x :
+         {m.sda, m.ase, m.mean_da, m.mean_continuous_da, m.mean_udi_fell_short, m.mean_udi_useful, m.mean_udi_exceeded})
+        out.push_back(x);
+    out.insert(out.end(), m.en17037_target_hours.begin(), m.en17037_target_hours.end());
+    out.insert(out.end(), m.en17037_minimum_hours.begin(), m.en17037_minimum_hours.end());
+    return out;
+}
+
+TEST(AnnualMetricSums, BlocksInAnyOrderGiveTheWholeGridsFigures) {
+    constexpr std::size_t kHours = 60, kSensors = 37;
+    const AnnualSeries s = random_series(kHours, kSensors, 5);
+    AnnualHours h = all_hours(kHours);
+    for (std::size_t i = 0; i < kHours; i += 7) h.occupied[i] = 0;
+    for (std::size_t i = 0; i < kHours; i += 5) h.en17037_hours[i] = 0;
+    for (std::size_t c = 0; c < kSensors; ++c)
+        h.area_weights.push_back(c % 3 == 0 ? 1.0 / 3 : c % 7 == 0 ? 1.0 / 7 : 1.0);
+    const std::vector<double> whole = every_figure(annual_metrics(s, h));
+    for (const std::size_t block : {1u, 5u, 16u, 36u}) {
+        AnnualMetricSums sums(h, kSensors);
+        std::vector<std::size_t> firsts;
+        for (std::size_t first = 0; first < kSensors; first += block) firsts.push_back(first);
+        for (auto it = firsts.rbegin(); it != firsts.rend(); ++it)  // the last block first
+            sums.add(columns(s, *it, std::min(block, kSensors - *it)), *it);
+        const std::vector<double> blocked = every_figure(sums.metrics());
+        ASSERT_EQ(blocked.size(), whole.size());
+        for (std::size_t i = 0; i < whole.size(); ++i)
+            EXPECT_EQ(std::memcmp(&blocked[i], &whole[i], sizeof(double)), 0) << "block " << block << ", figure " << i;
+    }
+}
+
+TEST(AnnualMetricSums, TheBlockedEstimateIsTheSameOnOneCoreAndOnMany) {
+    // Each sensor's draws from its own stream (as AnnualCoefficients' are): the estimate,
+    // the centre and every replicate must not depend on the blocks or the cores.
+    constexpr std::size_t kHours = 80, kSensors = 45;
+    const AnnualHours h = all_hours(kHours);
+    const AnnualSeries truth = random_series(kHours, kSensors, 9);
+    const AnnualBlockDraws draws = [&](std::size_t first, std::size_t count, const AnnualSink& sink) {
+        for (int r = -2; r < kAnnualReplicates; ++r) {
+            AnnualSeries s = columns(truth, first, count);
+            for (std::size_t c = 0; c < count; ++c) {
+                std::mt19937_64 rng((first + c) * 1000 + static_cast<std::uint64_t>(r + 2));
+                std::normal_distribution<double> z;
+                for (std::size_t hour = 0; hour < kHours; ++hour) s.total_lx[hour * count + c] *= 1.0 + 0.05 * z(rng);
+            }
+            const AnnualDraw what = r == -2   ? AnnualDraw::estimate
+                                    : r == -1 ? AnnualDraw::centre
+                                              : AnnualDraw::replicate;
+            sink(what, static_cast<std::size_t>(std::max(r, 0)), s);
+        }
+    };
+    auto figures = [&](std::size_t block, int cores) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(cores));
+        const AnnualEstimate e = estimate_annual_metrics(draws, kSensors, block, h);
+        std::vector<double> out = every_figure(e.value);
+        for (const AnnualMetrics* m : {&e.sigma, &e.bias}) {
+            const std::vector<double> x = every_figure(*m);
+            out.insert(out.end(), x.begin(), x.end());
+        }
+        return out;
+    };
+    const std::vector<double> one = figures(kSensors, 1);
+    for (const auto& [block, cores] : {std::pair<std::size_t, int>{4, 1}, {4, 2}, {7, 2}, {1, 2}}) {
+        const std::vector<double> other = figures(block, cores);
+        ASSERT_EQ(other.size(), one.size());
+        for (std::size_t i = 0; i < one.size(); ++i)
+            EXPECT_EQ(std::memcmp(&other[i], &one[i], sizeof(double)), 0)
+                << "block " << block << ", " << cores << " cores, figure " << i;
+    }
+    // And the errors are there: the replicates differ.
+    const std::vector<double> sigma(one.begin() + static_cast<std::ptrdiff_t>(one.size() / 3),
+                                    one.begin() + static_cast<std::ptrdiff_t>(2 * one.size() / 3));
+    EXPECT_GT(*std::max_element(sigma.begin(), sigma.end()), 0.0);
 }
 
 TEST(En17037DaylightHours, TheBrightestHalfOfTheHoursWithDaylight) {

@@ -49,6 +49,15 @@ int main(int argc, char** argv) {
                      {"shadow_direct_sky_lx_h", "shadow_direct_sky_sigma_lx_h", "shadow_direct_sun_lx_h",
                       "shadow_direct_sun_sigma_lx_h", "illuminance_lx", "illuminance_sigma_lx", "direct_sun_lx"})
                     reals.push_back("/annual/detectors/" + d + "/" + n);
+        // The metrics and their replicates' errors, made block by block on every core
+        // (issue 37): the same bits on any thread or rank count.
+        for (const std::string& d :
+             a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
+            for (const char* m : {"da", "continuous_da", "udi_fell_short", "udi_useful", "udi_exceeded", "ase_hours"})
+                for (const char* suffix : {"", "_sigma", "_bias"}) {
+                    const std::string n = "/annual/detectors/" + d + "/" + m + suffix;
+                    if (a.has(n)) reals.push_back(n);
+                }
         int differ = 0;
         for (const std::string& n : reals) {
             const auto va = a.f64(n), vb = b.f64(n);

@@ -139,6 +139,11 @@ AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, d
         }
         hours_.push_back(h);
     }
+    weights_.resize(luminance_.size());
+    for (std::size_t i = 0; i < luminance_.size(); ++i) {
+        const double year = yearly_[i % sky_entries()];
+        weights_[i] = year > 0.0 ? luminance_[i] / year : 0.0;
+    }
 }
 
 void AnnualSky::add_sky_row(AnnualHour& h, std::size_t index, const weather::WeatherHour& w, const SunPosition& sun,

@@ -1,13 +1,12 @@
 #include "luxtrace/estimate/annual_coefficients.hpp"
 
+#include "luxtrace/sampler/philox_bits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace luxtrace {
 
@@ -26,17 +25,22 @@ struct AnnualCoefficients::Counts {
     // The photons' n and q hold no direct registration (shadow rays give the direct light):
     // for the estimate their direct count is then 0.
     bool direct_apart = false;
+    std::size_t first = 0;  // the block's first cell: `cell` below counts from it
+
+    Counts(const AnnualGridCounts& g, std::size_t first_cell)
+        : annual(g.annual), layout(g.layout), data(g.data), det(g.det), group_flux_lm(g.group_flux_lm),
+          direct_apart(g.layout.direct_apart(g.det)), first(first_cell) {}
 
     double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
     double n(std::size_t cell, std::size_t group) const {
-        return static_cast<double>(data[layout.detector_n(det, cell, 0, group)]);
+        return static_cast<double>(data[layout.detector_n(det, first + cell, 0, group)]);
     }
     double q(std::size_t cell, std::size_t group) const {
-        return static_cast<double>(data[layout.detector_q(det, cell, 0, group)]);
+        return static_cast<double>(data[layout.detector_q(det, first + cell, 0, group)]);
     }
     double direct(std::size_t cell, std::size_t group) const {
         return layout.direct_scores() && !direct_apart
-                   ? static_cast<double>(data[layout.detector_direct(det, cell, group)])
+                   ? static_cast<double>(data[layout.detector_direct(det, first + cell, group)])
                    : 0.0;
     }
     // Sky entry e's group (AnnualSky's sky vector order: the patches, then the ground), and
@@ -59,19 +63,70 @@ struct AnnualCoefficients::Counts {
     }
 };
 
-AnnualCoefficients::AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout,
-                                       std::span<const std::uint64_t> data, std::size_t det, std::size_t cells,
-                                       double per_count, std::uint64_t photons, std::span<const double> group_flux_lm,
-                                       const DirectCoefficients* direct)
-    : annual_(annual), shadow_(direct), cells_(cells),
-      inv_photons_(photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0), per_count_(per_count) {
-    if (shadow_ != nullptr && (shadow_->cells != cells || shadow_->entries != annual.sky->sky_entries() ||
-                               shadow_->suns != annual.sky->suns().size()))
-        throw std::logic_error("AnnualCoefficients: direct coefficients of another grid or sky");
-    const Counts counts{annual, layout, data, det, group_flux_lm, layout.direct_apart(det)};
+// Per sun: the emitting suns of the same hour on the day before and after (their positions
+// within half a degree: the same shadows and nearly the same reflections), and this sun's
+// share of the photons of the three, pool_share = Phi_s / (Phi_s + sum Phi_o) (the groups'
+// fluxes decide their photons); neighbour_share: of the neighbours' photons alone.
+struct AnnualCoefficients::SunPools {
+    std::vector<std::vector<std::size_t>> pool;
+    std::vector<double> pool_share, neighbour_share;
+
+    explicit SunPools(const Counts& c) {
+        const AnnualSky& sky = *c.annual.sky;
+        const std::size_t suns = sky.suns().size();
+        std::vector<int> sun_at_hour(sky.hours().size(), -1);
+        for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
+        pool.assign(suns, {});
+        pool_share.assign(suns, 1.0);
+        neighbour_share.assign(suns, 0.0);
+        for (std::size_t s = 0; s < suns; ++s) {
+            if (!c.sun_emits(s)) continue;
+            const std::size_t h = sky.suns()[s];
+            double near_flux = 0.0;
+            for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
+                if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
+                    const std::size_t o = static_cast<std::size_t>(sun_at_hour[other]);
+                    if (c.sun_emits(o)) {
+                        pool[s].push_back(o);
+                        near_flux += c.flux(c.sun_group(o));
+                    }
+                }
+            const double flux = c.flux(c.sun_group(s));
+            neighbour_share[s] = near_flux > 0.0 ? flux / near_flux : 0.0;
+            pool_share[s] = flux / (flux + near_flux);
+        }
+    }
+};
+
+AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid)
+    : AnnualCoefficients(grid, 0, grid.cells, dark_rates(grid)) {}
+
+AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t first, std::size_t count,
+                                       const AnnualDarkRates& dark)
+    : annual_(grid.annual), shadow_(grid.direct != nullptr), first_(first), cells_(count),
+      inv_photons_(grid.photons > 0 ? 1.0 / static_cast<double>(grid.photons) : 0.0), per_count_(grid.per_count),
+      dark_(dark) {
+    const AnnualSky& sky = *annual_.sky;
+    if (first + count > grid.cells) throw std::logic_error("AnnualCoefficients: a block beyond the grid");
+    if (const DirectCoefficients* d = grid.direct) {
+        if (d->cells != grid.cells || d->entries != sky.sky_entries() || d->suns != sky.suns().size())
+            throw std::logic_error("AnnualCoefficients: direct coefficients of another grid or sky");
+        // The block's columns of the [entry or sun][cell] tables.
+        auto columns = [&](const std::vector<double>& all, std::size_t rows, std::vector<double>& out) {
+            out.resize(rows * count);
+            for (std::size_t r = 0; r < rows; ++r) std::copy_n(&all[r * grid.cells + first], count, &out[r * count]);
+        };
+        columns(d->sky_lx, d->entries, shadow_sky_lx_);
+        columns(d->sky_var, d->entries, shadow_sky_var_);
+        columns(d->sun_lx, d->suns, shadow_sun_lx_);
+        columns(d->sun_var, d->suns, shadow_sun_var_);
+    }
+    const Counts counts(grid, first);
     sky_coefficients(counts);
-    pool_suns(counts);
-    dark_rates(counts);
+    SunPools pools(counts);
+    pool_ = std::move(pools.pool);
+    pool_share_ = std::move(pools.pool_share);
+    neighbour_share_ = std::move(pools.neighbour_share);
     sun_priors(counts);
     sun_coefficients(counts);
 }
@@ -104,41 +159,11 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
             const double n = c.n(cell, g);
             const double qq = c.q(cell, g);
             const std::size_t i = e * cells_ + cell;
-            sky_[i] = per_count_ * n + (shadow_ != nullptr ? shadow_->sky_lx[i] : 0.0);
+            sky_[i] = per_count_ * n + (shadow_ ? shadow_sky_lx_[i] : 0.0);
             sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
             // The replicates' variance: the plain counts' (no floor: see sun_coefficients).
             sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
         }
-    }
-}
-
-// Per sun: the emitting suns of the same hour on the day before and after (their positions
-// within half a degree: the same shadows and nearly the same reflections), and this sun's
-// share of the photons of the three, pool_share_ = Phi_s / (Phi_s + sum Phi_o) (the groups'
-// fluxes decide their photons); neighbour_share_: of the neighbours' photons alone.
-void AnnualCoefficients::pool_suns(const Counts& c) {
-    const AnnualSky& sky = *annual_.sky;
-    const std::size_t suns = sky.suns().size();
-    std::vector<int> sun_at_hour(sky.hours().size(), -1);
-    for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
-    pool_.assign(suns, {});
-    pool_share_.assign(suns, 1.0);
-    neighbour_share_.assign(suns, 0.0);
-    for (std::size_t s = 0; s < suns; ++s) {
-        if (!c.sun_emits(s)) continue;
-        const std::size_t h = sky.suns()[s];
-        double near_flux = 0.0;
-        for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
-            if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
-                const std::size_t o = static_cast<std::size_t>(sun_at_hour[other]);
-                if (c.sun_emits(o)) {
-                    pool_[s].push_back(o);
-                    near_flux += c.flux(c.sun_group(o));
-                }
-            }
-        const double flux = c.flux(c.sun_group(s));
-        neighbour_share_[s] = near_flux > 0.0 ? flux / near_flux : 0.0;
-        pool_share_[s] = flux / (flux + near_flux);
     }
 }
 
@@ -148,17 +173,19 @@ void AnnualCoefficients::pool_suns(const Counts& c) {
 // (sun, cell) pairs of the detector, with half a count of prior: most are true shadows, and
 // their few counts say how rare. The rate per unit of photon share, as a ratio of sums (a
 // mean of ratios would weigh a weak sun's rare count by its tiny share).
-void AnnualCoefficients::dark_rates(const Counts& c) {
+AnnualDarkRates AnnualCoefficients::dark_rates(const AnnualGridCounts& grid) {
+    const Counts c(grid, 0);
+    const SunPools p(c);
     auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
         double m = 0.0;
-        for (const std::size_t o : pool_[s]) m += direct ? c.sun_direct(o, cell) : c.n(cell, c.sun_group(o));
+        for (const std::size_t o : p.pool[s]) m += direct ? c.sun_direct(o, cell) : c.n(cell, c.sun_group(o));
         return m;
     };
     double dark_n = 0.5, dark_d = 0.5, dark_share = 0.0, dark_share_d = 0.0;
-    for (std::size_t s = 0; s < pool_.size(); ++s) {
-        if (!c.sun_emits(s) || pool_[s].empty()) continue;
-        const double weight = neighbour_share_[s] * static_cast<double>(pool_[s].size());
-        for (std::size_t cell = 0; cell < cells_; ++cell) {
+    for (std::size_t s = 0; s < p.pool.size(); ++s) {
+        if (!c.sun_emits(s) || p.pool[s].empty()) continue;
+        const double weight = p.neighbour_share[s] * static_cast<double>(p.pool[s].size());
+        for (std::size_t cell = 0; cell < grid.cells; ++cell) {
             if (near_sum(s, cell, false) == 0.0) {
                 dark_n += c.n(cell, c.sun_group(s));
                 dark_share += weight;
@@ -170,8 +197,10 @@ void AnnualCoefficients::dark_rates(const Counts& c) {
         }
     }
     // Per neighbour and unit share.
-    dark_lambda_n_ = dark_share > 0.0 ? dark_n / dark_share : 0.5;
-    dark_lambda_d_ = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
+    AnnualDarkRates r;
+    r.total = dark_share > 0.0 ? dark_n / dark_share : 0.5;
+    r.direct = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
+    return r;
 }
 
 // The replicates' centre for a sun's interreflected count (empirical Bayes): light too rare
@@ -246,18 +275,17 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // than every threshold, so the lumps decide the threshold figures' noise bias
             // (docs/VALIDATION.md "Annual daylight": UDI useful's halved).
             // With shadow rays the photons' d is 0 (direct_apart) and the direct sun theirs.
-            const double shadow_sun = shadow_ != nullptr ? shadow_->sun_lx[i] : 0.0;
+            const double shadow_sun = shadow_ ? shadow_sun_lx_[i] : 0.0;
             sun_[i] = per_count_ * (d + m_i) + shadow_sun;
-            direct_[i] = shadow_ != nullptr ? shadow_sun : per_count_ * d;
+            direct_[i] = shadow_ ? shadow_sun : per_count_ * d;
             // The hour's errors. Direct: its count's variance, taken from the pooled mean (a
             // few-count cell's own count is a poor guess of it: 0 says "never"). Total: that
             // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
             // neighbours all read nothing, the detector's dark mean (never a variance of 0 for
             // a count that might have been 1).
-            direct_var_[i] = shadow_ != nullptr ? shadow_->sun_var[i]
-                                                : k2 * (m_d > 0.0 ? m_d : dark_lambda_d_ * dark_scale);
+            direct_var_[i] = shadow_ ? shadow_sun_var_[i] : k2 * (m_d > 0.0 ? m_d : dark_.direct * dark_scale);
             const double total_var = m_d + share * m_v;
-            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_lambda_n_ * dark_scale);
+            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_.total * dark_scale);
             // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
             // count around its empirical-Bayes centre (sun_priors), pooled like the estimate.
             // No dark floor here: over many hours the plain counts are an unbiased variance,
@@ -298,18 +326,38 @@ void AnnualCoefficients::pool(const std::vector<double>& indirect, const std::ve
     }
 }
 
+namespace {
+
+// row[c] = sum over the entries with weight > 0 of w^power x[e * cells + c], the entries in
+// order: the same sums whatever the vector width (no fused multiply-add is asked for).
+template <int kPower>
+inline void sky_sum(const double* weight, const std::size_t* entries, std::size_t n, const double* x, std::size_t cells,
+                    double* row) {
+    std::fill(row, row + cells, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t e = entries[i];
+        if (!(weight[e] > 0.0)) continue;
+        const double w = kPower == 1 ? weight[e] : weight[e] * weight[e];
+        const double* c = &x[e * cells];
+        for (std::size_t cell = 0; cell < cells; ++cell) row[cell] += w * c[cell];
+    }
+}
+
+template <int kPower>
+__attribute__((target("avx2"))) void sky_sum_avx2(const double* weight, const std::size_t* entries, std::size_t n,
+                                                  const double* x, std::size_t cells, double* row) {
+    sky_sum<kPower>(weight, entries, n, x, cells, row);
+}
+
+}  // namespace
+
 void AnnualCoefficients::sky_row(const AnnualHour& hour, const std::vector<double>& x, int power,
                                  std::vector<double>& row) const {
-    const AnnualSky& s = *annual_.sky;
-    const std::vector<double>& yearly = s.yearly_luminance();
-    const double* lum = s.sky_vector(hour.row);
-    std::fill(row.begin(), row.end(), 0.0);
-    for (const std::size_t e : entries_) {
-        if (!(lum[e] > 0.0 && yearly[e] > 0.0)) continue;
-        const double w = power == 1 ? lum[e] / yearly[e] : (lum[e] / yearly[e]) * (lum[e] / yearly[e]);
-        const double* c = &x[e * cells_];
-        for (std::size_t cell = 0; cell < cells_; ++cell) row[cell] += w * c[cell];
-    }
+    // Most of the post-processing's time: AVX2's four lanes where the CPU has them.
+    static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
+    const double* weight = annual_.sky->sky_weights(hour.row);
+    auto f = power == 1 ? (avx2 ? sky_sum_avx2<1> : sky_sum<1>) : (avx2 ? sky_sum_avx2<2> : sky_sum<2>);
+    f(weight, entries_.data(), entries_.size(), x.data(), cells_, row.data());
 }
 
 void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vector<double>& sun,
@@ -320,27 +368,23 @@ void AnnualCoefficients::combine(const std::vector<double>& sky, const std::vect
     out.sensors = cells_;
     out.total_lx.assign(hours * cells_, 0.0);
     out.direct_lx.assign(hours * cells_, 0.0);
-    // The hours are independent rows: spread over the cores (the same sums, in the same
-    // order within each row, whatever the split).
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hours, 64), [&](const tbb::blocked_range<std::size_t>& r) {
-        std::vector<double> row(cells_);
-        for (std::size_t h = r.begin(); h < r.end(); ++h) {
-            const AnnualHour& hour = s.hours()[h];
-            if (!hour.daylit) continue;
-            sky_row(hour, sky, 1, row);
-            double* total = &out.total_lx[h * cells_];
-            if (hour.sun >= 0) {
-                const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
-                const double* d = &direct[static_cast<std::size_t>(hour.sun) * cells_];
-                double* dir = &out.direct_lx[h * cells_];
-                for (std::size_t cell = 0; cell < cells_; ++cell) {
-                    row[cell] += c[cell];
-                    dir[cell] = d[cell];
-                }
+    std::vector<double> row(cells_);
+    for (std::size_t h = 0; h < hours; ++h) {
+        const AnnualHour& hour = s.hours()[h];
+        if (!hour.daylit) continue;
+        sky_row(hour, sky, 1, row);
+        double* total = &out.total_lx[h * cells_];
+        if (hour.sun >= 0) {
+            const double* c = &sun[static_cast<std::size_t>(hour.sun) * cells_];
+            const double* d = &direct[static_cast<std::size_t>(hour.sun) * cells_];
+            double* dir = &out.direct_lx[h * cells_];
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                row[cell] += c[cell];
+                dir[cell] = d[cell];
             }
-            for (std::size_t cell = 0; cell < cells_; ++cell) total[cell] = row[cell];
         }
-    });
+        for (std::size_t cell = 0; cell < cells_; ++cell) total[cell] = row[cell];
+    }
 }
 
 void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) const {
@@ -352,7 +396,7 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     sigma.total_lx.assign(estimate.total_lx.size(), 0.0);
     sigma.direct_lx.assign(estimate.direct_lx.size(), 0.0);
     std::vector<double> row(cells_), direct, direct_var;
-    if (shadow_ != nullptr) direct.resize(cells_), direct_var.resize(cells_);
+    if (shadow_) direct.resize(cells_), direct_var.resize(cells_);
     for (std::size_t h = 0; h < s.hours().size(); ++h) {
         const AnnualHour& hour = s.hours()[h];
         if (!hour.daylit) continue;
@@ -367,7 +411,7 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
                 dsig[cell] = (std::sqrt(direct_var_[sun * cells_ + cell]));
             }
         }
-        if (shadow_ == nullptr) {
+        if (!shadow_) {
             for (std::size_t cell = 0; cell < cells_; ++cell) {
                 const double e = e_h[cell];
                 sig[cell] = (std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_)));
@@ -386,10 +430,10 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
 }
 
 void AnnualCoefficients::direct_hour(const AnnualHour& hour, bool variance, std::vector<double>& out) const {
-    sky_row(hour, variance ? shadow_->sky_var : shadow_->sky_lx, variance ? 2 : 1, out);
+    sky_row(hour, variance ? shadow_sky_var_ : shadow_sky_lx_, variance ? 2 : 1, out);
     if (hour.sun < 0) return;
     const std::size_t s = static_cast<std::size_t>(hour.sun) * cells_;
-    const std::vector<double>& sun = variance ? shadow_->sun_var : shadow_->sun_lx;
+    const std::vector<double>& sun = variance ? shadow_sun_var_ : shadow_sun_lx_;
     for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] += sun[s + cell];
 }
 
@@ -407,7 +451,7 @@ void AnnualCoefficients::centre(AnnualSeries& out) const {
     std::vector<double> indirect(sun_.size()), direct(direct_.size()), sun;
     for (std::size_t i = 0; i < sun_.size(); ++i) {
         indirect[i] = per_count_ * rep_indirect_mu_[i];
-        direct[i] = shadow_ != nullptr ? shadow_->sun_lx[i] : per_count_ * rep_direct_mu_[i];
+        direct[i] = shadow_ ? shadow_sun_lx_[i] : per_count_ * rep_direct_mu_[i];
     }
     pool(indirect, direct, sun);
     combine(sky_, sun, direct, out);
@@ -415,36 +459,38 @@ void AnnualCoefficients::centre(AnnualSeries& out) const {
 
 void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const {
     // A fresh run's coefficients: each count redrawn as a Poisson count of its variance,
-    // mu = var / k^2, around its centre, from (seed, replicate): a few-count sun hour is
-    // mostly nothing and now and then a whole count, as a run's noise is, not a small normal
-    // wobble that crosses a threshold every time. Large counts are drawn as normal (the same
-    // to 1/sqrt(mu)).
-    std::mt19937_64 rng(seed ^ (0x9E3779B97F4A7C15ull * (replicate + 1)));
-    std::normal_distribution<double> normal;
+    // mu = var / k^2, around its centre: a few-count sun hour is mostly nothing and now and
+    // then a whole count, as a run's noise is, not a small normal wobble that crosses a
+    // threshold every time. Large counts are drawn as normal (the same to 1/sqrt(mu)).
     const double k = per_count_, k2 = k * k;
-    auto draw = [&](double var) {  // zero-mean noise of variance var
-        if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
-        const double mu = var / k2;
-        if (mu > 1000.0) return k * std::sqrt(mu) * normal(rng);
-        return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(rng)) - mu);
-    };
-    // The shadow rays' direct light: normal around its value with its own variance.
-    auto shadow_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(rng) : 0.0; };
-    std::vector<double> sky(sky_);
-    for (const std::size_t e : entries_)
-        for (std::size_t cell = 0; cell < cells_; ++cell) {
+    std::vector<double> sky(sky_), indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
+    const std::size_t suns = pool_.size();
+    for (std::size_t cell = 0; cell < cells_; ++cell) {
+        // The cell's own stream: (seed, replicate, its index in the grid).
+        PhiloxBits bits(seed, (replicate << 40) | (first_ + cell));
+        std::normal_distribution<double> normal;
+        auto draw = [&](double var) {  // zero-mean noise of variance var
+            if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
+            const double mu = var / k2;
+            if (mu > 1000.0) return k * std::sqrt(mu) * normal(bits);
+            return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(bits)) - mu);
+        };
+        // The shadow rays' direct light: normal around its value with its own variance.
+        auto shadow_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
+        for (const std::size_t e : entries_) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
-            if (shadow_ != nullptr) sky[i] += shadow_draw(shadow_->sky_var[i]);
+            if (shadow_) sky[i] += shadow_draw(shadow_sky_var_[i]);
         }
-    // A sun: its direct count around its pooled mean, its indirect count too, then pooled
-    // over the days as the estimate is.
-    std::vector<double> indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
-    for (std::size_t i = 0; i < sun_.size(); ++i) {
-        const double mu_d = rep_direct_mu_[i], mu_i = rep_indirect_mu_[i], var_i = rep_indirect_var_[i];
-        if (shadow_ != nullptr) direct[i] = shadow_->sun_lx[i] + shadow_draw(shadow_->sun_var[i]);
-        else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
-        if (mu_i != 0.0 || var_i > 0.0) indirect[i] = k * mu_i + draw(k2 * var_i);
+        // A sun: its direct count around its pooled mean, its indirect count too, then
+        // pooled over the days as the estimate is.
+        for (std::size_t s = 0; s < suns; ++s) {
+            const std::size_t i = s * cells_ + cell;
+            const double mu_d = rep_direct_mu_[i], mu_i = rep_indirect_mu_[i], var_i = rep_indirect_var_[i];
+            if (shadow_) direct[i] = shadow_sun_lx_[i] + shadow_draw(shadow_sun_var_[i]);
+            else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
+            if (mu_i != 0.0 || var_i > 0.0) indirect[i] = k * mu_i + draw(k2 * var_i);
+        }
     }
     pool(indirect, direct, sun);
     combine(sky, sun, direct, out);

@@ -4,11 +4,28 @@
 #include "luxtrace/estimate/estimate_scene.hpp"
 #include "luxtrace/scene/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 namespace luxtrace {
+
+namespace {
+
+// The cells of a block of the post-processing: its coefficients (about 30 doubles per sun
+// and cell) stay in the core's cache while its hours are summed.
+constexpr std::size_t kBlockCells = 32;
+
+// A block's series (hours x its cells) into the grid's, from cell `first`.
+void place_block(const AnnualSeries& block, std::size_t first, AnnualSeries& grid) {
+    for (std::size_t h = 0; h < block.hours; ++h) {
+        std::copy_n(&block.total_lx[h * block.sensors], block.sensors, &grid.total_lx[h * grid.sensors + first]);
+        std::copy_n(&block.direct_lx[h * block.sensors], block.sensors, &grid.direct_lx[h * grid.sensors + first]);
+    }
+}
+
+}  // namespace
 
 AnnualHours annual_hours(const AnnualSetup& annual) {
     const std::vector<AnnualHour>& hours = annual.sky->hours();
@@ -29,9 +46,11 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     const bool shadow = det < direct.size() && direct[det].cells > 0;
     if (scene.annual->options.shadow_rays() != shadow)
         throw std::logic_error("estimate_annual_grid: direct coefficients missing or not asked for");
-    const AnnualCoefficients c(*scene.annual, layout, data, det, static_cast<std::size_t>(d.cells()),
-                               e0 * d.value_per_lm(), photons, light_group_flux_lm(scene),
-                               shadow ? &direct[det] : nullptr);
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const std::size_t cells = static_cast<std::size_t>(d.cells());
+    const AnnualGridCounts grid{*scene.annual, layout,     data,
+                                det,           cells,      e0 * d.value_per_lm(),
+                                photons,       group_flux, shadow ? &direct[det] : nullptr};
     const AnnualHours hours = annual_hours(*scene.annual);
     AnnualDetectorEstimate e;
     if (shadow) {  // every coefficient's weights sum to 1 over the year (annual_sky.hpp)
@@ -49,19 +68,38 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
         year(dc.sky_lx, dc.sky_var, e.direct_sky_lx_h, e.direct_sky_sigma_lx_h);
         year(dc.sun_lx, dc.sun_var, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
     }
-    if (series) c.series(e.value, e.sigma);
-    if (replicates > 0) {
-        const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
-        const AnnualReplicates draw = [&](AnnualDraw what, std::size_t r, AnnualSeries& s) {
-            if (what == AnnualDraw::estimate) c.estimate(s);
-            if (what == AnnualDraw::centre) c.centre(s);
-            if (what == AnnualDraw::replicate) c.replicate(seed, r, s);
-        };
-        e.metrics = estimate_annual_metrics(draw, hours, {}, replicates);
-    } else {
-        if (!series) c.estimate(e.value);
-        e.metrics.value = annual_metrics(e.value, hours);
+    if (series) {
+        for (AnnualSeries* x : {&e.value, &e.sigma}) {
+            x->hours = hours.occupied.size();
+            x->sensors = cells;
+            x->total_lx.assign(x->hours * cells, 0.0);
+            x->direct_lx.assign(x->hours * cells, 0.0);
+        }
     }
+    // Block by block on every core: each block's coefficients, its hourly series and its
+    // replicates' (annual_metrics.hpp).
+    const AnnualDarkRates dark = AnnualCoefficients::dark_rates(grid);
+    const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
+    const AnnualBlockDraws draws = [&](std::size_t first, std::size_t count, const AnnualSink& sink) {
+        const AnnualCoefficients c(grid, first, count, dark);
+        AnnualSeries s, sigma;
+        if (series) {
+            c.series(s, sigma);
+            place_block(s, first, e.value);
+            place_block(sigma, first, e.sigma);
+        } else {
+            c.estimate(s);
+        }
+        sink(AnnualDraw::estimate, 0, s);
+        if (replicates == 0) return;
+        c.centre(s);
+        sink(AnnualDraw::centre, 0, s);
+        for (int r = 0; r < replicates; ++r) {
+            c.replicate(seed, static_cast<std::uint64_t>(r), s);
+            sink(AnnualDraw::replicate, static_cast<std::size_t>(r), s);
+        }
+    };
+    e.metrics = estimate_annual_metrics(draws, cells, kBlockCells, hours, {}, replicates);
     return e;
 }
 

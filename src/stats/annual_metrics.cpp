@@ -1,7 +1,10 @@
 #include "luxtrace/stats/annual_metrics.hpp"
 
+#include "luxtrace/core/parallel.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <numeric>
 #include <stdexcept>
@@ -60,72 +63,105 @@ std::vector<std::uint8_t> en17037_daylight_hours(std::span<const double> outdoor
     return mask;
 }
 
-AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t) {
-    const std::size_t n_h = series.hours, n_s = series.sensors;
-    require(n_s > 0, "no sensors");
-    require(series.total_lx.size() == n_h * n_s && series.direct_lx.size() == n_h * n_s,
-            "total and direct illuminance need hours x sensors values");
-    require(hours.occupied.size() == n_h && hours.en17037_hours.size() == n_h, "the hour masks need one value an hour");
-    require(hours.area_weights.empty() || hours.area_weights.size() == n_s, "area weights need one value a sensor");
-    std::vector<double> w = hours.area_weights;
-    if (w.empty()) w.assign(n_s, 1.0);
-    const double w_sum = std::accumulate(w.begin(), w.end(), 0.0);
-    require(w_sum > 0.0, "the area weights sum to zero");
+AnnualMetricSums::AnnualMetricSums(const AnnualHours& hours, std::size_t sensors, const AnnualThresholds& t)
+    : hours_(hours), t_(t), sensors_(sensors), target_units_(kEn17037Levels.size() * hours.occupied.size()),
+      minimum_units_(kEn17037Levels.size() * hours.occupied.size()) {
+    require(sensors > 0, "no sensors");
+    require(hours.en17037_hours.size() == hours.occupied.size(), "the hour masks need one value an hour");
+    require(hours.area_weights.empty() || hours.area_weights.size() == sensors, "area weights need one value a sensor");
+    weight_ = hours.area_weights;
+    if (weight_.empty()) weight_.assign(sensors, 1.0);
+    const double w_max = *std::max_element(weight_.begin(), weight_.end());
+    require(w_max > 0.0, "the area weights sum to zero");
+    for (const double w : weight_) {
+        weight_units_.push_back(std::llround(std::max(0.0, w) / w_max * 0x1p32));
+        weight_units_sum_ += weight_units_.back();
+    }
+    for (const std::uint8_t o : hours.occupied) occupied_ += o != 0 ? 1 : 0;
+    for (const std::uint8_t d : hours.en17037_hours) daylight_ += d != 0 ? 1 : 0;
+    require(occupied_ > 0, "no occupied hour");
+    require(daylight_ > 0, "no EN 17037 daylight hour");
+    for (auto* v : {&sums_.da, &sums_.continuous_da, &sums_.udi_fell_short, &sums_.udi_useful, &sums_.udi_exceeded,
+                    &sums_.ase_hours})
+        v->assign(sensors, 0.0);
+}
 
-    AnnualMetrics m;
-    AnnualMetrics::Sensors& s = m.sensors;
-    for (auto* v : {&s.da, &s.continuous_da, &s.udi_fell_short, &s.udi_useful, &s.udi_exceeded, &s.ase_hours})
-        v->assign(n_s, 0.0);
-    std::size_t occupied = 0, daylight = 0;
-    std::array<std::size_t, 3> target_met{}, minimum_met{};
+void AnnualMetricSums::add(const AnnualSeries& block, std::size_t first) {
+    const std::size_t n_h = block.hours, n_s = block.sensors;
+    require(n_h == hours_.occupied.size(), "the hour masks need one value an hour");
+    require(block.total_lx.size() == n_h * n_s && block.direct_lx.size() == n_h * n_s,
+            "total and direct illuminance need hours x sensors values");
+    require(first + n_s <= sensors_, "a block beyond the grid's sensors");
+    AnnualMetrics::Sensors& s = sums_;
+    const std::int64_t* w = &weight_units_[first];
     for (std::size_t h = 0; h < n_h; ++h) {
-        const double* e = &series.total_lx[h * n_s];
-        if (hours.occupied[h] != 0) {
-            ++occupied;
-            const double* d = &series.direct_lx[h * n_s];
+        const double* e = &block.total_lx[h * n_s];
+        if (hours_.occupied[h] != 0) {
+            const double* d = &block.direct_lx[h * n_s];
             for (std::size_t c = 0; c < n_s; ++c) {
-                s.da[c] += e[c] >= t.da_lx ? 1.0 : 0.0;
-                s.continuous_da[c] += std::min(1.0, e[c] / t.da_lx);
-                s.udi_fell_short[c] += e[c] < t.udi_low_lx ? 1.0 : 0.0;
-                s.udi_exceeded[c] += e[c] > t.udi_high_lx ? 1.0 : 0.0;
-                s.ase_hours[c] += d[c] >= t.ase_direct_lx ? 1.0 : 0.0;
+                const std::size_t i = first + c;
+                s.da[i] += e[c] >= t_.da_lx ? 1.0 : 0.0;
+                s.continuous_da[i] += std::min(1.0, e[c] / t_.da_lx);
+                s.udi_fell_short[i] += e[c] < t_.udi_low_lx ? 1.0 : 0.0;
+                s.udi_exceeded[i] += e[c] > t_.udi_high_lx ? 1.0 : 0.0;
+                s.ase_hours[i] += d[c] >= t_.ase_direct_lx ? 1.0 : 0.0;
             }
         }
-        if (hours.en17037_hours[h] != 0) {
-            ++daylight;
-            for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
-                double above_target = 0.0, above_minimum = 0.0;
-                for (std::size_t c = 0; c < n_s; ++c) {
-                    above_target += e[c] >= kEn17037Levels[l].target_lx ? w[c] : 0.0;
-                    above_minimum += e[c] >= kEn17037Levels[l].minimum_lx ? w[c] : 0.0;
-                }
-                target_met[l] += above_target >= (kEn17037TargetArea - kShareSlack) * w_sum ? 1 : 0;
-                minimum_met[l] += above_minimum >= (kEn17037MinimumArea - kShareSlack) * w_sum ? 1 : 0;
+        if (hours_.en17037_hours[h] == 0) continue;
+        for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
+            std::int64_t above_target = 0, above_minimum = 0;
+            for (std::size_t c = 0; c < n_s; ++c) {
+                above_target += e[c] >= kEn17037Levels[l].target_lx ? w[c] : 0;
+                above_minimum += e[c] >= kEn17037Levels[l].minimum_lx ? w[c] : 0;
             }
+            target_units_[l * n_h + h].fetch_add(above_target, std::memory_order_relaxed);
+            minimum_units_[l * n_h + h].fetch_add(above_minimum, std::memory_order_relaxed);
         }
     }
-    require(occupied > 0, "no occupied hour");
-    require(daylight > 0, "no EN 17037 daylight hour");
-    const double n_occ = static_cast<double>(occupied);
+}
+
+AnnualMetrics AnnualMetricSums::metrics() const {
+    const std::size_t n_h = hours_.occupied.size();
+    const double w_sum = std::accumulate(weight_.begin(), weight_.end(), 0.0);
+    AnnualMetrics m;
+    m.sensors = sums_;
+    AnnualMetrics::Sensors& s = m.sensors;
+    const double n_occ = static_cast<double>(occupied_);
     double sda = 0.0, ase = 0.0;
-    for (std::size_t c = 0; c < n_s; ++c) {
+    for (std::size_t c = 0; c < sensors_; ++c) {
         for (auto* v : {&s.da, &s.continuous_da, &s.udi_fell_short, &s.udi_exceeded}) (*v)[c] /= n_occ;
         s.udi_useful[c] = std::max(0.0, 1.0 - s.udi_fell_short[c] - s.udi_exceeded[c]);
-        sda += s.da[c] >= t.sda_da - kShareSlack ? w[c] : 0.0;
-        ase += s.ase_hours[c] > t.ase_hours ? w[c] : 0.0;
+        sda += s.da[c] >= t_.sda_da - kShareSlack ? weight_[c] : 0.0;
+        ase += s.ase_hours[c] > t_.ase_hours ? weight_[c] : 0.0;
     }
     m.sda = sda / w_sum;
     m.ase = ase / w_sum;
-    m.mean_da = weighted_mean(s.da, w, w_sum);
-    m.mean_continuous_da = weighted_mean(s.continuous_da, w, w_sum);
-    m.mean_udi_fell_short = weighted_mean(s.udi_fell_short, w, w_sum);
-    m.mean_udi_useful = weighted_mean(s.udi_useful, w, w_sum);
-    m.mean_udi_exceeded = weighted_mean(s.udi_exceeded, w, w_sum);
+    m.mean_da = weighted_mean(s.da, weight_, w_sum);
+    m.mean_continuous_da = weighted_mean(s.continuous_da, weight_, w_sum);
+    m.mean_udi_fell_short = weighted_mean(s.udi_fell_short, weight_, w_sum);
+    m.mean_udi_useful = weighted_mean(s.udi_useful, weight_, w_sum);
+    m.mean_udi_exceeded = weighted_mean(s.udi_exceeded, weight_, w_sum);
+    const double units = static_cast<double>(weight_units_sum_);
     for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
-        m.en17037_target_hours[l] = static_cast<double>(target_met[l]) / static_cast<double>(daylight);
-        m.en17037_minimum_hours[l] = static_cast<double>(minimum_met[l]) / static_cast<double>(daylight);
+        std::size_t target_met = 0, minimum_met = 0;
+        for (std::size_t h = 0; h < n_h; ++h) {
+            if (hours_.en17037_hours[h] == 0) continue;
+            const double above_target = static_cast<double>(target_units_[l * n_h + h].load());
+            const double above_minimum = static_cast<double>(minimum_units_[l * n_h + h].load());
+            target_met += above_target >= (kEn17037TargetArea - kShareSlack) * units ? 1 : 0;
+            minimum_met += above_minimum >= (kEn17037MinimumArea - kShareSlack) * units ? 1 : 0;
+        }
+        m.en17037_target_hours[l] = static_cast<double>(target_met) / static_cast<double>(daylight_);
+        m.en17037_minimum_hours[l] = static_cast<double>(minimum_met) / static_cast<double>(daylight_);
     }
     return m;
+}
+
+AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t) {
+    require(hours.occupied.size() == series.hours, "the hour masks need one value an hour");
+    AnnualMetricSums sums(hours, series.sensors, t);
+    sums.add(series, 0);
+    return sums.metrics();
 }
 
 VerdictFlip judge_threshold(const SimexEstimate& m, double target, bool pass_at_or_above) {
@@ -137,19 +173,19 @@ VerdictFlip judge_threshold(const SimexEstimate& m, double target, bool pass_at_
     return v;
 }
 
-AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,
-                                       const AnnualThresholds& t, int k) {
+namespace {
+
+// The errors from the replicates' figures (value: the estimate's metrics).
+AnnualEstimate finish_estimate(AnnualMetrics value, const AnnualMetrics& centre_metrics,
+                               const std::vector<AnnualMetrics>& replicate_metrics, const AnnualHours& hours) {
+    const int k = static_cast<int>(replicate_metrics.size());
     AnnualEstimate e;
-    AnnualSeries series;
-    replicates(AnnualDraw::estimate, 0, series);
-    e.value = annual_metrics(series, hours, t);
-    replicates(AnnualDraw::centre, 0, series);
-    const std::vector<double> centre = flatten(annual_metrics(series, hours, t));
+    e.value = std::move(value);
+    const std::vector<double> centre = flatten(centre_metrics);
     // Sums relative to the centre's figure (no cancellation).
     std::vector<double> sum(centre.size(), 0.0), sum_sq(centre.size(), 0.0);
-    for (int r = 0; r < k; ++r) {
-        replicates(AnnualDraw::replicate, static_cast<std::size_t>(r), series);
-        const std::vector<double> x = flatten(annual_metrics(series, hours, t));
+    for (const AnnualMetrics& m : replicate_metrics) {
+        const std::vector<double> x = flatten(m);
         for (std::size_t i = 0; i < centre.size(); ++i) {
             const double d = x[i] - centre[i];
             sum[i] += d;
@@ -200,6 +236,51 @@ AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const
         e.en17037[l].flip_probability = e.en17037[l].pass ? 1.0 - true_pass : true_pass;
     }
     return e;
+}
+
+}  // namespace
+
+AnnualEstimate estimate_annual_metrics(const AnnualBlockDraws& draws, std::size_t sensors, std::size_t block,
+                                       const AnnualHours& hours, const AnnualThresholds& t, int k) {
+    require(block > 0, "blocks of no sensors");
+    const std::size_t replicates = static_cast<std::size_t>(std::max(0, k));
+    // [0] the estimate, [1] the centre, [2 + r] replicate r.
+    std::vector<std::unique_ptr<AnnualMetricSums>> sums;
+    for (std::size_t i = 0; i < (replicates > 0 ? replicates + 2 : 1); ++i)
+        sums.push_back(std::make_unique<AnnualMetricSums>(hours, sensors, t));
+    const std::size_t blocks = (sensors + block - 1) / block;
+    for_each_index(blocks, 1, [&](std::size_t b) {
+        const std::size_t first = b * block, count = std::min(block, sensors - first);
+        const AnnualSink at = [&](AnnualDraw what, std::size_t r, const AnnualSeries& series) {
+            const std::size_t i = what == AnnualDraw::estimate ? 0 : what == AnnualDraw::centre ? 1 : 2 + r;
+            require(series.sensors == count, "a block's series of another size");
+            if (i < sums.size()) sums[i]->add(series, first);
+        };
+        draws(first, count, at);
+    });
+    if (replicates == 0) {
+        AnnualEstimate e;
+        e.value = sums[0]->metrics();
+        return e;
+    }
+    std::vector<AnnualMetrics> replicate_metrics;
+    for (std::size_t r = 0; r < replicates; ++r) replicate_metrics.push_back(sums[2 + r]->metrics());
+    return finish_estimate(sums[0]->metrics(), sums[1]->metrics(), replicate_metrics, hours);
+}
+
+AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,
+                                       const AnnualThresholds& t, int k) {
+    AnnualSeries series;
+    replicates(AnnualDraw::estimate, 0, series);
+    const AnnualMetrics value = annual_metrics(series, hours, t);
+    replicates(AnnualDraw::centre, 0, series);
+    const AnnualMetrics centre = annual_metrics(series, hours, t);
+    std::vector<AnnualMetrics> replicate_metrics;
+    for (int r = 0; r < k; ++r) {
+        replicates(AnnualDraw::replicate, static_cast<std::size_t>(r), series);
+        replicate_metrics.push_back(annual_metrics(series, hours, t));
+    }
+    return finish_estimate(value, centre, replicate_metrics, hours);
 }
 
 }  // namespace luxtrace

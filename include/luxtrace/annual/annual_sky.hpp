@@ -86,6 +86,9 @@ public:
     const double* sky_vector(std::size_t row) const { return &luminance_[row * sky_entries()]; }
     // The year's sum of each entry (cd/m2 h): what the patches' and the ground's groups emit.
     const std::vector<double>& yearly_luminance() const { return yearly_; }
+    // Row r's weight of each entry's coefficient: its luminance over the year's sum (0 where
+    // that is 0). Each entry's weights sum to 1 over the rows.
+    const double* sky_weights(std::size_t row) const { return &weights_[row * sky_entries()]; }
     // The hours with a direct sun, in order: their hour index (in hours()).
     const std::vector<std::size_t>& suns() const { return suns_; }
     double sum_direct_normal_lx_h() const;
@@ -102,7 +105,7 @@ private:
     SkyPatches patches_;
     std::vector<AnnualHour> hours_;
     std::size_t rows_ = 0, clamped_ = 0;
-    std::vector<double> luminance_, yearly_;
+    std::vector<double> luminance_, yearly_, weights_;
     std::vector<std::size_t> suns_;
 };
 

@@ -29,19 +29,41 @@
 
 namespace luxtrace {
 
+// One grid's counts as a run's tallies hold them. `det` the detector's index in the
+// layout, `cells` its cells, `per_count` its value of one registration (e0 x
+// Detector::value_per_lm()), `photons` N. `group_flux_lm`, per light group
+// (light_group_flux_lm, estimate_scene.hpp): a group that emits nothing (a patch or sun
+// behind every portal) has exactly zero coefficients, with no error. `direct`: the
+// detector's direct coefficients by shadow rays, or null.
+struct AnnualGridCounts {
+    const AnnualSetup& annual;
+    const TallyLayout& layout;
+    std::span<const std::uint64_t> data;
+    std::size_t det = 0, cells = 0;
+    double per_count = 0.0;
+    std::uint64_t photons = 0;
+    std::span<const double> group_flux_lm;
+    const DirectCoefficients* direct = nullptr;
+};
+
+// The expected count, per neighbour and unit share, of a (sun, cell) pair whose
+// neighbouring days read nothing: its total and its direct count, over the whole grid.
+struct AnnualDarkRates {
+    double total = 0.5, direct = 0.5;
+};
+
+// The coefficients of a block of the grid's cells, and the hourly series made of them.
 class AnnualCoefficients {
 public:
-    // `det` the detector's index in the layout, `cells` its cells, `per_count` its value of
-    // one registration (e0 x Detector::value_per_lm()), `photons` N. `group_flux_lm`, per
-    // light group (light_group_flux_lm, estimate_scene.hpp): a group that emits nothing (a
-    // patch or sun behind every portal) has exactly zero coefficients, with no error.
-    // `direct`: the detector's direct coefficients by shadow rays, or null.
-    AnnualCoefficients(const AnnualSetup& annual, const TallyLayout& layout, std::span<const std::uint64_t> data,
-                       std::size_t det, std::size_t cells, double per_count, std::uint64_t photons,
-                       std::span<const double> group_flux_lm, const DirectCoefficients* direct = nullptr);
+    // Over the whole grid (every block shares them).
+    static AnnualDarkRates dark_rates(const AnnualGridCounts& grid);
+    // Cells [first, first + count) of the grid.
+    AnnualCoefficients(const AnnualGridCounts& grid, std::size_t first, std::size_t count, const AnnualDarkRates& dark);
+    // Every cell.
+    explicit AnnualCoefficients(const AnnualGridCounts& grid);
 
-    // Series are hours x cells (AnnualSeries::sensors = cells), hour-major, every hour of the
-    // weather file (0 in the dark ones).
+    // Series are hours x the block's cells (AnnualSeries::sensors = count), hour-major,
+    // every hour of the weather file (0 in the dark ones).
     // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
     void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
     // The estimate alone (kept: later calls copy it).
@@ -52,21 +74,20 @@ public:
     void centre(AnnualSeries& out) const;
     // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
     // a Poisson count of its variance, for the errors of nonlinear metrics
-    // (stats/annual_metrics.hpp).
+    // (stats/annual_metrics.hpp). Each cell's draws are its own Philox stream of (seed,
+    // replicate, the cell's index in the grid): the same whatever the block.
     void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
-    // The constructor reads the detector's counts per light group (Counts) in five steps,
-    // each filling the members under its name below:
+    // The constructor reads the block's counts per light group (Counts) in four steps,
+    // each filling the members under its name below (the dark rates come in):
     //   sky_coefficients  the sky patches' and the ground's coefficients and their errors
     //   pool_suns         per sun, the suns of the same hour on the neighbouring days
-    //   dark_rates        the expected count of a cell that a sun and its neighbours all missed
     //   sun_priors        per clock hour and cell, the prior of a sun's interreflected count
     //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
     struct Counts;
+    struct SunPools;
     void sky_coefficients(const Counts& counts);
-    void pool_suns(const Counts& counts);
-    void dark_rates(const Counts& counts);
     void sun_priors(const Counts& counts);
     void sun_coefficients(const Counts& counts);
 
@@ -83,10 +104,15 @@ private:
     void direct_hour(const AnnualHour& hour, bool variance, std::vector<double>& out) const;
 
     const AnnualSetup& annual_;
-    const DirectCoefficients* shadow_ = nullptr;
-    std::size_t cells_ = 0;
+    bool shadow_ = false;
+    std::size_t first_ = 0, cells_ = 0;
     double inv_photons_ = 0.0;
     double per_count_ = 0.0;  // k
+    AnnualDarkRates dark_;
+
+    // The block's part of the shadow rays' direct coefficients (DirectCoefficients' layout,
+    // the block's cells), when shadow_.
+    std::vector<double> shadow_sky_lx_, shadow_sky_var_, shadow_sun_lx_, shadow_sun_var_;
 
     // sky_coefficients, [entry][cell] (sky patches then the ground, AnnualSky's sky vector
     // order): the coefficients (lx per unit weight), k^2 q for the hourly error (with a floor
@@ -98,10 +124,6 @@ private:
     // share of the three's photons and its share of the neighbours' photons alone.
     std::vector<std::vector<std::size_t>> pool_;
     std::vector<double> pool_share_, neighbour_share_;
-
-    // dark_rates: the total and the direct count of a (sun, cell) pair whose neighbours read
-    // nothing, per neighbour and unit share.
-    double dark_lambda_n_ = 0.0, dark_lambda_d_ = 0.0;
 
     // sun_priors, [clock hour][cell]: the prior's mean count per unit flux and its shape.
     std::vector<double> eb_rho_, eb_alpha_;

@@ -10,6 +10,7 @@
 #include "luxtrace/stats/simex.hpp"
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -96,12 +97,40 @@ inline constexpr AnnualGridFigure kAnnualTargetFigures[] = {{"sda", &AnnualMetri
 // Bad sizes or no occupied or daylight hour throw std::invalid_argument (the caller's bug).
 AnnualMetrics annual_metrics(const AnnualSeries& series, const AnnualHours& hours, const AnnualThresholds& t = {});
 
+// The metrics of one grid's series, gathered in blocks of sensors: add() each block's
+// series (hours x its sensors), from any thread, in any order, then metrics() gives the
+// same figures, to the bit, however the grid was split. The per-hour area shares of
+// EN 17037 are sums of integer weights (each sensor's area weight in units of 2^-32 of the
+// largest), exact in any order; the grid means are summed in sensor order by metrics().
+class AnnualMetricSums {
+public:
+    AnnualMetricSums(const AnnualHours& hours, std::size_t sensors, const AnnualThresholds& t = {});
+    // Sensors [first, first + block.sensors); blocks must not overlap.
+    void add(const AnnualSeries& block, std::size_t first);
+    AnnualMetrics metrics() const;
+
+private:
+    const AnnualHours& hours_;
+    AnnualThresholds t_;
+    std::size_t sensors_ = 0, occupied_ = 0, daylight_ = 0;
+    std::vector<double> weight_;              // [sensors], the area weights
+    std::vector<std::int64_t> weight_units_;  // [sensors], the same as integers
+    std::int64_t weight_units_sum_ = 0;
+    AnnualMetrics::Sensors sums_;  // per sensor, the hours' sums (not yet divided)
+    std::vector<std::atomic<std::int64_t>> target_units_, minimum_units_;  // [level x hours]
+};
+
 // The hourly series a grid's errors come from (estimate/annual_coefficients.hpp): the run's
 // own estimate; the centre the replicates are drawn around (what the data say a fresh run's
 // expected values are); replicate r, one fresh run's values drawn around that centre.
 // Replicates are independent of each other.
 enum class AnnualDraw { estimate, centre, replicate };
 using AnnualReplicates = std::function<void(AnnualDraw what, std::size_t replicate, AnnualSeries& out)>;
+// The same draws for a block of sensors: `draws(first, count, sink)` passes sink the
+// series (hours x count) of sensors [first, first + count) for the estimate, the centre and
+// each replicate, in any order. Blocks run on every core at once.
+using AnnualSink = std::function<void(AnnualDraw what, std::size_t replicate, const AnnualSeries& block)>;
+using AnnualBlockDraws = std::function<void(std::size_t first, std::size_t count, const AnnualSink& sink)>;
 
 // 32 replicates: sigma to 1 / sqrt(2 x 31) = 13 % of itself, 32 generator calls per grid
 // (docs/DAYLIGHT.md says why this is enough).
@@ -132,5 +161,11 @@ struct AnnualEstimate {
 // figure's range.
 AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,
                                        const AnnualThresholds& t = {}, int k = kAnnualReplicates);
+// The same from `sensors` sensors in blocks of `block` (the last one shorter); k = 0: the
+// estimate's metrics alone (value; no sigma, bias or verdicts). The figures do not depend
+// on the core count; they depend on `block` only through the draws' own dependence on it.
+AnnualEstimate estimate_annual_metrics(const AnnualBlockDraws& draws, std::size_t sensors, std::size_t block,
+                                       const AnnualHours& hours, const AnnualThresholds& t = {},
+                                       int k = kAnnualReplicates);
 
 }  // namespace luxtrace

@@ -197,7 +197,11 @@ void report_result(const RunSummary& s, const RunArgs& a) {
     if (!a.quiet) print_result_summary(ResultFile(s.output), std::cout);
     if (!s.checkpoint.empty()) std::cout << "checkpoint: " << fs::absolute(s.checkpoint).string() << '\n';
     std::cout << "result: " << fs::absolute(s.output).string() << " (written in " << std::fixed << std::setprecision(2)
-              << s.result_write_s << " s)" << std::defaultfloat << '\n';
+              << s.result_write_s << " s";
+    // Where the time went: the estimates, the annual metrics, the file, the Ladybug folder.
+    for (std::size_t i = 0; i < s.result_steps_s.size(); ++i)
+        std::cout << (i == 0 ? ": " : ", ") << s.result_steps_s[i].first << ' ' << s.result_steps_s[i].second;
+    std::cout << ")" << std::defaultfloat << '\n';
     for (const std::string& table : s.sensor_tables)
         std::cout << "sensor table: " << fs::absolute(table).string() << '\n';
     if (xdmf_written && !a.quiet) std::cout << "xdmf: " << fs::absolute(xdmf_path).string() << '\n';

@@ -66,7 +66,9 @@ Vec3 sky_direction(double zenith_rad, double azimuth_rad) {
 }
 
 SkyModel::SkyModel(int type, CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad)
-    : type_(type), p_(p), sun_zenith_rad_(sun_zenith_rad), sun_azimuth_rad_(sun_azimuth_rad) {
+    : type_(type), p_(p), sun_zenith_rad_(sun_zenith_rad), sun_azimuth_rad_(sun_azimuth_rad),
+      sun_direction_(sky_direction(sun_zenith_rad, sun_azimuth_rad)),
+      indicatrix_offset_(type == kPerezType ? 0.0 : std::exp(p.d * 0.5 * kPi)) {
     if (sun_dependent()) {
         const double zenith = indicatrix(sun_zenith_rad_) * gradation(1.0);
         if (!(zenith > 0.0)) throw std::invalid_argument("the sky's zenith luminance is not positive");
@@ -101,33 +103,37 @@ double SkyModel::gradation(double cos_zenith) const {
 
 // Scattering indicatrix f(chi) = 1 + c (exp(d chi) - exp(d pi/2)) + e cos^2 chi (eq. 5;
 // f(Z_s), eq. 6); Perez 1993 (eq. 1) has no exp(d pi/2) term.
-double SkyModel::indicatrix(double chi_rad) const {
-    const double c = std::cos(chi_rad);
-    const double offset = type_ == kPerezType ? 0.0 : std::exp(p_.d * 0.5 * kPi);
-    return 1.0 + p_.c * (std::exp(p_.d * chi_rad) - offset) + p_.e * c * c;
+double SkyModel::indicatrix(double chi_rad) const { return indicatrix(chi_rad, std::cos(chi_rad)); }
+
+double SkyModel::indicatrix(double chi_rad, double cos_chi) const {
+    return 1.0 + p_.c * (std::exp(p_.d * chi_rad) - indicatrix_offset_) + p_.e * cos_chi * cos_chi;
+}
+
+double SkyModel::luminance_at(double cos_z, double cos_chi) const {
+    if (type_ == kUniform) return 1.0;
+    if (type_ == kTraditionalOvercast) return (1.0 + 2.0 * cos_z) / 3.0;  // L_z (1 + 2 sin h) / 3
+    cos_chi = std::clamp(cos_chi, -1.0, 1.0);
+    // L / L_z = f(chi) phi(Z) / (f(Z_s) phi(0)) (eq. 1). Perez's fitted parameters can
+    // drive lv below 0 near the horizon in a few bins; a luminance is not negative.
+    const double l = indicatrix(std::acos(cos_chi), cos_chi) * gradation(cos_z) * norm_;
+    return type_ == kPerezType ? std::max(l, 0.0) : l;
 }
 
 double SkyModel::relative_luminance(double zenith_rad, double azimuth_rad) const {
     if (zenith_rad > 0.5 * kPi) return 0.0;
     const double cos_z = std::cos(zenith_rad);
-    if (type_ == kUniform) return 1.0;
-    if (type_ == kTraditionalOvercast) return (1.0 + 2.0 * cos_z) / 3.0;  // L_z (1 + 2 sin h) / 3
     // Angular distance chi between the element and the sun (eq. 2).
     const double cos_chi = std::cos(sun_zenith_rad_) * cos_z +
                            std::sin(sun_zenith_rad_) * std::sin(zenith_rad) * std::cos(azimuth_rad - sun_azimuth_rad_);
-    const double chi = std::acos(std::clamp(cos_chi, -1.0, 1.0));
-    // L / L_z = f(chi) phi(Z) / (f(Z_s) phi(0)) (eq. 1). Perez's fitted parameters can
-    // drive lv below 0 near the horizon in a few bins; a luminance is not negative.
-    const double l = indicatrix(chi) * gradation(cos_z) * norm_;
-    return type_ == kPerezType ? std::max(l, 0.0) : l;
+    return luminance_at(cos_z, cos_chi);
 }
 
 double SkyModel::relative_luminance(const Vec3& dir) const {
+    // The same angles from the direction itself: no angle is computed but chi (the sky's
+    // patch means call this some ten million times a year of hours).
     const double r = glm::length(dir);
     if (!(r > 0.0) || dir.z < 0.0) return 0.0;
-    const double zenith = std::acos(std::clamp(dir.z / r, -1.0, 1.0));
-    const double azimuth = std::atan2(dir.x, dir.y);
-    return relative_luminance(zenith, azimuth);
+    return luminance_at(dir.z / r, glm::dot(dir, sun_direction_) / r);
 }
 
 // Nested adaptive Gauss-Kronrod over the zenith angle (outer) and azimuth (inner). The

@@ -464,6 +464,7 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
                       << " holds its numbers (Python: luxtrace.sensor_table)\n"
                       << std::flush;
     }
+    if (!as_checkpoint) summary_.result_steps_s = steps.seconds();
     summary_.photons = n;
     summary_.global = est.global;
     summary_.detectors = std::move(est.detectors);

@@ -61,6 +61,9 @@ private:
     SkyModel(int type, CieSkyParameters p, double sun_zenith_rad, double sun_azimuth_rad);
     double gradation(double cos_zenith) const;
     double indicatrix(double chi_rad) const;
+    double indicatrix(double chi_rad, double cos_chi) const;
+    // L / L_z from the cosines of the element's zenith angle and of its distance to the sun.
+    double luminance_at(double cos_z, double cos_chi) const;
     // Integral of (L / L_z)(Z, alpha) w(Z, alpha) sin Z over Z in [0, pi/2] and alpha in
     // [alpha0, alpha1], with the sun's zenith angle and azimuth as breakpoints.
     template <class Weight>
@@ -69,7 +72,9 @@ private:
     int type_ = 0;
     CieSkyParameters p_{};
     double sun_zenith_rad_ = 0.0, sun_azimuth_rad_ = 0.0;
-    double norm_ = 1.0;  // 1 / (f(Z_s) phi(0)), or 1 / lv(zenith) for Perez
+    Vec3 sun_direction_{0.0, 0.0, 1.0};  // sky_direction of the sun
+    double indicatrix_offset_ = 0.0;     // exp(d pi / 2), 0 for Perez
+    double norm_ = 1.0;                  // 1 / (f(Z_s) phi(0)), or 1 / lv(zenith) for Perez
 };
 
 }  // namespace luxtrace

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace luxtrace {
@@ -58,7 +59,8 @@ struct RunSummary {
     // The tracing threads' CPU time over their tracing time (WorkerPool::busy_fraction), the least busy rank's.
     double tracing_busy = 0.0;
     double result_write_s = 0.0;  // rank 0: the result's estimates and file (with its sensor tables)
-    std::uint64_t rays = 0;       // intersections in all: surface arrivals + escaped photons (root)
+    std::vector<std::pair<std::string, double>> result_steps_s;  // rank 0: its steps' wall seconds (write_steps.hpp)
+    std::uint64_t rays = 0;  // intersections in all: surface arrivals + escaped photons (root)
     GlobalEstimate global;
     std::vector<DetectorEstimate> detectors;
 };

@@ -8,11 +8,13 @@
 //   STEP  estimates | annual | image | rename | ladybug
 // and run:decide, rank 0's decision after a reduction (the run then stops and keeps its
 // tallies).
+#include <chrono>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace luxtrace {
 
@@ -38,6 +40,7 @@ public:
     decltype(auto) run(std::string_view step, F&& f) const {
         try {
             fail_if_injected(step);
+            const Timer timer(*this, step);
             return std::forward<F>(f)();
         } catch (const std::exception& e) {
             rethrow_named(step, e);
@@ -47,16 +50,33 @@ public:
         throw;  // not reached: rethrow_named always throws
     }
 
+    // The wall seconds each step took, in the order they ran (a step run twice, twice).
+    const std::vector<std::pair<std::string, double>>& seconds() const { return seconds_; }
+
     // What write_file_atomically runs before its rename: an injected fault of the step
     // "rename" fails there, as a rename the file system refuses (an IoError).
     std::function<void()> before_rename(const std::string& path) const;
 
 private:
+    // Adds the step's wall time when it ends, by return or by exception.
+    struct Timer {
+        const WriteSteps& steps;
+        std::string_view step;
+        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+        Timer(const WriteSteps& s, std::string_view name) : steps(s), step(name) {}
+        ~Timer() {
+            steps.seconds_
+                .emplace_back(std::string(step),
+                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+    };
+
     void fail_if_injected(std::string_view step) const;
     [[noreturn]] void rethrow_named(std::string_view step, const std::exception& e) const;
     bool injected(std::string_view step) const;
 
     std::string file_, inject_;
+    mutable std::vector<std::pair<std::string, double>> seconds_;
 };
 
 }  // namespace luxtrace

@@ -28,12 +28,14 @@ bool ShadowRay::passes(const Vec3& o, const Vec3& d, double t_far, double* share
     std::fill(share, share + bands_, 1.0);
     const float far = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
     float near = static_cast<float>(t_near);
-    if (!embree_.occluded_local(embree_.to_local(o), Vec3f(d), far, near)) return true;
     auto stopped = [&] {
         std::fill(share, share + bands_, 0.0);
         return false;
     };
-    if (!see_through_) return stopped();
+    // Without glass, an occlusion test says all. With it, the first hit decides as well
+    // (nothing: through; an opaque surface: stopped) at the cost of one traversal, where an
+    // occlusion test first would take two for every ray that meets something.
+    if (!see_through_) return !embree_.occluded_local(embree_.to_local(o), Vec3f(d), far, near) || stopped();
     // Follow the ray through each pane it meets, times the pane's transmittance there.
     for (int pane = 0; pane < 64; ++pane) {
         const Hit h = embree_.intersect(o, d, near, far);

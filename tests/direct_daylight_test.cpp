@@ -246,6 +246,75 @@ TEST_F(DirectDaylight, ErrorsHoldOverSeeds) {
     }
 }
 
+// A closed black box, 4 m x 4 m, floor 0.5 m below the sensors, roof 1 m above them with a
+// 1 m glazed opening over the first sensor; a 2 m grid of 4 x 4 cells under it too.
+// `portal`: the opening is a portal; `wall_hole`: a 1 m open hole in the south wall, not one.
+std::string closed_box(bool portal, bool wall_hole) {
+    std::string s = std::string(kPoints) +
+                    "[[detector]]\nname = \"grid\"\ncenter = [0, 0, 0]\nnormal = [0, 0, 1]\nup = [0, 1, 0]\n"
+                    "size = [2, 2]\ncells = [4, 4]\n"
+                    "[[material]]\nname = \"black\"\nreflectance = 0\n"
+                    "[[material]]\nname = \"pane\"\ntype = \"glazing\"\ntransmittance = 0.8\nrefractive_index = 1.52\n"
+                    "[[material]]\nname = \"hole\"\ntype = \"glass\"\nior = 1\n";
+    auto rect = [&](const std::string& name, const std::string& centre, const std::string& normal,
+                    const std::string& up, double sx, double sy, const std::string& m) {
+        s += "[[shape]]\nname = \"" + name + "\"\ntype = \"rectangle\"\ncenter = " + centre + "\nnormal = " + normal +
+             "\nup = " + up + "\nsize = [" + std::to_string(sx) + ", " + std::to_string(sy) + "]\nmaterial = \"" + m +
+             "\"\n";
+    };
+    // Roof at z = 1 around the opening [-0.5, 0.5]^2, facing down into the box.
+    rect("roof_n", "[0, 1.25, 1]", "[0, 0, -1]", "[0, 1, 0]", 4, 1.5, "black");
+    rect("roof_s", "[0, -1.25, 1]", "[0, 0, -1]", "[0, 1, 0]", 4, 1.5, "black");
+    rect("roof_e", "[1.25, 0, 1]", "[0, 0, -1]", "[0, 1, 0]", 1.5, 1, "black");
+    rect("roof_w", "[-1.25, 0, 1]", "[0, 0, -1]", "[0, 1, 0]", 1.5, 1, "black");
+    rect("opening", "[0, 0, 1]", "[0, 0, -1]", "[0, 1, 0]", 1, 1, "pane");
+    rect("floor", "[0, 0, -0.5]", "[0, 0, 1]", "[0, 1, 0]", 4, 4, "black");
+    rect("north", "[0, 2, 0.25]", "[0, -1, 0]", "[0, 0, 1]", 4, 1.5, "black");
+    rect("east", "[2, 0, 0.25]", "[-1, 0, 0]", "[0, 0, 1]", 4, 1.5, "black");
+    rect("west", "[-2, 0, 0.25]", "[1, 0, 0]", "[0, 0, 1]", 4, 1.5, "black");
+    if (wall_hole) {  // the south wall around a 1 m x 1 m hole at z in [-0.25, 0.75]
+        rect("south_w", "[-1.25, -2, 0.25]", "[0, 1, 0]", "[0, 0, 1]", 1.5, 1.5, "black");
+        rect("south_e", "[1.25, -2, 0.25]", "[0, 1, 0]", "[0, 0, 1]", 1.5, 1.5, "black");
+        rect("south_b", "[0, -2, -0.375]", "[0, 1, 0]", "[0, 0, 1]", 1, 0.25, "black");
+        rect("south_t", "[0, -2, 0.875]", "[0, 1, 0]", "[0, 0, 1]", 1, 0.25, "black");
+        rect("wall_hole", "[0, -2, 0.25]", "[0, 1, 0]", "[0, 0, 1]", 1, 1, "hole");
+    } else {
+        rect("south", "[0, -2, 0.25]", "[0, 1, 0]", "[0, 0, 1]", 4, 1.5, "black");
+    }
+    if (portal) s += "[[portal]]\nshape = \"opening\"\n";
+    return s;
+}
+
+void expect_same(const DirectCoefficients& a, const DirectCoefficients& b, const char* what) {
+    EXPECT_EQ(a.sky_lx, b.sky_lx) << what;
+    EXPECT_EQ(a.sky_var, b.sky_var) << what;
+    EXPECT_EQ(a.sun_lx, b.sun_lx) << what;
+    EXPECT_EQ(a.sun_var, b.sun_var) << what;
+}
+
+// With portals daylight enters only through them (as the photons see it): a portal that is
+// the box's only opening changes no value, to the bit, though the rays of most (cell, sun)
+// pairs that cannot reach it are not traced (PortalOpenings); a hole that is not a portal
+// lets nothing in, as if closed. Without the portal the same hole does let light in.
+TEST_F(DirectDaylight, LightEntersThroughThePortalsAlone) {
+    const Scene plain_scene = load(closed_box(false, false)), portal_scene = load(closed_box(true, false)),
+                hole_scene = load(closed_box(true, true)), open_scene = load(closed_box(false, true));
+    for (std::size_t det = 0; det < 2; ++det) {
+        const DirectCoefficients plain = compute(plain_scene, det);
+        expect_same(plain, compute(portal_scene, det),
+                    det == 0 ? "points, the portal alone" : "grid, the portal alone");
+        expect_same(plain, compute(hole_scene, det), det == 0 ? "points, a hole beside" : "grid, a hole beside");
+        const DirectCoefficients open = compute(open_scene, det);
+        std::size_t more = 0, less = 0;
+        for (std::size_t i = 0; i < open.sun_lx.size(); ++i) {
+            more += open.sun_lx[i] > plain.sun_lx[i];
+            less += open.sun_lx[i] < plain.sun_lx[i];
+        }
+        EXPECT_GT(more, 0u) << "the open hole lets low suns in, detector " << det;
+        EXPECT_EQ(less, 0u) << "detector " << det;
+    }
+}
+
 TEST_F(DirectDaylight, ValuesDoNotDependOnWhichCellsAreComputedTogether) {
     const Scene scene = load(roof("pane"));
     const EmbreeScene embree(scene);

@@ -6,6 +6,7 @@
 #include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/portal_openings.hpp"
 #include "luxtrace/tracer/shadow_ray.hpp"
 
 #include <algorithm>
@@ -147,6 +148,11 @@ struct CellGeometry {
         const double a = (i + u1) / d.nx - 0.5, b = (j + u2) / d.ny - 0.5;
         return d.center + a * d.size_u * d.u_axis + b * d.size_v * d.v_axis;
     }
+    // The cell's corners (a point sensor: its point): every sample lies in their hull.
+    std::vector<Vec3> corners(std::size_t cell) const {
+        if (point()) return {position(cell, 0.0, 0.0)};
+        return {position(cell, 0.0, 0.0), position(cell, 1.0, 0.0), position(cell, 0.0, 1.0), position(cell, 1.0, 1.0)};
+    }
 };
 
 // A stratified estimate sum_k w_k Z_k, Z_k what the scene lets through along stratum k's
@@ -174,9 +180,11 @@ struct StrataSum {
 class CellTracer {
 public:
     CellTracer(const Scene& scene, const EmbreeScene& embree, std::size_t det, const DirectDaylightOptions& o,
-               const Targets& targets)
-        : geometry_{scene.detectors[det]}, shadow_(scene, embree, 4.0 * scene.ray_epsilon_m()),
-          sampler_(o.seed ^ kDirectKey), targets_(targets), det_(det), eps_(scene.ray_epsilon_m()) {}
+               const Targets& targets, const PortalOpenings& openings)
+        : geometry_{scene.detectors[det]},
+          shadow_(scene, embree, 4.0 * scene.ray_epsilon_m(), openings.empty() ? nullptr : &openings.triangles()),
+          openings_(openings), sampler_(o.seed ^ kDirectKey), targets_(targets), det_(det),
+          eps_(scene.ray_epsilon_m()) {}
 
     void cell(std::size_t c, DirectCoefficients& out) {
         const Vec3 n = geometry_.normal(c);
@@ -192,9 +200,12 @@ public:
             out.sky_var[e * out.cells + c] = entry.luminance_cd_m2 * entry.luminance_cd_m2 * sum.variance;
         }
         const int sun_rays = targets_.sun_side * targets_.sun_side;
+        const std::vector<Vec3> corners = geometry_.corners(c);
         for (std::size_t s = 0; s < targets_.suns.size(); ++s, block += static_cast<std::uint32_t>(sun_rays)) {
             const Sun& sun = targets_.suns[s];
             if (!(sun.normal_lx > 0.0) || glm::dot(sun.frame.n, n) <= -0.01) continue;
+            // No ray of the cell's can reach an opening: dark, as its rays would say.
+            if (!openings_.empty() && !openings_.may_pass(corners, sun.frame.n, targets_.cos_half_sun)) continue;
             const StrataSum sum = disc(c, block, sun, n);
             out.sun_lx[s * out.cells + c] = sun.normal_lx * sum.value;
             out.sun_var[s * out.cells + c] = sun.normal_lx * sun.normal_lx * sum.variance;
@@ -319,6 +330,7 @@ private:
     CellGeometry geometry_;
     std::vector<double> terms_;  // disc's scratch
     ShadowRay shadow_;
+    const PortalOpenings& openings_;
     PhiloxSampler sampler_;
     const Targets& targets_;
     std::size_t det_;
@@ -336,10 +348,11 @@ void direct_daylight(const Scene& scene, const EmbreeScene& embree, std::size_t 
         throw std::logic_error("direct_daylight: rays per target must be the square of an even number");
     if (scene.band_count() != 1) throw std::logic_error("direct_daylight: annual scenes have one band");
     const Targets targets(scene, options);
+    const PortalOpenings openings(scene);
     if (out.entries != targets.entries.size() || out.suns != targets.suns.size() || last > out.cells)
         throw std::logic_error("direct_daylight: coefficients sized for another detector or sky");
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& r) {
-        CellTracer tracer(scene, embree, det, options, targets);
+        CellTracer tracer(scene, embree, det, options, targets, openings);
         for (std::size_t c = r.begin(); c < r.end(); ++c) tracer.cell(c, out);
     });
 }

@@ -7,7 +7,9 @@
 // light and for the direct daylight at sensor points (direct_daylight.hpp).
 #include "luxtrace/core/math.hpp"
 
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace luxtrace {
 
@@ -16,9 +18,12 @@ struct Scene;
 
 class ShadowRay {
 public:
-    // `step_m`: how far past a pane the ray goes on (a few ray epsilons). Both must outlive
+    // `step_m`: how far past a pane the ray goes on (a few ray epsilons). `openings`, per
+    // scene triangle (PortalOpenings::triangles), or null: a path that leaves the scene
+    // passes only if it crossed one of them (daylight through portals). All must outlive
     // this.
-    ShadowRay(const Scene& scene, const EmbreeScene& embree, double step_m);
+    ShadowRay(const Scene& scene, const EmbreeScene& embree, double step_m,
+              const std::vector<std::uint8_t>* openings = nullptr);
 
     // The share of each band (share[0 .. bands()-1]) that the path o + t d,
     // t_near <= t < t_far, lets through; false, with every share 0, if a surface stops it.
@@ -30,6 +35,7 @@ private:
     int bands_ = 1;
     double step_m_ = 0.0;
     bool see_through_ = false;  // some material lets a straight path through
+    const std::vector<std::uint8_t>* openings_ = nullptr;
 };
 
 }  // namespace luxtrace

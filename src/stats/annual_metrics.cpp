@@ -92,31 +92,48 @@ void AnnualMetricSums::add(const AnnualSeries& block, std::size_t first) {
     require(block.total_lx.size() == n_h * n_s && block.direct_lx.size() == n_h * n_s,
             "total and direct illuminance need hours x sensors values");
     require(first + n_s <= sensors_, "a block beyond the grid's sensors");
-    AnnualMetrics::Sensors& s = sums_;
+    // The block's sums in arrays of its own (no other pointer reaches them: the loops
+    // below run in vector lanes), added to the grid's at the end (each sensor is in one
+    // block: 0 + its sum).
+    std::vector<double> local(5 * n_s, 0.0);
+    double* __restrict da = local.data();
+    double* __restrict cda = da + n_s;
+    double* __restrict fell = cda + n_s;
+    double* __restrict exceeded = fell + n_s;
+    double* __restrict ase = exceeded + n_s;
     const std::int64_t* w = &weight_units_[first];
+    const double da_lx = t_.da_lx, low = t_.udi_low_lx, high = t_.udi_high_lx, direct_lx = t_.ase_direct_lx;
     for (std::size_t h = 0; h < n_h; ++h) {
         const double* e = &block.total_lx[h * n_s];
         if (hours_.occupied[h] != 0) {
             const double* d = &block.direct_lx[h * n_s];
             for (std::size_t c = 0; c < n_s; ++c) {
-                const std::size_t i = first + c;
-                s.da[i] += e[c] >= t_.da_lx ? 1.0 : 0.0;
-                s.continuous_da[i] += std::min(1.0, e[c] / t_.da_lx);
-                s.udi_fell_short[i] += e[c] < t_.udi_low_lx ? 1.0 : 0.0;
-                s.udi_exceeded[i] += e[c] > t_.udi_high_lx ? 1.0 : 0.0;
-                s.ase_hours[i] += d[c] >= t_.ase_direct_lx ? 1.0 : 0.0;
+                da[c] += e[c] >= da_lx ? 1.0 : 0.0;
+                cda[c] += std::min(1.0, e[c] / da_lx);
+                fell[c] += e[c] < low ? 1.0 : 0.0;
+                exceeded[c] += e[c] > high ? 1.0 : 0.0;
+                ase[c] += d[c] >= direct_lx ? 1.0 : 0.0;
             }
         }
         if (hours_.en17037_hours[h] == 0) continue;
         for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
             std::int64_t above_target = 0, above_minimum = 0;
+            const double target = kEn17037Levels[l].target_lx, minimum = kEn17037Levels[l].minimum_lx;
             for (std::size_t c = 0; c < n_s; ++c) {
-                above_target += e[c] >= kEn17037Levels[l].target_lx ? w[c] : 0;
-                above_minimum += e[c] >= kEn17037Levels[l].minimum_lx ? w[c] : 0;
+                above_target += e[c] >= target ? w[c] : 0;
+                above_minimum += e[c] >= minimum ? w[c] : 0;
             }
             target_units_[l * n_h + h].fetch_add(above_target, std::memory_order_relaxed);
             minimum_units_[l * n_h + h].fetch_add(above_minimum, std::memory_order_relaxed);
         }
+    }
+    AnnualMetrics::Sensors& s = sums_;
+    for (std::size_t c = 0; c < n_s; ++c) {
+        s.da[first + c] += da[c];
+        s.continuous_da[first + c] += cda[c];
+        s.udi_fell_short[first + c] += fell[c];
+        s.udi_exceeded[first + c] += exceeded[c];
+        s.ase_hours[first + c] += ase[c];
     }
 }
 

@@ -6,7 +6,7 @@ each of its four facades (each a [[portal]]), and one points grid of work-plane 
 layout. Writes DIR/office_tower.toml and DIR/office_tower.pts; prints the sensor count.
 
 With the defaults (50 m x 50 m plates, a 20 m x 20 m core, 12 storeys, 0.5 m spacing) the
-grid holds 12 x 8,096 = 97,152 sensors, and 0.49 m spacing passes 100,000.
+grid holds 12 x 8,120 = 97,440 sensors, and 0.49 m spacing passes 100,000.
 
 Usage: /usr/bin/python3 bench/scenes/office_tower.py DIR [--storeys N] [--spacing M]
        [--plate M] [--core M] [--weather EPW] [--sky-mf 1|2|4]

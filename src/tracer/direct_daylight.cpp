@@ -53,6 +53,19 @@ struct Region {
         return {s * (std::cos(az_lo) - std::cos(a1)), s * (std::sin(a1) - std::sin(az_lo)),
                 0.5 * (mu_hi * mu_hi - mu_lo * mu_lo) * az_width};
     }
+    // A cone (axis in the sky frame, cosine of its half-angle) holding every direction of
+    // the region: the axis at its middle altitude and azimuth; the half-angle at most half
+    // the altitude's span plus the longest half parallel (a path along the meridian, then
+    // the parallel, is no shorter than the arc), and a little for rounding.
+    std::pair<Vec3, double> bounding_cone() const {
+        const double alt_lo = std::asin(std::clamp(mu_lo, -1.0, 1.0)), alt_hi = std::asin(std::clamp(mu_hi, -1.0, 1.0));
+        const double alt = 0.5 * (alt_lo + alt_hi), az = az_lo + 0.5 * az_width;
+        const double widest = mu_lo <= 0.0 && mu_hi >= 0.0 ? 1.0
+                                                           : std::cos(std::min(std::abs(alt_lo), std::abs(alt_hi)));
+        const double half = 0.5 * (alt_hi - alt_lo) + widest * 0.5 * az_width + 1e-9;
+        const Vec3 axis(std::cos(alt) * std::sin(az), std::cos(alt) * std::cos(az), std::sin(alt));
+        return {axis, half >= kPi ? -1.0 : std::cos(half)};
+    }
     bool contains(const Vec3& w) const {
         if (w.z < mu_lo || w.z > mu_hi) return false;
         double az = std::atan2(w.x, w.y);
@@ -189,18 +202,19 @@ public:
     void cell(std::size_t c, DirectCoefficients& out) {
         const Vec3 n = geometry_.normal(c);
         const Vec3 n_sky = targets_.horizon.to_local(n);
+        const std::vector<Vec3> corners = geometry_.corners(c);
         std::uint32_t block = 0;
         for (std::size_t e = 0; e < targets_.entries.size(); ++e) {
             const Entry& entry = targets_.entries[e];
             const std::uint32_t first = block;
             block += static_cast<std::uint32_t>(entry.side * entry.side);
             if (!(entry.luminance_cd_m2 > 0.0) || facing(entry.region, n_sky) < 0) continue;
-            const StrataSum sum = patch(c, first, entry, n, n_sky);
+            if (!reaches_opening(entry.region, corners)) continue;  // dark, as its rays would say
+            const StrataSum sum = patch(c, first, entry, n, n_sky, corners);
             out.sky_lx[e * out.cells + c] = entry.luminance_cd_m2 * sum.value;
             out.sky_var[e * out.cells + c] = entry.luminance_cd_m2 * entry.luminance_cd_m2 * sum.variance;
         }
         const int sun_rays = targets_.sun_side * targets_.sun_side;
-        const std::vector<Vec3> corners = geometry_.corners(c);
         for (std::size_t s = 0; s < targets_.suns.size(); ++s, block += static_cast<std::uint32_t>(sun_rays)) {
             const Sun& sun = targets_.suns[s];
             if (!(sun.normal_lx > 0.0) || glm::dot(sun.frame.n, n) <= -0.01) continue;
@@ -213,6 +227,14 @@ public:
     }
 
 private:
+    // Whether some ray from the cell towards the region may reach a portal's opening
+    // (always, without portals): where none can, the region is dark (portal_openings.hpp).
+    bool reaches_opening(const Region& r, const std::vector<Vec3>& corners) const {
+        if (openings_.empty()) return true;
+        const auto [axis, cos_half] = r.bounding_cone();
+        return openings_.may_pass(corners, targets_.horizon.to_world(axis), cos_half);
+    }
+
     // Cell c's Philox key: its detector above any cell index.
     std::uint64_t key(std::size_t c) const { return (static_cast<std::uint64_t>(det_) << 40) | c; }
 
@@ -237,7 +259,8 @@ private:
     // A sky entry: per stratum, its exact integral of cos dw (where it lies wholly in front)
     // times what passes along its sample. Where a stratum lies across the cell's plane, its
     // sample's own cos+ times the stratum's solid angle.
-    StrataSum patch(std::size_t c, std::uint32_t first, const Entry& entry, const Vec3& n, const Vec3& n_sky) {
+    StrataSum patch(std::size_t c, std::uint32_t first, const Entry& entry, const Vec3& n, const Vec3& n_sky,
+                    const std::vector<Vec3>& corners) {
         StrataSum sum;
         const int side = entry.side;
         const std::uint64_t k = key(c);
@@ -255,7 +278,7 @@ private:
                 const double cos_n = glm::dot(d, n);
                 const double weight = f > 0 ? glm::dot(n_sky, s.direction_integral())
                                             : s.solid_angle_sr() * std::max(0.0, cos_n);
-                sum.add(weight, weight > 0.0 ? through(c, w, d) : 0.0);
+                sum.add(weight, weight > 0.0 && reaches_opening(s, corners) ? through(c, w, d) : 0.0);
             }
         return sum;
     }

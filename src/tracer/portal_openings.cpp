@@ -38,6 +38,7 @@ PortalOpenings::PortalOpenings(const Scene& scene) : triangles_(scene.triangle_m
 }
 
 bool PortalOpenings::may_pass(std::span<const Vec3> from, const Vec3& d, double cos_half) const {
+    if (!(cos_half > 0.0)) return true;  // a cone wider than a hemisphere: in doubt
     const double sin_half = std::sqrt(std::max(0.0, 1.0 - cos_half * cos_half));
     const double half = std::asin(std::min(1.0, sin_half));
     for (const Opening& o : openings_) {

@@ -120,12 +120,18 @@ std::vector<double> patch_luminances(const SkyPatches& patches, const SkyModel& 
 
 }  // namespace
 
+struct AnnualSky::RowSky {
+    SkyModel model;
+    SunPosition sun;
+    double diffuse_horizontal_lx = 0.0, ground_lx = 0.0;  // ground: rho E_h,global
+};
+
 AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, double utc_offset_h,
-                     const AnnualOptions& options)
+                     const AnnualOptions& options, const AnnualSkyShare& share)
     : patches_(options.sky_mf) {
     const bool leap = weather.hours.size() == 8784;
     const int year = options.year > 0 ? options.year : (leap ? 2016 : 2017);
-    yearly_.assign(sky_entries(), 0.0);
+    std::vector<RowSky> rows;
     for (std::size_t i = 0; i < weather.hours.size(); ++i) {
         const weather::WeatherHour& w = weather.hours[i];
         AnnualHour h = annual_hour(w, weather.format, options);
@@ -135,19 +141,15 @@ AnnualSky::AnnualSky(const weather::WeatherFile& weather, const SunSite& site, d
         if (sun.above_horizon() && !(w.diffuse_horizontal_w_m2 == 0.0 && w.direct_normal_w_m2 == 0.0)) {
             require_sky_inputs(weather.path, i, h, w);
             // No diffuse irradiance, no sky to model (a real file's dawn may say so): dark.
-            if (w.diffuse_horizontal_w_m2 > 0.0) add_sky_row(h, i, w, sun, year, options);
+            if (w.diffuse_horizontal_w_m2 > 0.0) add_sky_row(h, i, w, sun, year, options, rows);
         }
         hours_.push_back(h);
     }
-    weights_.resize(luminance_.size());
-    for (std::size_t i = 0; i < luminance_.size(); ++i) {
-        const double year = yearly_[i % sky_entries()];
-        weights_[i] = year > 0.0 ? luminance_[i] / year : 0.0;
-    }
+    sky_vectors(rows, options, share);
 }
 
 void AnnualSky::add_sky_row(AnnualHour& h, std::size_t index, const weather::WeatherHour& w, const SunPosition& sun,
-                            int year, const AnnualOptions& options) {
+                            int year, const AnnualOptions& options, std::vector<RowSky>& rows) {
     const PerezSkyInput in = perez_input(w, sun, year);
     const PerezSky perez(in, false);  // scaled over the patches (patch_luminances)
     if (perez.clamped()) ++clamped_;
@@ -157,14 +159,36 @@ void AnnualSky::add_sky_row(AnnualHour& h, std::size_t index, const weather::Wea
     h.direct_normal_lx = perez.direct_normal_illuminance_lx();
     const SkyModel model = options.sky == "cie" ? SkyModel::cie(options.cie_type, in.sun_zenith_rad, in.sun_azimuth_rad)
                                                 : perez.model();
-    std::vector<double> means = patch_luminances(patches_, model, sun, h.diffuse_horizontal_lx, options.sky_mf);
-    // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
-    means.push_back(options.ground_reflectance * h.global_horizontal_lx() / kPi);
-    luminance_.insert(luminance_.end(), means.begin(), means.end());
-    for (std::size_t e = 0; e < sky_entries(); ++e) yearly_[e] += means[e];
+    rows.push_back({model, sun, h.diffuse_horizontal_lx, options.ground_reflectance * h.global_horizontal_lx()});
     if (h.direct_normal_lx > 0.0) {
         h.sun = static_cast<int>(suns_.size());
         suns_.push_back(index);
+    }
+}
+
+void AnnualSky::sky_vectors(const std::vector<RowSky>& rows, const AnnualOptions& options,
+                            const AnnualSkyShare& share) {
+    const std::size_t entries = sky_entries();
+    const std::size_t parts = share.gather ? static_cast<std::size_t>(std::max(1, share.parts)) : 1;
+    const std::size_t part = parts > 1 ? static_cast<std::size_t>(share.part) : 0;
+    std::vector<std::size_t> offsets;
+    for (std::size_t p = 0; p <= parts; ++p) offsets.push_back(rows.size() * p / parts * entries);
+    luminance_.assign(rows.size() * entries, 0.0);
+    for (std::size_t r = offsets[part] / entries; r < offsets[part + 1] / entries; ++r) {
+        std::vector<double> means = patch_luminances(patches_, rows[r].model, rows[r].sun,
+                                                     rows[r].diffuse_horizontal_lx, options.sky_mf);
+        // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
+        means.push_back(rows[r].ground_lx / kPi);
+        std::copy(means.begin(), means.end(), luminance_.begin() + static_cast<std::ptrdiff_t>(r * entries));
+    }
+    if (parts > 1) share.gather(luminance_, offsets);
+    yearly_.assign(entries, 0.0);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+        for (std::size_t e = 0; e < entries; ++e) yearly_[e] += luminance_[r * entries + e];
+    weights_.resize(luminance_.size());
+    for (std::size_t i = 0; i < luminance_.size(); ++i) {
+        const double year = yearly_[i % entries];
+        weights_[i] = year > 0.0 ? luminance_[i] / year : 0.0;
     }
 }
 

@@ -54,7 +54,7 @@ struct SceneArgs {
     }
 };
 
-Scene load_scene_args(const SceneArgs& a) {
+Scene load_scene_args(const SceneArgs& a, const AnnualSkyShare& sky_share = {}) {
     if (!a.radiance()) {
         if (a.files.size() != 1)
             throw InputError("give one scene file (TOML), or Radiance models (.rad) with --sensors; got " +
@@ -62,7 +62,7 @@ Scene load_scene_args(const SceneArgs& a) {
         if (!a.sensors.empty() || a.sensor_radius_m || a.scale)
             throw InputError("--sensors, --sensor-radius and --scale apply to Radiance models (.rad); a scene file "
                              "names its own sensors ([[detector]] type = \"points\") and [[radiance]] scale");
-        return load_scene(a.files.front());
+        return load_scene(a.files.front(), sky_share);
     }
     RadianceRun run;
     for (const std::string& f : a.files) {
@@ -214,7 +214,16 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
     SceneArgs scene_args = a.scene;
     scene_args.sensors_target = a.target;  // a Radiance model's sensors are what --target is about
     const double load0 = comm.wtime();
-    Scene scene = load_scene_args(scene_args);
+    // The ranks share building an annual year of skies: each its part of the hours, then
+    // all of them to everyone (every rank reads the same input and fails, if it does, the
+    // same way before this).
+    AnnualSkyShare sky_share;
+    sky_share.part = comm.rank();
+    sky_share.parts = comm.size();
+    sky_share.gather = [&comm](std::vector<double>& luminance, const std::vector<std::size_t>& offsets) {
+        comm.allgather_parts(luminance, offsets);
+    };
+    Scene scene = load_scene_args(scene_args, sky_share);
     const double load_s = comm.wtime() - load0;
     apply_overrides(scene, a);
     if (a.threads && *a.threads < 1) throw InputError("--threads: must be at least 1");

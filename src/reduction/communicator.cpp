@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -248,6 +249,24 @@ void Communicator::broadcast(std::vector<double>& values) const {
         MPI_Ibcast(values.data() + off, n, MPI_DOUBLE, 0, MPI_COMM_WORLD, &r);
         requests.push_back(r);
     }
+    wait_politely(requests);
+}
+
+void Communicator::allgather_parts(std::vector<double>& values, const std::vector<std::size_t>& offsets) const {
+    if (size_ == 1) return;
+    if (offsets.size() != static_cast<std::size_t>(size_) + 1 || offsets.back() > values.size() ||
+        offsets.back() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+        throw std::logic_error("allgather_parts: one part per rank, within the values and an int's range");
+    std::vector<int> counts, displs;
+    for (int r = 0; r < size_; ++r) {
+        displs.push_back(static_cast<int>(offsets[static_cast<std::size_t>(r)]));
+        counts.push_back(
+            static_cast<int>(offsets[static_cast<std::size_t>(r) + 1] - offsets[static_cast<std::size_t>(r)]));
+    }
+    MPI_Request r;
+    MPI_Iallgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                    MPI_COMM_WORLD, &r);
+    std::vector<MPI_Request> requests{r};
     wait_politely(requests);
 }
 

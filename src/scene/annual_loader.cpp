@@ -208,7 +208,8 @@ void read_annual(SceneLoad& load, TableReader& root, std::vector<Light>& lights,
     reconcile_site(load, r, w);
     std::shared_ptr<const AnnualSky> sky;
     try {
-        sky = std::make_shared<const AnnualSky>(w, scene.site.sun_site, scene.site.utc_offset_h, setup.options);
+        sky = std::make_shared<const AnnualSky>(w, scene.site.sun_site, scene.site.utc_offset_h, setup.options,
+                                                load.sky_share);
     } catch (const InputError& e) {
         r.fail("weather", e.what());
     }

@@ -94,8 +94,9 @@ void refuse_unknown_tables(const toml::table& root, const std::string& fname) {
 namespace {
 
 Scene load_from_table(const toml::table& root_table, const fs::path& file, const std::string& fname,
-                      const fs::path& folder) {
+                      const fs::path& folder, const AnnualSkyShare& sky_share = {}) {
     detail::SceneLoad load;
+    load.sky_share = sky_share;
     load.file = file;
     load.folder = folder;
     load.fname = fname;
@@ -127,12 +128,12 @@ std::string detector_name_of(const fs::path& file) {
 
 }  // namespace
 
-Scene load_scene(const fs::path& file) {
+Scene load_scene(const fs::path& file, const AnnualSkyShare& sky_share) {
     if (is_radiance_file(file))
         throw InputError(file.string() + ": a Radiance model, not a scene file: run it with `luxtrace run " +
                          file.filename().string() +
                          " --sensors GRID.pts`, or name it in a scene's [[radiance]] table (docs/RADIANCE.md)");
-    return load_from_table(parse_toml(file, file.string()), file, file.string(), file.parent_path());
+    return load_from_table(parse_toml(file, file.string()), file, file.string(), file.parent_path(), sky_share);
 }
 
 bool is_radiance_file(const fs::path& file) {

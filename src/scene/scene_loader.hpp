@@ -22,7 +22,8 @@ namespace luxtrace::detail {
 
 struct SceneLoad {
     std::filesystem::path file;
-    std::string fname;  // the file as given, for messages
+    std::string fname;         // the file as given, for messages
+    AnnualSkyShare sky_share;  // how the ranks share building an [annual] year of skies
     Scene scene;
     // [[shape]] name -> its triangles [first, last) in scene.triangles, for area lights.
     std::map<std::string, std::pair<std::size_t, std::size_t>> named_shapes;

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,17 @@ struct AnnualOptions {
     static bool valid_direct_rays(std::int64_t rays);
 };
 
+// How the ranks of a run share building the year's skies (each hour's patch luminances, most
+// of the load's time): this one computes part `part` of `parts` (contiguous runs of the
+// daylit hours), then `gather` fills in the others' rows: `luminance` holds every row
+// (hours x entries) with this part's at its place, part p's values start at offsets[p]
+// (offsets[parts] = luminance.size()). The rows come out the same, to the bit, however the
+// work is shared. The default: one builds all.
+struct AnnualSkyShare {
+    int part = 0, parts = 1;
+    std::function<void(std::vector<double>& luminance, const std::vector<std::size_t>& offsets)> gather;
+};
+
 // One hour of the weather file.
 struct AnnualHour {
     int month = 0, day = 0;
@@ -72,7 +84,7 @@ public:
     // Throws InputError naming the weather file and the hour for a value a daylit hour needs
     // that is missing or out of range.
     AnnualSky(const weather::WeatherFile& weather, const SunSite& site, double utc_offset_h,
-              const AnnualOptions& options);
+              const AnnualOptions& options, const AnnualSkyShare& share = {});
 
     const SkyPatches& patches() const { return patches_; }
     const std::vector<AnnualHour>& hours() const { return hours_; }
@@ -97,10 +109,15 @@ public:
     // Hours with the sun up and a direct but no diffuse irradiance (no sky to model): left dark.
 
 private:
-    // Hour `index` has a sky: its sky vector (the patches and the ground) becomes the next
-    // row, and the hour gets its row, its illuminances and its sun.
+    // What a row's sky vector is made of: the hour's sky model and sun.
+    struct RowSky;
+    // Hour `index` has a sky: it gets the next row, its illuminances and its sun, and the
+    // row's sky is noted in `rows` (its vector is made by sky_vectors).
     void add_sky_row(AnnualHour& h, std::size_t index, const weather::WeatherHour& w, const SunPosition& sun, int year,
-                     const AnnualOptions& options);
+                     const AnnualOptions& options, std::vector<RowSky>& rows);
+    // The rows' sky vectors (the patches and the ground): this part's computed, the others'
+    // gathered; then the entries' yearly sums and the weights.
+    void sky_vectors(const std::vector<RowSky>& rows, const AnnualOptions& options, const AnnualSkyShare& share);
 
     SkyPatches patches_;
     std::vector<AnnualHour> hours_;

@@ -67,6 +67,9 @@ public:
                         std::vector<Word>& recv) const;
     // Rank 0's values to every rank (same length everywhere).
     void broadcast(std::vector<double>& values) const;
+    // Every rank holds its part of `values`, [offsets[rank], offsets[rank + 1]); afterwards
+    // every rank holds every part (an all-gather in place).
+    void allgather_parts(std::vector<double>& values, const std::vector<std::size_t>& offsets) const;
     std::uint64_t allreduce_max(std::uint64_t v) const;
     // Element-wise bitwise OR over the ranks, in place (same length everywhere).
     void allreduce_or(std::vector<std::uint64_t>& bits) const;

@@ -94,7 +94,8 @@ struct Scene {
 };
 
 // Parse and validate a scene file; throws InputError naming the file and line or key.
-Scene load_scene(const std::filesystem::path& file);
+// `sky_share`: how the ranks share building an [annual] year of skies (annual_sky.hpp).
+Scene load_scene(const std::filesystem::path& file, const AnnualSkyShare& sky_share = {});
 
 Scene load_radiance_scene(const RadianceRun& run);
 // Whether a file given as a scene is a Radiance model (.rad, .mat, .sky) by its extension.

@@ -90,6 +90,60 @@ TEST_F(Loader, AnnualHoursSkyCarriesTheDiffuseIlluminanceAndTheSunSitsMidHour) {
     EXPECT_GT(checked, 4000u);
 }
 
+// The ranks share building the year's skies (AnnualSkyShare): each computes its run of
+// the hours, the gather gives everyone every row. Built in three parts, their rows put
+// together, the skies are the one-part build's to the bit; and a part leaves the others'
+// rows to the gather.
+TEST_F(Loader, AnnualSkiesBuiltInPartsAreTheSameBits) {
+    const weather::WeatherFile w = weather::read_epw(kEpw);
+    const Scene s = load(kAnnual + kMat + kFloor + kGrid);
+    const SunSite site = s.site.sun_site;
+    const double utc = s.site.utc_offset_h;
+    const AnnualOptions options = s.annual->options;
+    const AnnualSky whole(w, site, utc, options);
+    const std::size_t values = whole.daylit_hours() * whole.sky_entries();
+    constexpr int kParts = 3;
+    std::vector<std::vector<double>> parts(kParts);
+    std::vector<std::size_t> offsets;
+    for (int p = 0; p < kParts; ++p) {
+        AnnualSkyShare share;
+        share.part = p;
+        share.parts = kParts;
+        share.gather = [&](std::vector<double>& luminance, const std::vector<std::size_t>& o) {
+            parts[static_cast<std::size_t>(p)] = luminance;  // only its own rows are filled
+            offsets = o;
+        };
+        const AnnualSky part(w, site, utc, options, share);
+    }
+    ASSERT_EQ(offsets.size(), static_cast<std::size_t>(kParts) + 1);
+    EXPECT_EQ(offsets.back(), values);
+    // Each part's rows are the whole build's; outside them it computed nothing.
+    for (int p = 0; p < kParts; ++p)
+        for (std::size_t i = 0; i < values; ++i) {
+            const double got = parts[static_cast<std::size_t>(p)][i];
+            const std::size_t row = i / whole.sky_entries(), e = i % whole.sky_entries();
+            const bool own = i >= offsets[static_cast<std::size_t>(p)] && i < offsets[static_cast<std::size_t>(p) + 1];
+            ASSERT_EQ(got, own ? whole.sky_vector(row)[e] : 0.0) << "part " << p << ", value " << i;
+        }
+    // Put together by the gather, the sky is the whole one's, weights and sums included.
+    AnnualSkyShare share;
+    share.part = 1;
+    share.parts = kParts;
+    share.gather = [&](std::vector<double>& luminance, const std::vector<std::size_t>& o) {
+        for (int p = 0; p < kParts; ++p)
+            for (std::size_t i = o[static_cast<std::size_t>(p)]; i < o[static_cast<std::size_t>(p) + 1]; ++i)
+                luminance[i] = parts[static_cast<std::size_t>(p)][i];
+    };
+    const AnnualSky shared(w, site, utc, options, share);
+    EXPECT_EQ(shared.yearly_luminance(), whole.yearly_luminance());
+    for (std::size_t r = 0; r < whole.daylit_hours(); ++r)
+        for (std::size_t e = 0; e < whole.sky_entries(); ++e) {
+            ASSERT_EQ(shared.sky_vector(r)[e], whole.sky_vector(r)[e]);
+            ASSERT_EQ(shared.sky_weights(r)[e], whole.sky_weights(r)[e]);
+        }
+    EXPECT_EQ(shared.suns(), whole.suns());
+}
+
 TEST_F(Loader, AnnualPortalDropsPatchesBehindTheOpening) {
     // A window facing south (y = 0 plane, outward -y): no patch of the northern sky enters.
     const std::string window =

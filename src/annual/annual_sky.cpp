@@ -1,6 +1,7 @@
 #include "luxtrace/annual/annual_sky.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/core/parallel.hpp"
 #include "luxtrace/light/perez_sky.hpp"
 #include "luxtrace/light/site.hpp"
 
@@ -174,13 +175,16 @@ void AnnualSky::sky_vectors(const std::vector<RowSky>& rows, const AnnualOptions
     std::vector<std::size_t> offsets;
     for (std::size_t p = 0; p <= parts; ++p) offsets.push_back(rows.size() * p / parts * entries);
     luminance_.assign(rows.size() * entries, 0.0);
-    for (std::size_t r = offsets[part] / entries; r < offsets[part + 1] / entries; ++r) {
+    // This part's rows, on every core (each row its own: the same bits on any core count).
+    const std::size_t first = offsets[part] / entries, last = offsets[part + 1] / entries;
+    for_each_index(last - first, 16, [&](std::size_t i) {
+        const std::size_t r = first + i;
         std::vector<double> means = patch_luminances(patches_, rows[r].model, rows[r].sun,
                                                      rows[r].diffuse_horizontal_lx, options.sky_mf);
         // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
         means.push_back(rows[r].ground_lx / kPi);
         std::copy(means.begin(), means.end(), luminance_.begin() + static_cast<std::ptrdiff_t>(r * entries));
-    }
+    });
     if (parts > 1) share.gather(luminance_, offsets);
     yearly_.assign(entries, 0.0);
     for (std::size_t r = 0; r < rows.size(); ++r)

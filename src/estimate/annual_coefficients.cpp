@@ -100,9 +100,6 @@ struct AnnualCoefficients::SunPools {
     }
 };
 
-AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid)
-    : AnnualCoefficients(grid, 0, grid.cells, dark_rates(grid)) {}
-
 AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t first, std::size_t count,
                                        const AnnualDarkRates& dark)
     : annual_(grid.annual), shadow_(grid.direct != nullptr), first_(first), cells_(count),
@@ -330,19 +327,26 @@ void AnnualCoefficients::pool(const std::vector<double>& indirect, const std::ve
 
 namespace {
 
-// row[c] = sum over the entries with weight > 0 of w^power x[e * cells + c], the entries in
-// order: the same sums whatever the vector width (no fused multiply-add is asked for).
+// row[c] = sum over the entries with weight > 0 of w^power x[e * cells + c], for the cells
+// c in [first, cells), the entries in order: the same sums whatever the vector width (no
+// fused multiply-add is asked for).
 template <int kPower>
-inline void sky_sum(const double* weight, const std::size_t* entries, std::size_t n, const double* x, std::size_t cells,
-                    double* row) {
-    std::fill(row, row + cells, 0.0);
+inline void sky_sum_from(const double* weight, const std::size_t* entries, std::size_t n, const double* x,
+                         std::size_t cells, std::size_t first, double* row) {
+    std::fill(row + first, row + cells, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t e = entries[i];
         if (!(weight[e] > 0.0)) continue;
         const double w = kPower == 1 ? weight[e] : weight[e] * weight[e];
         const double* c = &x[e * cells];
-        for (std::size_t cell = 0; cell < cells; ++cell) row[cell] += w * c[cell];
+        for (std::size_t cell = first; cell < cells; ++cell) row[cell] += w * c[cell];
     }
+}
+
+template <int kPower>
+void sky_sum(const double* weight, const std::size_t* entries, std::size_t n, const double* x, std::size_t cells,
+             double* row) {
+    sky_sum_from<kPower>(weight, entries, n, x, cells, 0, row);
 }
 
 // The same sums, 4 x kVectors cells at a time in AVX2 registers over the entries (a sum
@@ -372,15 +376,7 @@ __attribute__((target("avx2"))) void sky_sum_avx2(const double* weight, const st
     for (; first + 32 <= cells; first += 32) sky_sum_lanes<kPower, 8>(weight, entries, n, x, cells, first, row);
     for (; first + 16 <= cells; first += 16) sky_sum_lanes<kPower, 4>(weight, entries, n, x, cells, first, row);
     for (; first + 4 <= cells; first += 4) sky_sum_lanes<kPower, 1>(weight, entries, n, x, cells, first, row);
-    if (first == cells) return;
-    // The last cells: each its own sum, over the entries in the same order.
-    std::fill(row + first, row + cells, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t e = entries[i];
-        if (!(weight[e] > 0.0)) continue;
-        const double w = kPower == 1 ? weight[e] : weight[e] * weight[e];
-        for (std::size_t cell = first; cell < cells; ++cell) row[cell] += w * x[e * cells + cell];
-    }
+    if (first < cells) sky_sum_from<kPower>(weight, entries, n, x, cells, first, row);  // the last few
 }
 
 }  // namespace

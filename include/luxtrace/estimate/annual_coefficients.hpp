@@ -59,8 +59,6 @@ public:
     static AnnualDarkRates dark_rates(const AnnualGridCounts& grid);
     // Cells [first, first + count) of the grid.
     AnnualCoefficients(const AnnualGridCounts& grid, std::size_t first, std::size_t count, const AnnualDarkRates& dark);
-    // Every cell.
-    explicit AnnualCoefficients(const AnnualGridCounts& grid);
 
     // Series are hours x the block's cells (AnnualSeries::sensors = count), hour-major,
     // every hour of the weather file (0 in the dark ones).

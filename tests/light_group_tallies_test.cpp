@@ -44,8 +44,9 @@ void expect_stored(const ResultFile& file, const LightGroupTallies& t, const std
         EXPECT_TRUE(same(e.global.mean_arithmetic_lx, r.attr_f64(g, "mean_arithmetic_lx"))) << where;
         EXPECT_TRUE(same(e.global.sigma_lx, r.attr_f64(g, "sigma_lx"))) << where;
         EXPECT_TRUE(same(e.global.moment_sigma_lx, r.attr_f64(g, "moment_sigma_lx"))) << where;
-        if (r.has_attr(g, "replicate_sigma_lx"))
+        if (r.has_attr(g, "replicate_sigma_lx")) {
             EXPECT_TRUE(same(e.global.replicate_sigma_lx, r.attr_f64(g, "replicate_sigma_lx"))) << where;
+        }
         EXPECT_EQ(e.global.lit_sides, r.attr_u64(g, "lit_sides")) << where;
     }
     ASSERT_EQ(e.detectors.size(), t.detectors.size());

@@ -15,6 +15,11 @@ namespace luxtrace {
 namespace {
 // The suns of one clock hour share an empirical-Bayes prior (sun_priors).
 constexpr std::size_t kClockHours = 24;
+// The replicates' streams of a block's interreflected sun (draw_sun_indirect), apart from
+// its cells' own (a cell index stays below 2^39).
+constexpr std::uint64_t kSunDrawStream = std::uint64_t{1} << 39;
+// Above this mean count over a block a sun's cells are drawn one by one.
+constexpr double kSharedSunDrawMean = 16.0;
 }  // namespace
 
 // The detector's counts per light group, as the constructor's steps read them.
@@ -512,18 +517,61 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             sky[i] += draw(sky_var_[i]);
             if (shadow_) sky[i] += shadow_draw(shadow_sky_var_[i]);
         }
-        // A sun: its direct count around its pooled mean, its indirect count too, then
-        // pooled over the days as the estimate is.
+        // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
             const std::size_t i = s * cells_ + cell;
-            const double mu_d = rep_direct_mu_[i], mu_i = rep_indirect_mu_[i], var_i = rep_indirect_var_[i];
+            const double mu_d = rep_direct_mu_[i];
             if (shadow_) direct[i] = shadow_sun_lx_[i] + shadow_draw(shadow_sun_var_[i]);
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
-            if (mu_i != 0.0 || var_i > 0.0) indirect[i] = k * mu_i + draw(k2 * var_i);
         }
     }
+    draw_sun_indirect(seed, replicate, indirect);
     pool(indirect, direct, sun);
     combine(sky, sun, direct, out);
+}
+
+// A sun's interreflected counts over the block's cells, each Poisson of its variance v_c
+// around its centre: independent Poisson counts are a Poisson total of mean V = sum v_c
+// shared out among the cells in proportion to v_c (multinomially), which costs one draw
+// per sun and one per count instead of one per cell, most of them 0 (a few-count sun
+// hour's cells). Where V is large the cells are drawn one by one. The block's own stream:
+// (seed, replicate, its first cell), the blocks being the same however the work is shared.
+void AnnualCoefficients::draw_sun_indirect(std::uint64_t seed, std::uint64_t replicate,
+                                           std::vector<double>& indirect) const {
+    const double k = per_count_;
+    if (!(k > 0.0)) return;
+    PhiloxBits bits(seed, (replicate << 40) | kSunDrawStream | first_);
+    std::normal_distribution<double> normal;
+    std::vector<double> cumulative(cells_);
+    for (std::size_t s = 0; s < pool_.size(); ++s) {
+        const std::size_t row = s * cells_;
+        double total = 0.0;
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const double mu = rep_indirect_mu_[row + cell], var = rep_indirect_var_[row + cell];
+            if (mu != 0.0 || var > 0.0) indirect[row + cell] = k * (mu - var);
+            total += std::max(0.0, var);
+            cumulative[cell] = total;
+        }
+        if (!(total > 0.0)) continue;
+        if (total > kSharedSunDrawMean) {
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                const double var = rep_indirect_var_[row + cell];
+                if (!(var > 0.0)) continue;
+                indirect[row + cell] += var > 1000.0 ? k * (var + std::sqrt(var) * normal(bits))
+                                                     : k * static_cast<double>(
+                                                               std::poisson_distribution<std::int64_t>(var)(bits));
+            }
+            continue;
+        }
+        const std::int64_t counts = std::poisson_distribution<std::int64_t>(total)(bits);
+        for (std::int64_t n = 0; n < counts; ++n) {
+            const double u = std::generate_canonical<double, 53>(bits) * total;
+            const std::size_t cell = static_cast<std::size_t>(
+                std::min<std::ptrdiff_t>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin(),
+                                         static_cast<std::ptrdiff_t>(cells_) - 1));
+            indirect[row + cell] += k;
+        }
+    }
 }
 
 }  // namespace luxtrace

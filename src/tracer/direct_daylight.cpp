@@ -10,6 +10,7 @@
 #include "luxtrace/tracer/shadow_ray.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -25,6 +26,8 @@ namespace {
 constexpr std::uint64_t kDirectKey = 0xD1AEC7DA7115B0ADull;
 // The ground's strata per side (one entry as large as the sky's half).
 constexpr int kGroundSide = 16;
+// The normals whose facings a pass computes once for all its cells (facings_of).
+constexpr std::size_t kSharedNormals = 8;
 // Rays per cell over the sky patches, about, when DirectDaylightOptions::sky_rays is 0.
 constexpr double kSkyRaysPerCell = 9216.0;
 
@@ -111,6 +114,18 @@ struct Entry {
 struct Sun {
     Frame frame = Frame::around(Vec3(0, 0, 1));  // around the direction toward the sun
     double normal_lx = 0.0;
+    // Four points of its rim (world), at 0.98 of the disc's radius: with the centre, the
+    // fixed rays that tell whether a point sees the disc whole, cut or not at all.
+    std::array<Vec3, 4> rim{};
+};
+
+// What a stratum of a sky entry is, whatever the cell: its region, the integral of the
+// direction over it (sky frame) and a cone holding it (world).
+struct Stratum {
+    Region region;
+    Vec3 integral{0.0};
+    Vec3 cone_axis{0.0, 0.0, 1.0};
+    double cone_cos_half = -1.0;
 };
 
 // The sky entries (the patches, then the ground: the lower hemisphere) and the suns.
@@ -136,19 +151,72 @@ struct Targets {
         entries.push_back({{-1.0, 0.0, 0.0, 2.0 * kPi}, yearly[sky.ground_entry()], kGroundSide});
         cos_half_sun = std::cos(kSunHalfAngleDeg * kPi / 180.0);
         sun_side = side_of(o.sun_rays);
+        const double rim = 0.98 * std::sqrt(1.0 - cos_half_sun * cos_half_sun);
         for (const std::size_t h : sky.suns()) {
             const AnnualHour& hour = sky.hours()[h];
-            suns.push_back(
-                {Frame::around(horizon.to_world(sky_direction_deg(hour.sun_altitude_deg, hour.sun_azimuth_deg))),
-                 hour.direct_normal_lx});
+            Sun sun{Frame::around(horizon.to_world(sky_direction_deg(hour.sun_altitude_deg, hour.sun_azimuth_deg))),
+                    hour.direct_normal_lx};
+            for (int i = 0; i < 4; ++i) {
+                const double phi = 0.5 * kPi * i;
+                sun.rim[static_cast<std::size_t>(i)] = glm::normalize(
+                    sun.frame.to_world(Vec3(rim * std::cos(phi), rim * std::sin(phi), 1.0)));
+            }
+            suns.push_back(sun);
+        }
+        // Every entry's strata, once for all cells (their trigonometry would otherwise be
+        // most of the pass's arithmetic).
+        for (const Entry& e : entries) {
+            first_stratum.push_back(strata.size());
+            for (int a = 0; a < e.side; ++a)
+                for (int b = 0; b < e.side; ++b) {
+                    Stratum s;
+                    s.region = e.region.stratum(a, b, e.side);
+                    s.integral = s.region.direction_integral();
+                    const auto [axis, cos_half] = s.region.bounding_cone();
+                    s.cone_axis = horizon.to_world(axis);
+                    s.cone_cos_half = cos_half;
+                    strata.push_back(s);
+                }
         }
     }
+    std::vector<Stratum> strata;             // every entry's, entry by entry, row-major (a, b)
+    std::vector<std::size_t> first_stratum;  // per entry
     // An even side whose square is about kSkyRaysPerCell / patches, at least 2.
     static int sky_side(std::size_t patches) {
         const int side = 2 * static_cast<int>(std::lround(std::sqrt(kSkyRaysPerCell / patches) / 2.0));
         return std::max(2, side);
     }
 };
+
+// Which side of a cell's plane every entry and stratum lies on (facing: +1 in front, -1
+// behind, 0 across), for one normal; the cells of a grid share a few normals.
+struct Facings {
+    Vec3 normal{0.0};  // world
+    std::vector<std::int8_t> entry, stratum;
+};
+
+// +1: the whole region lies in front of the plane of normal n_sky (sky frame), -1: behind
+// it, 0: across it.
+int facing(const Region& r, const Vec3& n_sky) {
+    const auto [lo, hi] = r.cos_range(n_sky);
+    if (lo >= 0.0) return 1;
+    if (hi <= 0.0) return -1;
+    return 0;
+}
+
+Facings facings_of(const Targets& t, const Vec3& normal) {
+    Facings f;
+    f.normal = normal;
+    const Vec3 n_sky = t.horizon.to_local(normal);
+    for (const Entry& e : t.entries) f.entry.push_back(static_cast<std::int8_t>(facing(e.region, n_sky)));
+    f.stratum.resize(t.strata.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, t.strata.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                              f.stratum[i] = static_cast<std::int8_t>(facing(t.strata[i].region, n_sky));
+                      });
+    return f;
+}
 
 // Where a cell's samples start and which way it faces.
 struct CellGeometry {
@@ -199,18 +267,26 @@ public:
           openings_(openings), sampler_(o.seed ^ kDirectKey), targets_(targets), det_(det),
           eps_(scene.ray_epsilon_m()) {}
 
-    void cell(std::size_t c, DirectCoefficients& out) {
+    // `facings` for the cell's normal (facings_of), or computed here.
+    void cell(std::size_t c, const std::vector<Facings>& facings, DirectCoefficients& out) {
         const Vec3 n = geometry_.normal(c);
         const Vec3 n_sky = targets_.horizon.to_local(n);
         const std::vector<Vec3> corners = geometry_.corners(c);
+        const Facings* f = nullptr;
+        for (const Facings& k : facings)
+            if (k.normal == n) f = &k;
+        if (f == nullptr) {
+            own_facings_ = facings_of(targets_, n);
+            f = &own_facings_;
+        }
         std::uint32_t block = 0;
         for (std::size_t e = 0; e < targets_.entries.size(); ++e) {
             const Entry& entry = targets_.entries[e];
             const std::uint32_t first = block;
             block += static_cast<std::uint32_t>(entry.side * entry.side);
-            if (!(entry.luminance_cd_m2 > 0.0) || facing(entry.region, n_sky) < 0) continue;
+            if (!(entry.luminance_cd_m2 > 0.0) || f->entry[e] < 0) continue;
             if (!reaches_opening(entry.region, corners)) continue;  // dark, as its rays would say
-            const StrataSum sum = patch(c, first, entry, n, n_sky, corners);
+            const StrataSum sum = patch(c, first, e, n, n_sky, corners, *f);
             out.sky_lx[e * out.cells + c] = entry.luminance_cd_m2 * sum.value;
             out.sky_var[e * out.cells + c] = entry.luminance_cd_m2 * entry.luminance_cd_m2 * sum.variance;
         }
@@ -238,14 +314,6 @@ private:
     // Cell c's Philox key: its detector above any cell index.
     std::uint64_t key(std::size_t c) const { return (static_cast<std::uint64_t>(det_) << 40) | c; }
 
-    // +1: the whole region lies in front of the cell's plane, -1: behind it, 0: across it.
-    static int facing(const Region& r, const Vec3& n_sky) {
-        const auto [lo, hi] = r.cos_range(n_sky);
-        if (lo >= 0.0) return 1;
-        if (hi <= 0.0) return -1;
-        return 0;
-    }
-
     // What passes along d from the cell (its point, or a point of its area from w[2], w[3]).
     // The ray starts at the point itself, and surfaces closer than a ray epsilon along it are
     // passed by: a sensor lying on a floor does not shade itself, and one in the air is not
@@ -259,26 +327,29 @@ private:
     // A sky entry: per stratum, its exact integral of cos dw (where it lies wholly in front)
     // times what passes along its sample. Where a stratum lies across the cell's plane, its
     // sample's own cos+ times the stratum's solid angle.
-    StrataSum patch(std::size_t c, std::uint32_t first, const Entry& entry, const Vec3& n, const Vec3& n_sky,
-                    const std::vector<Vec3>& corners) {
+    StrataSum patch(std::size_t c, std::uint32_t first, std::size_t e, const Vec3& n, const Vec3& n_sky,
+                    const std::vector<Vec3>& corners, const Facings& facings) {
         StrataSum sum;
-        const int side = entry.side;
+        const int side = targets_.entries[e].side;
+        const std::size_t first_stratum = targets_.first_stratum[e];
         const std::uint64_t k = key(c);
         for (int a = 0; a < side; ++a)
             for (int b = 0; b < side; ++b) {
-                const auto w = sampler_.block(k, first + static_cast<std::uint32_t>(a * side + b));
-                const Region s = entry.region.stratum(a, b, side);
-                const int f = facing(s, n_sky);
+                const std::size_t i = first_stratum + static_cast<std::size_t>(a * side + b);
+                const int f = facings.stratum[i];
                 if (f < 0) {
                     sum.add(0.0, 0.0);
                     continue;
                 }
+                const Stratum& s = targets_.strata[i];
+                const auto w = sampler_.block(k, first + static_cast<std::uint32_t>(a * side + b));
                 const Vec3 d = targets_.horizon.to_world(
-                    s.direction(PhiloxSampler::uniform(w[0]), PhiloxSampler::uniform(w[1])));
+                    s.region.direction(PhiloxSampler::uniform(w[0]), PhiloxSampler::uniform(w[1])));
                 const double cos_n = glm::dot(d, n);
-                const double weight = f > 0 ? glm::dot(n_sky, s.direction_integral())
-                                            : s.solid_angle_sr() * std::max(0.0, cos_n);
-                sum.add(weight, weight > 0.0 && reaches_opening(s, corners) ? through(c, w, d) : 0.0);
+                const double weight = f > 0 ? glm::dot(n_sky, s.integral)
+                                            : s.region.solid_angle_sr() * std::max(0.0, cos_n);
+                const bool reaches = openings_.empty() || openings_.may_pass(corners, s.cone_axis, s.cone_cos_half);
+                sum.add(weight, weight > 0.0 && reaches ? through(c, w, d) : 0.0);
             }
         return sum;
     }
@@ -300,15 +371,9 @@ private:
         bool cut = false;  // the five fixed rays disagreed
         if (geometry_.point() && in_front) {
             const PhiloxSampler::Block none{};
-            const double rim = 0.98 * sin_half;
             double z[5];
             z[0] = through(c, none, sun.frame.n);
-            for (int i = 0; i < 4; ++i) {
-                const double phi = 0.5 * kPi * i;
-                z[i + 1] = through(c, none,
-                                   glm::normalize(
-                                       sun.frame.to_world(Vec3(rim * std::cos(phi), rim * std::sin(phi), 1.0))));
-            }
+            for (std::size_t i = 0; i < 4; ++i) z[i + 1] = through(c, none, sun.rim[i]);
             // The same: all blocked, or all through (glazing's T differs a little between them).
             const bool seen = z[0] > 0.0;
             if (std::all_of(z + 1, z + 5, [&](double x) { return (x > 0.0) == seen; })) {
@@ -352,6 +417,7 @@ private:
 
     CellGeometry geometry_;
     std::vector<double> terms_;  // disc's scratch
+    Facings own_facings_;        // a cell's normal that the shared facings lack
     ShadowRay shadow_;
     const PortalOpenings& openings_;
     PhiloxSampler sampler_;
@@ -374,9 +440,18 @@ void direct_daylight(const Scene& scene, const EmbreeScene& embree, std::size_t 
     const PortalOpenings openings(scene);
     if (out.entries != targets.entries.size() || out.suns != targets.suns.size() || last > out.cells)
         throw std::logic_error("direct_daylight: coefficients sized for another detector or sky");
+    // The facings of the grid's normals, up to a few (a points grid may have as many as
+    // sensors: the others are the tracer's own business).
+    const CellGeometry geometry{scene.detectors[det]};
+    std::vector<Facings> facings;
+    for (std::size_t c = first; c < last && facings.size() <= kSharedNormals; ++c) {
+        const Vec3 n = geometry.normal(c);
+        if (std::none_of(facings.begin(), facings.end(), [&](const Facings& f) { return f.normal == n; }))
+            facings.push_back(facings_of(targets, n));
+    }
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& r) {
         CellTracer tracer(scene, embree, det, options, targets, openings);
-        for (std::size_t c = r.begin(); c < r.end(); ++c) tracer.cell(c, out);
+        for (std::size_t c = r.begin(); c < r.end(); ++c) tracer.cell(c, facings, out);
     });
 }
 

@@ -73,7 +73,8 @@ public:
     // A fresh run's values, from (seed, replicate): every count redrawn around its centre as
     // a Poisson count of its variance, for the errors of nonlinear metrics
     // (stats/annual_metrics.hpp). Each cell's draws are its own Philox stream of (seed,
-    // replicate, the cell's index in the grid): the same whatever the block.
+    // replicate, the cell's index in the grid), the suns' interreflected counts the block's
+    // (its first cell): the same however the blocks are shared among cores and ranks.
     void replicate(std::uint64_t seed, std::uint64_t replicate, AnnualSeries& out) const;
 
 private:
@@ -96,6 +97,10 @@ private:
     // [sun][cell]: sun = direct + the indirect pooled over the sun's day and its neighbours
     // (pool_share_ times their sum).
     void pool(const std::vector<double>& indirect, const std::vector<double>& direct, std::vector<double>& sun) const;
+
+    // replicate(): a fresh run's interreflected sun of every sun and cell (its counts drawn
+    // around their centres, in lx per unit weight, not yet pooled) into `indirect`.
+    void draw_sun_indirect(std::uint64_t seed, std::uint64_t replicate, std::vector<double>& indirect) const;
 
     // The shadow rays' direct light of the hour (sky, ground and sun) into `out` (cells);
     // with `variance`, its variance instead.

@@ -221,6 +221,54 @@ TEST(AnnualMetricSums, TheBlockedEstimateIsTheSameOnOneCoreAndOnMany) {
     EXPECT_GT(*std::max_element(sigma.begin(), sigma.end()), 0.0);
 }
 
+TEST(AnnualMetricSums, PartsMergedAsWordsGiveTheWholeGridsFigures) {
+    // The post-processing shared among ranks: each part runs its blocks and passes its sums
+    // as words; merged in any order they give the one-part figures to the bit, and a word
+    // count that says how long each part's message is.
+    constexpr std::size_t kHours = 60, kSensors = 50, kBlock = 8;
+    const AnnualHours h = all_hours(kHours);
+    const AnnualSeries truth = random_series(kHours, kSensors, 11);
+    const AnnualBlockDraws draws = [&](std::size_t first, std::size_t count, const AnnualSink& sink) {
+        for (int r = -2; r < 4; ++r) {
+            AnnualSeries s = columns(truth, first, count);
+            for (std::size_t c = 0; c < count; ++c) {
+                std::mt19937_64 rng((first + c) * 1000 + static_cast<std::uint64_t>(r + 2));
+                std::normal_distribution<double> z;
+                for (std::size_t hour = 0; hour < kHours; ++hour) s.total_lx[hour * count + c] *= 1.0 + 0.1 * z(rng);
+            }
+            sink(r == -2   ? AnnualDraw::estimate
+                 : r == -1 ? AnnualDraw::centre
+                           : AnnualDraw::replicate,
+                 static_cast<std::size_t>(std::max(r, 0)), s);
+        }
+    };
+    auto flat = [](const AnnualEstimate& e) {
+        std::vector<double> out = every_figure(e.value);
+        for (const AnnualMetrics* m : {&e.sigma, &e.bias}) {
+            const std::vector<double> x = every_figure(*m);
+            out.insert(out.end(), x.begin(), x.end());
+        }
+        return out;
+    };
+    const std::vector<double> whole = flat(estimate_annual_metrics(draws, kSensors, kBlock, h, {}, 4));
+    const std::vector<std::pair<std::size_t, std::size_t>> parts = {{24, 50}, {0, 8}, {8, 24}};
+    AnnualMetricDraws merged(h, kSensors, {}, 4);
+    for (const auto& [first, last] : parts) {
+        AnnualMetricDraws part(h, kSensors, {}, 4);
+        part.run(draws, kBlock, first, last);
+        const std::vector<std::uint64_t> words = part.words(first, last);
+        EXPECT_EQ(words.size(), AnnualMetricDraws::word_count(kHours, last - first, 4));
+        merged.merge(words, first, last);
+    }
+    const std::vector<double> shared = flat(merged.estimate());
+    ASSERT_EQ(shared.size(), whole.size());
+    for (std::size_t i = 0; i < whole.size(); ++i)
+        EXPECT_EQ(std::memcmp(&shared[i], &whole[i], sizeof(double)), 0) << "figure " << i;
+    // A part that does not start on a block is the caller's bug.
+    AnnualMetricDraws odd(h, kSensors, {}, 4);
+    EXPECT_THROW(odd.run(draws, kBlock, 3, 20), std::invalid_argument);
+}
+
 TEST(En17037DaylightHours, TheBrightestHalfOfTheHoursWithDaylight) {
     const std::vector<double> outdoor = {0, 5, 3, NAN, 5, 1, 0, 8};
     // Half of 8 hours: 4 of them, the brightest, the tie at 5 both in.

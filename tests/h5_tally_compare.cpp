@@ -67,6 +67,32 @@ int main(int argc, char** argv) {
             std::cout << n << ": " << va.size() << " values, " << diff << " differ\n";
             differ += diff != 0;
         }
+        // ... and the grid figures (attributes of the grid's group), which rank 0 merges
+        // from every rank's part when the ranks share the post-processing.
+        std::vector<std::string> figures{"sda",
+                                         "ase",
+                                         "mean_da",
+                                         "mean_continuous_da",
+                                         "mean_udi_fell_short",
+                                         "mean_udi_useful",
+                                         "mean_udi_exceeded"};
+        for (const char* level : {"minimum", "medium", "high"})
+            for (const char* what : {"_target_hours", "_minimum_hours"})
+                figures.push_back(std::string("en17037_") + level + what);
+        for (const std::string& d :
+             a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{}) {
+            const std::string g = "/annual/detectors/" + d;
+            std::size_t diff = 0, compared = 0;
+            for (const std::string& f : figures)
+                for (const char* suffix : {"", "_sigma", "_bias"})
+                    if (a.has_attr(g, f + suffix)) {
+                        const double x = a.attr_f64(g, f + suffix), y = b.attr_f64(g, f + suffix);
+                        diff += std::memcmp(&x, &y, sizeof(double)) != 0;
+                        ++compared;
+                    }
+            std::cout << g << ": " << compared << " grid figures, " << diff << " differ\n";
+            differ += diff != 0;
+        }
         if (a.attr_u64("/", "photons") != b.attr_u64("/", "photons")) {
             std::cout << "photons differ\n";
             ++differ;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 
@@ -39,54 +40,34 @@ AnnualHours annual_hours(const AnnualSetup& annual) {
     return out;
 }
 
-AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
-                                            std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                                            int replicates, bool series, const AnnualDirect& direct) {
+namespace {
+
+// The grid's counts as AnnualCoefficients reads them.
+AnnualGridCounts grid_counts(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                             const std::vector<double>& group_flux, const DirectCoefficients* direct) {
     const Detector& d = scene.detectors[det];
-    const bool shadow = det < direct.size() && direct[det].cells > 0;
-    if (scene.annual->options.shadow_rays() != shadow)
+    if (scene.annual->options.shadow_rays() != (direct != nullptr))
         throw std::logic_error("estimate_annual_grid: direct coefficients missing or not asked for");
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
-    const std::size_t cells = static_cast<std::size_t>(d.cells());
-    const AnnualGridCounts grid{*scene.annual, layout,     data,
-                                det,           cells,      e0 * d.value_per_lm(),
-                                photons,       group_flux, shadow ? &direct[det] : nullptr};
-    const AnnualHours hours = annual_hours(*scene.annual);
-    AnnualDetectorEstimate e;
-    if (shadow) {  // every coefficient's weights sum to 1 over the year (annual_sky.hpp)
-        const DirectCoefficients& dc = direct[det];
-        auto year = [&](const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& sum,
-                        std::vector<double>& sigma) {
-            sum.assign(dc.cells, 0.0);
-            sigma.assign(dc.cells, 0.0);
-            for (std::size_t i = 0; i < x.size(); ++i) {
-                sum[i % dc.cells] += x[i];
-                sigma[i % dc.cells] += v[i];
-            }
-            for (double& s : sigma) s = std::sqrt(s);
-        };
-        year(dc.sky_lx, dc.sky_var, e.direct_sky_lx_h, e.direct_sky_sigma_lx_h);
-        year(dc.sun_lx, dc.sun_var, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
-    }
-    if (series) {
-        for (AnnualSeries* x : {&e.value, &e.sigma}) {
-            x->hours = hours.occupied.size();
-            x->sensors = cells;
-            x->total_lx.assign(x->hours * cells, 0.0);
-            x->direct_lx.assign(x->hours * cells, 0.0);
-        }
-    }
-    // Block by block on every core: each block's coefficients, its hourly series and its
-    // replicates' (annual_metrics.hpp).
-    const AnnualDarkRates dark = AnnualCoefficients::dark_rates(grid);
-    const std::uint64_t seed = scene.run.seed * 0x9E3779B97F4A7C15ull + det;
-    const AnnualBlockDraws draws = [&](std::size_t first, std::size_t count, const AnnualSink& sink) {
+    return {*scene.annual,         layout,  data,       det,   static_cast<std::size_t>(d.cells()),
+            e0 * d.value_per_lm(), photons, group_flux, direct};
+}
+
+const DirectCoefficients* direct_of(const AnnualDirect& direct, std::size_t det) {
+    return det < direct.size() && direct[det].cells > 0 ? &direct[det] : nullptr;
+}
+
+// The draws of a block (its coefficients, its series and its replicates'), the block's
+// series with their errors to `series` when given (AnnualSeries for value and sigma).
+AnnualBlockDraws block_draws(
+    const AnnualGridCounts& grid, const AnnualDarkRates& dark, std::uint64_t seed, int replicates,
+    const std::function<void(std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma)>* series) {
+    return [&grid, &dark, seed, replicates, series](std::size_t first, std::size_t count, const AnnualSink& sink) {
         const AnnualCoefficients c(grid, first, count, dark);
         AnnualSeries s, sigma;
-        if (series) {
+        if (series != nullptr) {
             c.series(s, sigma);
-            place_block(s, first, e.value);
-            place_block(sigma, first, e.sigma);
+            (*series)(first, s, sigma);
         } else {
             c.estimate(s);
         }
@@ -99,7 +80,116 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
             sink(AnnualDraw::replicate, static_cast<std::size_t>(r), s);
         }
     };
-    e.metrics = estimate_annual_metrics(draws, cells, kBlockCells, hours, {}, replicates);
+}
+
+std::uint64_t replicate_seed(const Scene& scene, std::size_t det) {
+    return scene.run.seed * 0x9E3779B97F4A7C15ull + det;
+}
+
+// The year's direct exposure by shadow rays per cell (every coefficient's weights sum to
+// 1 over the year, annual_sky.hpp), with its error.
+void direct_year(const DirectCoefficients& dc, AnnualDetectorEstimate& e) {
+    auto year = [&](const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& sum,
+                    std::vector<double>& sigma) {
+        sum.assign(dc.cells, 0.0);
+        sigma.assign(dc.cells, 0.0);
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            sum[i % dc.cells] += x[i];
+            sigma[i % dc.cells] += v[i];
+        }
+        for (double& s : sigma) s = std::sqrt(s);
+    };
+    year(dc.sky_lx, dc.sky_var, e.direct_sky_lx_h, e.direct_sky_sigma_lx_h);
+    year(dc.sun_lx, dc.sun_var, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
+}
+
+void size_series(std::size_t hours, std::size_t cells, AnnualSeries& x) {
+    x.hours = hours;
+    x.sensors = cells;
+    x.total_lx.assign(hours * cells, 0.0);
+    x.direct_lx.assign(hours * cells, 0.0);
+}
+
+}  // namespace
+
+AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                            std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                            int replicates, bool series, const AnnualDirect& direct) {
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const DirectCoefficients* dc = direct_of(direct, det);
+    const AnnualGridCounts grid = grid_counts(scene, det, layout, data, e0, photons, group_flux, dc);
+    const AnnualHours hours = annual_hours(*scene.annual);
+    AnnualDetectorEstimate e;
+    if (dc != nullptr) direct_year(*dc, e);
+    if (series)
+        for (AnnualSeries* x : {&e.value, &e.sigma}) size_series(hours.occupied.size(), grid.cells, *x);
+    // Block by block on every core: each block's coefficients, its hourly series and its
+    // replicates' (annual_metrics.hpp).
+    const AnnualDarkRates dark = AnnualCoefficients::dark_rates(grid);
+    const std::function<void(std::size_t, const AnnualSeries&, const AnnualSeries&)> place =
+        [&](std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma) {
+            place_block(value, first, e.value);
+            place_block(sigma, first, e.sigma);
+        };
+    const AnnualBlockDraws draws = block_draws(grid, dark, replicate_seed(scene, det), replicates,
+                                               series ? &place : nullptr);
+    e.metrics = estimate_annual_metrics(draws, grid.cells, kBlockCells, hours, {}, replicates);
+    return e;
+}
+
+AnnualCellRange annual_part_cells(std::size_t cells, int part, int parts) {
+    const std::size_t blocks = (cells + kBlockCells - 1) / kBlockCells, p = static_cast<std::size_t>(part),
+                      n = static_cast<std::size_t>(std::max(1, parts));
+    auto at = [&](std::size_t q) { return std::min(cells, blocks * q / n * kBlockCells); };
+    return {at(p), at(p + 1)};
+}
+
+AnnualDarkRates annual_dark_rates(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                  std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                  const DirectCoefficients* direct) {
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    return AnnualCoefficients::dark_rates(grid_counts(scene, det, layout, data, e0, photons, group_flux, direct));
+}
+
+AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                    std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                    int replicates, AnnualCellRange cells, const AnnualDarkRates& dark,
+                                    const DirectCoefficients* direct) {
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const AnnualGridCounts grid = grid_counts(scene, det, layout, data, e0, photons, group_flux, direct);
+    const AnnualHours hours = annual_hours(*scene.annual);
+    AnnualGridPart part;
+    part.cells = cells;
+    const std::size_t n = cells.last - cells.first;
+    for (AnnualSeries* x : {&part.value, &part.sigma}) size_series(hours.occupied.size(), n, *x);
+    const std::function<void(std::size_t, const AnnualSeries&, const AnnualSeries&)> place =
+        [&](std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma) {
+            place_block(value, first - cells.first, part.value);
+            place_block(sigma, first - cells.first, part.sigma);
+        };
+    const AnnualBlockDraws draws = block_draws(grid, dark, replicate_seed(scene, det), replicates, &place);
+    AnnualMetricDraws sums(hours, grid.cells, {}, replicates);
+    sums.run(draws, kBlockCells, cells.first, cells.last);
+    part.metric_words = sums.words(cells.first, cells.last);
+    return part;
+}
+
+AnnualDetectorEstimate merge_annual_parts(const Scene& scene, std::size_t det, const std::vector<AnnualGridPart>& parts,
+                                          int replicates, const DirectCoefficients* direct) {
+    const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
+    const AnnualHours hours = annual_hours(*scene.annual);
+    AnnualDetectorEstimate e;
+    if (direct != nullptr) direct_year(*direct, e);
+    for (AnnualSeries* x : {&e.value, &e.sigma}) size_series(hours.occupied.size(), cells, *x);
+    AnnualMetricDraws sums(hours, cells, {}, replicates);
+    for (const AnnualGridPart& p : parts) {
+        if (p.cells.last < p.cells.first || p.cells.last > cells || p.value.sensors != p.cells.last - p.cells.first)
+            throw std::logic_error("merge_annual_parts: a part beyond the grid");
+        place_block(p.value, p.cells.first, e.value);
+        place_block(p.sigma, p.cells.first, e.sigma);
+        sums.merge(p.metric_words, p.cells.first, p.cells.last);
+    }
+    e.metrics = sums.estimate();
     return e;
 }
 

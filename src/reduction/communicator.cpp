@@ -241,6 +241,42 @@ template void Communicator::gather_to_root(std::span<const std::uint64_t>, const
 template void Communicator::gather_to_root(std::span<const double>, const std::vector<std::size_t>&,
                                            std::vector<double>&) const;
 
+template <class Word>
+void Communicator::scatter_from_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
+                                     std::vector<Word>& recv) const {
+    constexpr int kTag = 27;
+    recv.resize(counts.at(static_cast<std::size_t>(rank_)));
+    std::vector<MPI_Request> requests;
+    if (rank_ == 0) {
+        std::size_t total = 0;
+        for (std::size_t c : counts) total += c;
+        if (send.size() != total) throw std::logic_error("scatter_from_root: the words do not match the counts");
+        std::copy_n(send.begin(), counts[0], recv.begin());
+        std::size_t at = counts[0];
+        for (int r = 1; r < size_; ++r) {
+            const std::size_t n = counts[static_cast<std::size_t>(r)];
+            for (const auto& [off, m] : pieces(n, max_per_call_)) {
+                MPI_Request req;
+                MPI_Isend(send.data() + at + off, m, mpi_type<Word>(), r, kTag, MPI_COMM_WORLD, &req);
+                requests.push_back(req);
+            }
+            at += n;
+        }
+    } else {
+        for (const auto& [off, m] : pieces(recv.size(), max_per_call_)) {
+            MPI_Request req;
+            MPI_Irecv(recv.data() + off, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, &req);
+            requests.push_back(req);
+        }
+    }
+    wait_politely(requests);
+}
+
+template void Communicator::scatter_from_root(std::span<const std::uint64_t>, const std::vector<std::size_t>&,
+                                              std::vector<std::uint64_t>&) const;
+template void Communicator::scatter_from_root(std::span<const double>, const std::vector<std::size_t>&,
+                                              std::vector<double>&) const;
+
 void Communicator::broadcast(std::vector<double>& values) const {
     if (size_ == 1) return;
     std::vector<MPI_Request> requests;

@@ -16,27 +16,6 @@ std::size_t first_cell(std::size_t n, int rank, int ranks) {
     return n * static_cast<std::size_t>(rank) / static_cast<std::size_t>(ranks);
 }
 
-// The four arrays' values of cells [first, last), row by row (a row: an entry or a sun).
-std::vector<double> pack(const DirectCoefficients& d, std::size_t first, std::size_t last) {
-    std::vector<double> out;
-    for (const std::vector<double>* a : {&d.sky_lx, &d.sky_var, &d.sun_lx, &d.sun_var}) {
-        const std::size_t rows = a->size() / d.cells;
-        for (std::size_t row = 0; row < rows; ++row)
-            out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(row * d.cells + first),
-                       a->begin() + static_cast<std::ptrdiff_t>(row * d.cells + last));
-    }
-    return out;
-}
-
-void unpack(std::span<const double> in, std::size_t first, std::size_t last, DirectCoefficients& d) {
-    std::size_t at = 0;
-    for (std::vector<double>* a : {&d.sky_lx, &d.sky_var, &d.sun_lx, &d.sun_var}) {
-        const std::size_t rows = a->size() / d.cells;
-        for (std::size_t row = 0; row < rows; ++row)
-            for (std::size_t c = first; c < last; ++c) (*a)[row * d.cells + c] = in[at++];
-    }
-}
-
 }  // namespace
 
 AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, const Communicator& comm) {
@@ -62,8 +41,9 @@ AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, c
         }
         std::vector<std::size_t> counts;
         for (int r = 0; r < ranks; ++r)
-            counts.push_back((first_cell(cells, r + 1, ranks) - first_cell(cells, r, ranks)) * 2 * (entries + suns));
-        const std::vector<double> send = pack(mine, first, last);
+            counts.push_back(mine.packed_words(first_cell(cells, r + 1, ranks) - first_cell(cells, r, ranks)));
+        std::vector<double> send;
+        mine.pack_cells(first, last, send);
         std::vector<double> recv;
         comm.gather_to_root<double>(send, counts, recv);
         if (!comm.is_root()) continue;
@@ -71,7 +51,7 @@ AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, c
         std::size_t at = 0;
         for (int r = 0; r < ranks; ++r) {
             const std::size_t f = first_cell(cells, r, ranks), l = first_cell(cells, r + 1, ranks);
-            unpack(std::span<const double>(recv).subspan(at, counts[static_cast<std::size_t>(r)]), f, l, out[det]);
+            out[det].unpack_cells(std::span<const double>(recv).subspan(at, counts[static_cast<std::size_t>(r)]), f, l);
             at += counts[static_cast<std::size_t>(r)];
         }
     }

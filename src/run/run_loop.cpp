@@ -1,5 +1,7 @@
 #include "luxtrace/run/run_loop.hpp"
 
+#include "luxtrace/annual/annual_grid.hpp"
+
 #include "luxtrace/core/error.hpp"
 #include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
@@ -311,6 +313,151 @@ void RunLoop::gather_map() {
     }
 }
 
+void RunLoop::share_annual_estimates() {
+    shared_annual_.reset();
+    const Traced t = traced();
+    if (!scene_.annual || ranks_ == 1 || t.photons == 0) return;
+    const double s0 = comm_.wtime();
+    const int rank = comm_.rank();
+    const bool root = comm_.is_root();
+    std::vector<std::optional<AnnualDetectorEstimate>> out(scene_.detectors.size());
+    bool failed = false;  // this rank's part of some grid (rank 0: or the merge) failed
+    std::string error;
+    auto attempt_part = [&](auto&& f) {
+        if (failed) return;
+        try {
+            f();
+        } catch (const std::exception& e) {
+            failed = true;
+            error = e.what();
+        }
+    };
+    for (std::size_t det = 0; det < scene_.detectors.size(); ++det) {
+        if (!annual_grid(scene_.detectors[det])) continue;
+        const std::size_t cells = static_cast<std::size_t>(scene_.detectors[det].cells());
+        std::vector<AnnualCellRange> ranges;
+        for (int r = 0; r < ranks_; ++r) ranges.push_back(annual_part_cells(cells, r, ranks_));
+        const AnnualCellRange mine = ranges[static_cast<std::size_t>(rank)];
+        const bool shadow = scene_.annual->options.shadow_rays();
+        // The grid's dark rates, from rank 0's whole grid.
+        std::vector<double> dark_words(2, 0.0);
+        if (root)
+            attempt_part([&] {
+                const AnnualDarkRates d = annual_dark_rates(scene_, det, layout_, totals_.span(), t.e0, t.photons,
+                                                            shadow ? &annual_direct_[det] : nullptr);
+                dark_words = {d.total, d.direct};
+            });
+        comm_.broadcast(dark_words);
+        const AnnualDarkRates dark{dark_words[0], dark_words[1]};
+        // Each rank's cells' counts: their n and q, and their direct counts.
+        std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end) of totals_ per rank and kind
+        auto word_runs = [&](const AnnualCellRange& r) {
+            std::vector<std::pair<std::size_t, std::size_t>> w{
+                {layout_.detector_cell(det, r.first, 0), layout_.detector_cell(det, r.last, 0)}};
+            if (layout_.direct_scores())
+                w.emplace_back(layout_.detector_direct(det, r.first, 0), layout_.detector_direct(det, r.last, 0));
+            return w;
+        };
+        std::vector<std::size_t> counts;
+        std::vector<std::uint64_t> send, recv;
+        for (const AnnualCellRange& r : ranges) {
+            std::size_t n = 0;
+            for (const auto& [b, e] : word_runs(r)) {
+                n += e - b;
+                if (root) send.insert(send.end(), totals_.span().begin() + b, totals_.span().begin() + e);
+            }
+            counts.push_back(n);
+        }
+        comm_.scatter_from_root<std::uint64_t>(send, counts, recv);
+        send = {};
+        if (!root) {
+            std::size_t at = 0;
+            for (const auto& [b, e] : word_runs(mine)) {
+                std::copy_n(recv.begin() + static_cast<std::ptrdiff_t>(at), e - b, totals_.span().begin() + b);
+                at += e - b;
+            }
+        }
+        recv = {};
+        // Each rank's cells' direct coefficients.
+        DirectCoefficients own_direct;
+        const DirectCoefficients* direct = nullptr;
+        if (shadow) {
+            const std::size_t entries = scene_.annual->sky->sky_entries(), suns = scene_.annual->sky->suns().size();
+            own_direct.resize(root ? 0 : cells, entries, suns);
+            const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
+            std::vector<double> dsend, drecv;
+            std::vector<std::size_t> dcounts;
+            for (const AnnualCellRange& r : ranges) {
+                dcounts.push_back(all.packed_words(r.last - r.first));
+                if (root) all.pack_cells(r.first, r.last, dsend);
+            }
+            comm_.scatter_from_root<double>(dsend, dcounts, drecv);
+            if (!root) own_direct.unpack_cells(drecv, mine.first, mine.last);
+            direct = root ? &annual_direct_[det] : &own_direct;
+        }
+        // This rank's part, then rank 0 gathers the parts: a status word and the metric
+        // sums, and the four series.
+        AnnualGridPart part;
+        attempt_part([&] {
+            part = estimate_annual_part(scene_, det, layout_, totals_.span(), t.e0, t.photons, kAnnualReplicates, mine,
+                                        dark, direct);
+        });
+        const std::size_t hours = scene_.annual->sky->hours().size();
+        std::vector<std::size_t> word_counts, series_counts;
+        for (const AnnualCellRange& r : ranges) {
+            word_counts.push_back(1 + AnnualMetricDraws::word_count(hours, r.last - r.first, kAnnualReplicates));
+            series_counts.push_back(4 * hours * (r.last - r.first));
+        }
+        std::vector<std::uint64_t> words{failed ? 1u : 0u};
+        std::vector<double> series;
+        if (failed) {
+            words.resize(word_counts[static_cast<std::size_t>(rank)], 0);
+            series.assign(series_counts[static_cast<std::size_t>(rank)], 0.0);
+        } else {
+            words.insert(words.end(), part.metric_words.begin(), part.metric_words.end());
+            for (const std::vector<double>* x :
+                 {&part.value.total_lx, &part.value.direct_lx, &part.sigma.total_lx, &part.sigma.direct_lx})
+                series.insert(series.end(), x->begin(), x->end());
+        }
+        part = {};
+        std::vector<std::uint64_t> all_words;
+        std::vector<double> all_series;
+        comm_.gather_to_root<std::uint64_t>(words, word_counts, all_words);
+        comm_.gather_to_root<double>(series, series_counts, all_series);
+        if (!root) continue;
+        attempt_part([&] {
+            std::vector<AnnualGridPart> parts(static_cast<std::size_t>(ranks_));
+            std::size_t w = 0, x = 0;
+            for (int r = 0; r < ranks_; ++r) {
+                const std::size_t i = static_cast<std::size_t>(r);
+                if (all_words[w] != 0) throw std::runtime_error("rank " + std::to_string(r) + "'s part failed");
+                AnnualGridPart& p = parts[i];
+                p.cells = ranges[i];
+                p.metric_words.assign(all_words.begin() + static_cast<std::ptrdiff_t>(w + 1),
+                                      all_words.begin() + static_cast<std::ptrdiff_t>(w + word_counts[i]));
+                w += word_counts[i];
+                const std::size_t n = ranges[i].last - ranges[i].first, len = hours * n;
+                for (AnnualSeries* s : {&p.value, &p.sigma}) {
+                    s->hours = hours;
+                    s->sensors = n;
+                }
+                for (std::vector<double>* v :
+                     {&p.value.total_lx, &p.value.direct_lx, &p.sigma.total_lx, &p.sigma.direct_lx}) {
+                    v->assign(all_series.begin() + static_cast<std::ptrdiff_t>(x),
+                              all_series.begin() + static_cast<std::ptrdiff_t>(x + len));
+                    x += len;
+                }
+            }
+            out[det] = merge_annual_parts(scene_, det, parts, kAnnualReplicates, direct);
+        });
+    }
+    shared_annual_s_ = comm_.wtime() - s0;
+    if (root && !failed) shared_annual_ = std::move(out);
+    if (root && failed)
+        out_ << "luxtrace: the annual post-processing shared by the ranks failed (" << error
+             << "); rank 0 does it alone\n";
+}
+
 void RunLoop::reduce() {
     const double r0 = comm_.wtime();
     wait_s_ = 0.0;
@@ -424,7 +571,13 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     const std::span<const std::uint64_t> tallies = totals_.span();
     ResultEstimates est = steps.run("estimates", [&] { return estimate_result(scene_, layout_, tallies, e0, n); });
     // The annual metrics' errors take a few dozen replicate years: the final result only.
-    if (scene_.annual)
+    if (scene_.annual && !as_checkpoint && shared_annual_) {
+        // Made by every rank before the write (share_annual_estimates).
+        est.annual = steps.run("annual", [&] { return std::move(*shared_annual_); });
+        steps.add_seconds("annual", shared_annual_s_);
+        shared_annual_.reset();
+        shared_annual_used_ = true;
+    } else if (scene_.annual)
         est.annual = steps.run("annual", [&] {
             return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates,
                                    annual_direct_);
@@ -588,6 +741,7 @@ RunSummary RunLoop::write(const Decision& decision) {
     const double g0 = comm_.wtime();
     gather_map();
     info_.gather_s = comm_.allreduce_max(comm_.wtime() - g0);
+    if (decision.exit_code != kExitInternal) share_annual_estimates();
     const double elapsed = comm_.allreduce_max(comm_.wtime() - t0_);
     info_.load_s = comm_.allreduce_max(opt_.load_s);
     info_.bvh_build_s = comm_.allreduce_max(embree_.build_s());
@@ -632,7 +786,8 @@ void RunLoop::keep_after_decision_fault(double elapsed) {
 void RunLoop::write_result_and_checkpoint(const Decision& decision, double elapsed) {
     const double w0 = comm_.wtime();
     const WriteOutcome result = attempt_write(run_.output, elapsed, summary_.stop_reason, false);
-    summary_.result_write_s = comm_.wtime() - w0;
+    // With the annual post-processing every rank's, its time before the write counts too.
+    summary_.result_write_s = comm_.wtime() - w0 + (shared_annual_used_ ? shared_annual_s_ : 0.0);
     // A result that cannot be written: keep the tallies in a checkpoint instead.
     const bool want_checkpoint = summary_.exit_code == kExitStoppedEarly || decision.checkpoint || !result.ok();
     WriteOutcome checkpoint;

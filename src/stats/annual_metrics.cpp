@@ -3,6 +3,7 @@
 #include "luxtrace/core/parallel.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -137,6 +138,31 @@ void AnnualMetricSums::add(const AnnualSeries& block, std::size_t first) {
     }
 }
 
+std::size_t AnnualMetricSums::word_count(std::size_t sensors) const { return 5 * sensors + 2 * target_units_.size(); }
+
+void AnnualMetricSums::to_words(std::size_t first, std::size_t last, std::vector<std::uint64_t>& out) const {
+    require(first <= last && last <= sensors_, "words of sensors beyond the grid's");
+    for (const std::vector<double>* v :
+         {&sums_.da, &sums_.continuous_da, &sums_.udi_fell_short, &sums_.udi_exceeded, &sums_.ase_hours})
+        for (std::size_t c = first; c < last; ++c) out.push_back(std::bit_cast<std::uint64_t>((*v)[c]));
+    for (const auto* units : {&target_units_, &minimum_units_})
+        for (const std::atomic<std::int64_t>& u : *units) out.push_back(static_cast<std::uint64_t>(u.load()));
+}
+
+std::size_t AnnualMetricSums::add_words(std::span<const std::uint64_t> words, std::size_t first, std::size_t last) {
+    require(first <= last && last <= sensors_, "words of sensors beyond the grid's");
+    const std::size_t n = word_count(last - first);
+    require(words.size() >= n, "too few words for the sensors");
+    std::size_t at = 0;
+    for (std::vector<double>* v :
+         {&sums_.da, &sums_.continuous_da, &sums_.udi_fell_short, &sums_.udi_exceeded, &sums_.ase_hours})
+        for (std::size_t c = first; c < last; ++c) (*v)[c] += std::bit_cast<double>(words[at++]);
+    for (auto* units : {&target_units_, &minimum_units_})
+        for (std::atomic<std::int64_t>& u : *units)
+            u.fetch_add(static_cast<std::int64_t>(words[at++]), std::memory_order_relaxed);
+    return n;
+}
+
 AnnualMetrics AnnualMetricSums::metrics() const {
     const std::size_t n_h = hours_.occupied.size();
     const double w_sum = std::accumulate(weight_.begin(), weight_.end(), 0.0);
@@ -257,32 +283,60 @@ AnnualEstimate finish_estimate(AnnualMetrics value, const AnnualMetrics& centre_
 
 }  // namespace
 
-AnnualEstimate estimate_annual_metrics(const AnnualBlockDraws& draws, std::size_t sensors, std::size_t block,
-                                       const AnnualHours& hours, const AnnualThresholds& t, int k) {
+AnnualMetricDraws::AnnualMetricDraws(const AnnualHours& hours, std::size_t sensors, const AnnualThresholds& t, int k)
+    : hours_(hours), sensors_(sensors), replicates_(static_cast<std::size_t>(std::max(0, k))) {
+    for (std::size_t i = 0; i < (replicates_ > 0 ? replicates_ + 2 : 1); ++i)
+        sums_.push_back(std::make_unique<AnnualMetricSums>(hours, sensors, t));
+}
+
+void AnnualMetricDraws::run(const AnnualBlockDraws& draws, std::size_t block, std::size_t first, std::size_t last) {
     require(block > 0, "blocks of no sensors");
-    const std::size_t replicates = static_cast<std::size_t>(std::max(0, k));
-    // [0] the estimate, [1] the centre, [2 + r] replicate r.
-    std::vector<std::unique_ptr<AnnualMetricSums>> sums;
-    for (std::size_t i = 0; i < (replicates > 0 ? replicates + 2 : 1); ++i)
-        sums.push_back(std::make_unique<AnnualMetricSums>(hours, sensors, t));
-    const std::size_t blocks = (sensors + block - 1) / block;
-    for_each_index(blocks, 1, [&](std::size_t b) {
-        const std::size_t first = b * block, count = std::min(block, sensors - first);
+    require(first % block == 0 && first <= last && last <= sensors_, "a part of whole blocks within the grid");
+    const std::size_t first_block = first / block, blocks = (last - first + block - 1) / block;
+    for_each_index(blocks, 1, [&](std::size_t i) {
+        const std::size_t b0 = (first_block + i) * block, count = std::min(block, sensors_ - b0);
         const AnnualSink at = [&](AnnualDraw what, std::size_t r, const AnnualSeries& series) {
-            const std::size_t i = what == AnnualDraw::estimate ? 0 : what == AnnualDraw::centre ? 1 : 2 + r;
+            const std::size_t j = what == AnnualDraw::estimate ? 0 : what == AnnualDraw::centre ? 1 : 2 + r;
             require(series.sensors == count, "a block's series of another size");
-            if (i < sums.size()) sums[i]->add(series, first);
+            if (j < sums_.size()) sums_[j]->add(series, b0);
         };
-        draws(first, count, at);
+        draws(b0, count, at);
     });
-    if (replicates == 0) {
+}
+
+std::size_t AnnualMetricDraws::word_count(std::size_t hours, std::size_t sensors, int k) {
+    const std::size_t draws = k > 0 ? static_cast<std::size_t>(k) + 2 : 1;
+    return draws * (5 * sensors + 2 * kEn17037Levels.size() * hours);
+}
+
+std::vector<std::uint64_t> AnnualMetricDraws::words(std::size_t first, std::size_t last) const {
+    std::vector<std::uint64_t> out;
+    for (const auto& s : sums_) s->to_words(first, last, out);
+    return out;
+}
+
+void AnnualMetricDraws::merge(std::span<const std::uint64_t> words, std::size_t first, std::size_t last) {
+    std::size_t at = 0;
+    for (const auto& s : sums_) at += s->add_words(words.subspan(at), first, last);
+    require(at == words.size(), "more words than the sensors' sums");
+}
+
+AnnualEstimate AnnualMetricDraws::estimate() const {
+    if (replicates_ == 0) {
         AnnualEstimate e;
-        e.value = sums[0]->metrics();
+        e.value = sums_[0]->metrics();
         return e;
     }
     std::vector<AnnualMetrics> replicate_metrics;
-    for (std::size_t r = 0; r < replicates; ++r) replicate_metrics.push_back(sums[2 + r]->metrics());
-    return finish_estimate(sums[0]->metrics(), sums[1]->metrics(), replicate_metrics, hours);
+    for (std::size_t r = 0; r < replicates_; ++r) replicate_metrics.push_back(sums_[2 + r]->metrics());
+    return finish_estimate(sums_[0]->metrics(), sums_[1]->metrics(), replicate_metrics, hours_);
+}
+
+AnnualEstimate estimate_annual_metrics(const AnnualBlockDraws& draws, std::size_t sensors, std::size_t block,
+                                       const AnnualHours& hours, const AnnualThresholds& t, int k) {
+    AnnualMetricDraws d(hours, sensors, t, k);
+    d.run(draws, block, 0, sensors);
+    return d.estimate();
 }
 
 AnnualEstimate estimate_annual_metrics(const AnnualReplicates& replicates, const AnnualHours& hours,

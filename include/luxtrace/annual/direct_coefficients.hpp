@@ -11,6 +11,7 @@
 // hour's direct normal illuminance). Each value is a stratified sample mean; `*_var` is
 // the variance of that mean, estimated from its own samples.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace luxtrace {
@@ -23,6 +24,22 @@ struct DirectCoefficients {
 
     double sky(std::size_t entry, std::size_t cell) const { return sky_lx[entry * cells + cell]; }
     double sun(std::size_t s, std::size_t cell) const { return sun_lx[s * cells + cell]; }
+    // The four arrays' values of cells [first, last), row by row (a row: an entry or a
+    // sun), appended to `out`; unpack_cells puts them back.
+    void pack_cells(std::size_t first, std::size_t last, std::vector<double>& out) const {
+        for (const std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
+            for (std::size_t row = 0; row < a->size() / cells; ++row)
+                out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(row * cells + first),
+                           a->begin() + static_cast<std::ptrdiff_t>(row * cells + last));
+    }
+    void unpack_cells(std::span<const double> in, std::size_t first, std::size_t last) {
+        std::size_t at = 0;
+        for (std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
+            for (std::size_t row = 0; row < a->size() / cells; ++row)
+                for (std::size_t c = first; c < last; ++c) (*a)[row * cells + c] = in[at++];
+    }
+    // The words pack_cells writes for n cells.
+    std::size_t packed_words(std::size_t n) const { return n * 2 * (entries + suns); }
     void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_) {
         cells = cells_;
         entries = entries_;

@@ -37,6 +37,36 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                             int replicates, bool series, const AnnualDirect& direct);
 
+// The post-processing shared among parts (ranks, docs/ANNUAL.md step 7): each part runs the
+// blocks of its cells and rank 0 merges the parts. The figures are those of
+// estimate_annual_grid with series, to the bit.
+//
+// The cells part `part` of `parts` takes: whole blocks, [first, last).
+struct AnnualCellRange {
+    std::size_t first = 0, last = 0;
+};
+AnnualCellRange annual_part_cells(std::size_t cells, int part, int parts);
+// The grid's dark rates (AnnualCoefficients::dark_rates), which every part needs: from the
+// whole grid's counts.
+AnnualDarkRates annual_dark_rates(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                  std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                  const DirectCoefficients* direct);
+// A part's cells' hourly series (hours x its cells) and metric sums (AnnualMetricDraws::words).
+struct AnnualGridPart {
+    AnnualCellRange cells;
+    AnnualSeries value, sigma;
+    std::vector<std::uint64_t> metric_words;
+};
+// `data` needs the words of the part's cells only, `direct` (null without shadow rays) the
+// part's cells' coefficients (sized for the whole grid).
+AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                                    std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                                    int replicates, AnnualCellRange cells, const AnnualDarkRates& dark,
+                                    const DirectCoefficients* direct);
+// The grid's estimate from parts covering its cells; `direct` the whole grid's coefficients.
+AnnualDetectorEstimate merge_annual_parts(const Scene& scene, std::size_t det, const std::vector<AnnualGridPart>& parts,
+                                          int replicates, const DirectCoefficients* direct);
+
 // Per Scene::detectors (empty for a scene without [annual]; std::nullopt for detectors that
 // are not sensor grids). e0 = flux per photon, photons = N. `replicates` for the metrics'
 // errors (0: no errors, for checkpoints).

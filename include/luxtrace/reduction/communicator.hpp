@@ -65,6 +65,12 @@ public:
     template <class Word>
     void gather_to_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
                         std::vector<Word>& recv) const;
+    // The mirror of gather_to_root: rank 0's `send` holds every rank's part in rank order
+    // (counts[r] words for rank r, the same counts everywhere); each rank's `recv` (resized
+    // to counts[rank]) gets its part. Point to point, in pieces.
+    template <class Word>
+    void scatter_from_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
+                           std::vector<Word>& recv) const;
     // Rank 0's values to every rank (same length everywhere).
     void broadcast(std::vector<double>& values) const;
     // Every rank holds its part of `values`, [offsets[rank], offsets[rank + 1]); afterwards

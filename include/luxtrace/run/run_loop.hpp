@@ -18,6 +18,7 @@
 // The members are the state the phases share.
 #include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/core/word_array.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/decision.hpp"
@@ -86,6 +87,12 @@ private:
     void estimate_owned_sides();
     // Rank 0's totals_ get every rank's sides (for the result and checkpoints).
     void gather_map();
+    // The final result's annual post-processing on every rank (more than one): rank 0 hands
+    // each rank its share of each grid's cells (their counts, their direct coefficients and
+    // the grid's dark rates), each rank runs its blocks on every core, and rank 0 merges
+    // the parts into shared_annual_. Any failure leaves shared_annual_ empty, and rank 0's
+    // write computes the estimates itself (and says what failed).
+    void share_annual_estimates();
     // Rank 0 writes the result or a checkpoint from the reduced message, in named steps
     // (write_steps.hpp); a failure of any kind comes back as its outcome, never as an
     // exception: a run that has traced keeps its tallies (docs/RELIABILITY.md).
@@ -134,8 +141,12 @@ private:
     RankWork work_;
     std::optional<EmbreeScene> own_embree_;
     const EmbreeScene& embree_;
-    const SurfaceTable surfaces_;           // the tracing threads' view of the scene, built with the BVH
-    AnnualDirect annual_direct_;            // rank 0: the annual grids' direct light by shadow rays
+    const SurfaceTable surfaces_;  // the tracing threads' view of the scene, built with the BVH
+    AnnualDirect annual_direct_;   // rank 0: the annual grids' direct light by shadow rays
+    // rank 0: the final result's annual estimates made by every rank, and their wall time
+    std::optional<std::vector<std::optional<AnnualDetectorEstimate>>> shared_annual_;
+    double shared_annual_s_ = 0.0;
+    bool shared_annual_used_ = false;       // the result's annual step took them
     std::optional<RunController> control_;  // rank 0
     const std::string checkpoint_path_;
     const bool show_;  // rank 0 prints progress lines

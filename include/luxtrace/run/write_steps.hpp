@@ -50,6 +50,15 @@ public:
         throw;  // not reached: rethrow_named always throws
     }
 
+    // Adds to the latest run of `step` the seconds it took elsewhere (work done for it
+    // before the write, e.g. by every rank).
+    void add_seconds(std::string_view step, double s) const {
+        for (auto it = seconds_.rbegin(); it != seconds_.rend(); ++it)
+            if (it->first == step) {
+                it->second += s;
+                return;
+            }
+    }
     // The wall seconds each step took, in the order they ran (a step run twice, twice).
     const std::vector<std::pair<std::string, double>>& seconds() const { return seconds_; }
 

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -108,6 +109,12 @@ public:
     // Sensors [first, first + block.sensors); blocks must not overlap.
     void add(const AnnualSeries& block, std::size_t first);
     AnnualMetrics metrics() const;
+    // What sensors [first, last) added (their sums, bit for bit) and the hours' area units,
+    // appended to `out` as word_count(last - first) words; add_words() adds another part's
+    // (its sensors none of this one's) as add() would have. Returns the words it read.
+    std::size_t word_count(std::size_t sensors) const;
+    void to_words(std::size_t first, std::size_t last, std::vector<std::uint64_t>& out) const;
+    std::size_t add_words(std::span<const std::uint64_t> words, std::size_t first, std::size_t last);
 
 private:
     const AnnualHours& hours_;
@@ -153,6 +160,33 @@ struct AnnualEstimate {
     int replicates = 0;
     // A grid figure's estimate, e.g. figure(&AnnualMetrics::sda).
     SimexEstimate figure(double AnnualMetrics::*f) const { return {value.*f, sigma.*f, bias.*f}; }
+};
+
+// One grid's metric sums of the estimate, the centre and k replicates, filled block by
+// block from AnnualBlockDraws; the blocks may be shared among parts (ranks), each running
+// its own and passing its words to one that merges them: the figures are the same, to the
+// bit, however the blocks were shared.
+class AnnualMetricDraws {
+public:
+    AnnualMetricDraws(const AnnualHours& hours, std::size_t sensors, const AnnualThresholds& t, int k);
+    // The blocks of `block` sensors (counted from sensor 0) that start in [first, last),
+    // on every core.
+    void run(const AnnualBlockDraws& draws, std::size_t block, std::size_t first, std::size_t last);
+    // Sensors [first, last)'s sums (whole blocks this part ran) as words, and merge() of
+    // another part's.
+    std::vector<std::uint64_t> words(std::size_t first, std::size_t last) const;
+    void merge(std::span<const std::uint64_t> words, std::size_t first, std::size_t last);
+    // The figures with their errors (k = 0: the estimate's values alone).
+    AnnualEstimate estimate() const;
+    // The words words() gives for `sensors` sensors, over `hours` hours, with k replicates.
+    static std::size_t word_count(std::size_t hours, std::size_t sensors, int k);
+
+private:
+    const AnnualHours& hours_;
+    std::size_t sensors_ = 0;
+    std::size_t replicates_ = 0;
+    // [0] the estimate, [1] the centre, [2 + r] replicate r.
+    std::vector<std::unique_ptr<AnnualMetricSums>> sums_;
 };
 
 // The metrics of the estimate, and their errors from K replicates: sigma their spread, bias

@@ -174,23 +174,25 @@ AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const T
     return part;
 }
 
-AnnualDetectorEstimate merge_annual_parts(const Scene& scene, std::size_t det, const std::vector<AnnualGridPart>& parts,
-                                          int replicates, const DirectCoefficients* direct) {
-    const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
-    const AnnualHours hours = annual_hours(*scene.annual);
-    AnnualDetectorEstimate e;
-    if (direct != nullptr) direct_year(*direct, e);
-    for (AnnualSeries* x : {&e.value, &e.sigma}) size_series(hours.occupied.size(), cells, *x);
-    AnnualMetricDraws sums(hours, cells, {}, replicates);
-    for (const AnnualGridPart& p : parts) {
-        if (p.cells.last < p.cells.first || p.cells.last > cells || p.value.sensors != p.cells.last - p.cells.first)
-            throw std::logic_error("merge_annual_parts: a part beyond the grid");
-        place_block(p.value, p.cells.first, e.value);
-        place_block(p.sigma, p.cells.first, e.sigma);
-        sums.merge(p.metric_words, p.cells.first, p.cells.last);
-    }
-    e.metrics = sums.estimate();
-    return e;
+AnnualPartsMerge::AnnualPartsMerge(const Scene& scene, std::size_t det, int replicates,
+                                   const DirectCoefficients* direct)
+    : hours_(annual_hours(*scene.annual)), cells_(static_cast<std::size_t>(scene.detectors[det].cells())),
+      sums_(hours_, cells_, {}, replicates) {
+    if (direct != nullptr) direct_year(*direct, estimate_);
+    for (AnnualSeries* x : {&estimate_.value, &estimate_.sigma}) size_series(hours_.occupied.size(), cells_, *x);
+}
+
+void AnnualPartsMerge::add(const AnnualGridPart& p) {
+    if (p.cells.last < p.cells.first || p.cells.last > cells_ || p.value.sensors != p.cells.last - p.cells.first)
+        throw std::logic_error("AnnualPartsMerge: a part beyond the grid");
+    place_block(p.value, p.cells.first, estimate_.value);
+    place_block(p.sigma, p.cells.first, estimate_.sigma);
+    sums_.merge(p.metric_words, p.cells.first, p.cells.last);
+}
+
+AnnualDetectorEstimate AnnualPartsMerge::finish() {
+    estimate_.metrics = sums_.estimate();
+    return std::move(estimate_);
 }
 
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,

@@ -313,17 +313,13 @@ void RunLoop::gather_map() {
     }
 }
 
-void RunLoop::share_annual_estimates() {
-    shared_annual_.reset();
-    const Traced t = traced();
-    if (!scene_.annual || ranks_ == 1 || t.photons == 0) return;
-    const double s0 = comm_.wtime();
-    const int rank = comm_.rank();
-    const bool root = comm_.is_root();
-    std::vector<std::optional<AnnualDetectorEstimate>> out(scene_.detectors.size());
-    bool failed = false;  // this rank's part of some grid (rank 0: or the merge) failed
+// A step of the shared annual post-processing on this rank: after the first failure the
+// later steps are skipped (the rank still takes part in every message).
+struct RunLoop::PartAttempt {
+    bool failed = false;
     std::string error;
-    auto attempt_part = [&](auto&& f) {
+    template <class F>
+    void operator()(F&& f) {
         if (failed) return;
         try {
             f();
@@ -331,131 +327,154 @@ void RunLoop::share_annual_estimates() {
             failed = true;
             error = e.what();
         }
-    };
+    }
+};
+
+void RunLoop::share_annual_estimates() {
+    shared_annual_.reset();
+    const Traced t = traced();
+    if (!scene_.annual || ranks_ == 1 || t.photons == 0) return;
+    const double s0 = comm_.wtime();
+    std::vector<std::optional<AnnualDetectorEstimate>> out(scene_.detectors.size());
+    PartAttempt attempt;
     for (std::size_t det = 0; det < scene_.detectors.size(); ++det) {
         if (!annual_grid(scene_.detectors[det])) continue;
         const std::size_t cells = static_cast<std::size_t>(scene_.detectors[det].cells());
         std::vector<AnnualCellRange> ranges;
         for (int r = 0; r < ranks_; ++r) ranges.push_back(annual_part_cells(cells, r, ranks_));
-        const AnnualCellRange mine = ranges[static_cast<std::size_t>(rank)];
-        const bool shadow = scene_.annual->options.shadow_rays();
-        // The grid's dark rates, from rank 0's whole grid.
-        std::vector<double> dark_words(2, 0.0);
-        if (root)
-            attempt_part([&] {
-                const AnnualDarkRates d = annual_dark_rates(scene_, det, layout_, totals_.span(), t.e0, t.photons,
-                                                            shadow ? &annual_direct_[det] : nullptr);
-                dark_words = {d.total, d.direct};
-            });
-        comm_.broadcast(dark_words);
-        const AnnualDarkRates dark{dark_words[0], dark_words[1]};
-        // Each rank's cells' counts: their n and q, and their direct counts.
-        std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end) of totals_ per rank and kind
-        auto word_runs = [&](const AnnualCellRange& r) {
-            std::vector<std::pair<std::size_t, std::size_t>> w{
-                {layout_.detector_cell(det, r.first, 0), layout_.detector_cell(det, r.last, 0)}};
-            if (layout_.direct_scores())
-                w.emplace_back(layout_.detector_direct(det, r.first, 0), layout_.detector_direct(det, r.last, 0));
-            return w;
-        };
-        std::vector<std::size_t> counts;
-        std::vector<std::uint64_t> send, recv;
-        for (const AnnualCellRange& r : ranges) {
-            std::size_t n = 0;
-            for (const auto& [b, e] : word_runs(r)) {
-                n += e - b;
-                if (root) send.insert(send.end(), totals_.span().begin() + b, totals_.span().begin() + e);
-            }
-            counts.push_back(n);
-        }
-        comm_.scatter_from_root<std::uint64_t>(send, counts, recv);
-        send = {};
-        if (!root) {
-            std::size_t at = 0;
-            for (const auto& [b, e] : word_runs(mine)) {
-                std::copy_n(recv.begin() + static_cast<std::ptrdiff_t>(at), e - b, totals_.span().begin() + b);
-                at += e - b;
-            }
-        }
-        recv = {};
-        // Each rank's cells' direct coefficients.
         DirectCoefficients own_direct;
         const DirectCoefficients* direct = nullptr;
-        if (shadow) {
-            const std::size_t entries = scene_.annual->sky->sky_entries(), suns = scene_.annual->sky->suns().size();
-            own_direct.resize(root ? 0 : cells, entries, suns);
-            const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
-            std::vector<double> dsend, drecv;
-            std::vector<std::size_t> dcounts;
-            for (const AnnualCellRange& r : ranges) {
-                dcounts.push_back(all.packed_words(r.last - r.first));
-                if (root) all.pack_cells(r.first, r.last, dsend);
-            }
-            comm_.scatter_from_root<double>(dsend, dcounts, drecv);
-            if (!root) own_direct.unpack_cells(drecv, mine.first, mine.last);
-            direct = root ? &annual_direct_[det] : &own_direct;
-        }
-        // This rank's part, then rank 0 gathers the parts: a status word and the metric
-        // sums, and the four series.
+        const AnnualDarkRates dark = share_annual_inputs(det, ranges, t, own_direct, direct, attempt);
         AnnualGridPart part;
-        attempt_part([&] {
-            part = estimate_annual_part(scene_, det, layout_, totals_.span(), t.e0, t.photons, kAnnualReplicates, mine,
-                                        dark, direct);
+        attempt([&] {
+            part = estimate_annual_part(scene_, det, layout_, totals_.span(), t.e0, t.photons, kAnnualReplicates,
+                                        ranges[static_cast<std::size_t>(comm_.rank())], dark, direct);
         });
-        const std::size_t hours = scene_.annual->sky->hours().size();
-        std::vector<std::size_t> word_counts, series_counts;
-        for (const AnnualCellRange& r : ranges) {
-            word_counts.push_back(1 + AnnualMetricDraws::word_count(hours, r.last - r.first, kAnnualReplicates));
-            series_counts.push_back(4 * hours * (r.last - r.first));
-        }
-        std::vector<std::uint64_t> words{failed ? 1u : 0u};
-        std::vector<double> series;
-        if (failed) {
-            words.resize(word_counts[static_cast<std::size_t>(rank)], 0);
-            series.assign(series_counts[static_cast<std::size_t>(rank)], 0.0);
-        } else {
-            words.insert(words.end(), part.metric_words.begin(), part.metric_words.end());
-            for (const std::vector<double>* x :
-                 {&part.value.total_lx, &part.value.direct_lx, &part.sigma.total_lx, &part.sigma.direct_lx})
-                series.insert(series.end(), x->begin(), x->end());
-        }
-        part = {};
-        std::vector<std::uint64_t> all_words;
-        std::vector<double> all_series;
-        comm_.gather_to_root<std::uint64_t>(words, word_counts, all_words);
-        comm_.gather_to_root<double>(series, series_counts, all_series);
-        if (!root) continue;
-        attempt_part([&] {
-            std::vector<AnnualGridPart> parts(static_cast<std::size_t>(ranks_));
-            std::size_t w = 0, x = 0;
-            for (int r = 0; r < ranks_; ++r) {
-                const std::size_t i = static_cast<std::size_t>(r);
-                if (all_words[w] != 0) throw std::runtime_error("rank " + std::to_string(r) + "'s part failed");
-                AnnualGridPart& p = parts[i];
-                p.cells = ranges[i];
-                p.metric_words.assign(all_words.begin() + static_cast<std::ptrdiff_t>(w + 1),
-                                      all_words.begin() + static_cast<std::ptrdiff_t>(w + word_counts[i]));
-                w += word_counts[i];
-                const std::size_t n = ranges[i].last - ranges[i].first, len = hours * n;
-                for (AnnualSeries* s : {&p.value, &p.sigma}) {
-                    s->hours = hours;
-                    s->sensors = n;
-                }
-                for (std::vector<double>* v :
-                     {&p.value.total_lx, &p.value.direct_lx, &p.sigma.total_lx, &p.sigma.direct_lx}) {
-                    v->assign(all_series.begin() + static_cast<std::ptrdiff_t>(x),
-                              all_series.begin() + static_cast<std::ptrdiff_t>(x + len));
-                    x += len;
-                }
-            }
-            out[det] = merge_annual_parts(scene_, det, parts, kAnnualReplicates, direct);
-        });
+        gather_annual_part(det, ranges, std::move(part), direct, attempt, out[det]);
     }
     shared_annual_s_ = comm_.wtime() - s0;
-    if (root && !failed) shared_annual_ = std::move(out);
-    if (root && failed)
-        out_ << "luxtrace: the annual post-processing shared by the ranks failed (" << error
+    if (!comm_.is_root()) return;
+    if (!attempt.failed) shared_annual_ = std::move(out);
+    else
+        out_ << "luxtrace: the annual post-processing shared by the ranks failed (" << attempt.error
              << "); rank 0 does it alone\n";
+}
+
+AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<AnnualCellRange>& ranges,
+                                             const Traced& t, DirectCoefficients& own_direct,
+                                             const DirectCoefficients*& direct, PartAttempt& attempt) {
+    const bool root = comm_.is_root(), shadow = scene_.annual->options.shadow_rays();
+    const AnnualCellRange mine = ranges[static_cast<std::size_t>(comm_.rank())];
+    // The grid's dark rates, from rank 0's whole grid.
+    std::vector<double> dark(2, 0.0);
+    if (root)
+        attempt([&] {
+            const AnnualDarkRates d = annual_dark_rates(scene_, det, layout_, totals_.span(), t.e0, t.photons,
+                                                        shadow ? &annual_direct_[det] : nullptr);
+            dark = {d.total, d.direct};
+        });
+    comm_.broadcast(dark);
+    // Each rank's cells' counts: their n and q, and their direct counts, where rank 0 keeps
+    // them in totals_.
+    auto word_runs = [&](const AnnualCellRange& r) {
+        std::vector<std::pair<std::size_t, std::size_t>> w{
+            {layout_.detector_cell(det, r.first, 0), layout_.detector_cell(det, r.last, 0)}};
+        if (layout_.direct_scores())
+            w.emplace_back(layout_.detector_direct(det, r.first, 0), layout_.detector_direct(det, r.last, 0));
+        return w;
+    };
+    const std::span<std::uint64_t> totals = totals_.span();
+    std::vector<std::size_t> counts;
+    std::vector<std::uint64_t> send, recv;
+    for (const AnnualCellRange& r : ranges) {
+        counts.push_back(0);
+        for (const auto& [b, e] : word_runs(r)) {
+            counts.back() += e - b;
+            if (root)
+                send.insert(send.end(), totals.begin() + static_cast<std::ptrdiff_t>(b),
+                            totals.begin() + static_cast<std::ptrdiff_t>(e));
+        }
+    }
+    comm_.scatter_from_root<std::uint64_t>(send, counts, recv);
+    if (!root) {
+        std::size_t at = 0;
+        for (const auto& [b, e] : word_runs(mine)) {
+            std::copy_n(recv.begin() + static_cast<std::ptrdiff_t>(at), e - b,
+                        totals.begin() + static_cast<std::ptrdiff_t>(b));
+            at += e - b;
+        }
+    }
+    // Each rank's cells' direct coefficients.
+    if (shadow) {
+        const std::size_t cells = static_cast<std::size_t>(scene_.detectors[det].cells());
+        own_direct.resize(root ? 0 : cells, scene_.annual->sky->sky_entries(), scene_.annual->sky->suns().size());
+        const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
+        std::vector<double> dsend, drecv;
+        std::vector<std::size_t> dcounts;
+        for (const AnnualCellRange& r : ranges) {
+            dcounts.push_back(all.packed_words(r.last - r.first));
+            if (root) all.pack_cells(r.first, r.last, dsend);
+        }
+        comm_.scatter_from_root<double>(dsend, dcounts, drecv);
+        if (!root) own_direct.unpack_cells(drecv, mine.first, mine.last);
+        direct = root ? &annual_direct_[det] : &own_direct;
+    }
+    return {dark[0], dark[1]};
+}
+
+void RunLoop::gather_annual_part(std::size_t det, const std::vector<AnnualCellRange>& ranges, AnnualGridPart part,
+                                 const DirectCoefficients* direct, PartAttempt& attempt,
+                                 std::optional<AnnualDetectorEstimate>& out) {
+    // A status word and the metric sums, and the four series, each rank's in rank order.
+    const std::size_t hours = scene_.annual->sky->hours().size(), rank = static_cast<std::size_t>(comm_.rank());
+    std::vector<std::size_t> word_counts, series_counts;
+    for (const AnnualCellRange& r : ranges) {
+        word_counts.push_back(1 + AnnualMetricDraws::word_count(hours, r.last - r.first, kAnnualReplicates));
+        series_counts.push_back(4 * hours * (r.last - r.first));
+    }
+    std::vector<std::uint64_t> words{attempt.failed ? 1u : 0u};
+    std::vector<double> series;
+    if (attempt.failed) {
+        words.resize(word_counts[rank], 0);
+        series.assign(series_counts[rank], 0.0);
+    } else {
+        words.insert(words.end(), part.metric_words.begin(), part.metric_words.end());
+        for (const std::vector<double>* x :
+             {&part.value.total_lx, &part.value.direct_lx, &part.sigma.total_lx, &part.sigma.direct_lx})
+            series.insert(series.end(), x->begin(), x->end());
+    }
+    part = {};
+    std::vector<std::uint64_t> all_words;
+    std::vector<double> all_series;
+    comm_.gather_to_root<std::uint64_t>(words, word_counts, all_words);
+    comm_.gather_to_root<double>(series, series_counts, all_series);
+    if (!comm_.is_root()) return;
+    attempt([&] {
+        for (std::size_t w = 0, r = 0; r < ranges.size(); w += word_counts[r++])
+            if (all_words[w] != 0) throw std::runtime_error("rank " + std::to_string(r) + "'s part failed");
+        AnnualPartsMerge merge(scene_, det, kAnnualReplicates, direct);
+        std::size_t w = 0, x = 0;
+        for (std::size_t r = 0; r < ranges.size(); w += word_counts[r++]) {
+            AnnualGridPart p;
+            p.cells = ranges[r];
+            p.metric_words.assign(all_words.begin() + static_cast<std::ptrdiff_t>(w + 1),
+                                  all_words.begin() + static_cast<std::ptrdiff_t>(w + word_counts[r]));
+            const std::size_t n = ranges[r].last - ranges[r].first, len = hours * n;
+            for (AnnualSeries* a : {&p.value, &p.sigma}) {
+                a->hours = hours;
+                a->sensors = n;
+            }
+            for (std::vector<double>* v :
+                 {&p.value.total_lx, &p.value.direct_lx, &p.sigma.total_lx, &p.sigma.direct_lx}) {
+                v->assign(all_series.begin() + static_cast<std::ptrdiff_t>(x),
+                          all_series.begin() + static_cast<std::ptrdiff_t>(x + len));
+                x += len;
+            }
+            merge.add(p);
+        }
+        all_series = {};
+        out = merge.finish();
+    });
 }
 
 void RunLoop::reduce() {

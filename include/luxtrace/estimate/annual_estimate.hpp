@@ -63,9 +63,20 @@ AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const T
                                     std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                     int replicates, AnnualCellRange cells, const AnnualDarkRates& dark,
                                     const DirectCoefficients* direct);
-// The grid's estimate from parts covering its cells; `direct` the whole grid's coefficients.
-AnnualDetectorEstimate merge_annual_parts(const Scene& scene, std::size_t det, const std::vector<AnnualGridPart>& parts,
-                                          int replicates, const DirectCoefficients* direct);
+// The grid's estimate from parts covering its cells, added one by one in any order;
+// `direct` the whole grid's coefficients.
+class AnnualPartsMerge {
+public:
+    AnnualPartsMerge(const Scene& scene, std::size_t det, int replicates, const DirectCoefficients* direct);
+    void add(const AnnualGridPart& part);
+    AnnualDetectorEstimate finish();
+
+private:
+    AnnualHours hours_;
+    std::size_t cells_ = 0;
+    AnnualMetricDraws sums_;
+    AnnualDetectorEstimate estimate_;
+};
 
 // Per Scene::detectors (empty for a scene without [annual]; std::nullopt for detectors that
 // are not sensor grids). e0 = flux per photon, photons = N. `replicates` for the metrics'

@@ -13,7 +13,8 @@
 //   broadcast  every rank gets rank 0's Decision
 //   checkpoint a periodic checkpoint: the owners' sides gathered on rank 0, which writes;
 //              snapshot .. checkpoint repeat until the decision stops the run
-//   write      the final reduction, the result file and the final checkpoint (rank 0)
+//   write      the final reduction; the annual grids' post-processing, every rank its
+//              share; the result file and the final checkpoint (rank 0)
 //
 // The members are the state the phases share.
 #include "luxtrace/annual/direct_coefficients.hpp"
@@ -93,6 +94,7 @@ private:
     // the parts into shared_annual_. Any failure leaves shared_annual_ empty, and rank 0's
     // write computes the estimates itself (and says what failed).
     void share_annual_estimates();
+
     // Rank 0 writes the result or a checkpoint from the reduced message, in named steps
     // (write_steps.hpp); a failure of any kind comes back as its outcome, never as an
     // exception: a run that has traced keeps its tallies (docs/RELIABILITY.md).
@@ -113,6 +115,17 @@ private:
         double e0 = 0.0;
     };
     Traced traced() const;
+    // share_annual_estimates' steps for grid `det`, ranges[r] rank r's cells: rank 0 hands
+    // every rank its cells' counts (into its totals_) and direct coefficients (`direct` then
+    // points at them) and returns the grid's dark rates on every rank; then rank 0 gathers
+    // the parts into `out`. A failed step is skipped after (PartAttempt), not thrown.
+    struct PartAttempt;
+    AnnualDarkRates share_annual_inputs(std::size_t det, const std::vector<AnnualCellRange>& ranges, const Traced& t,
+                                        DirectCoefficients& own_direct, const DirectCoefficients*& direct,
+                                        PartAttempt& attempt);
+    void gather_annual_part(std::size_t det, const std::vector<AnnualCellRange>& ranges, AnnualGridPart part,
+                            const DirectCoefficients* direct, PartAttempt& attempt,
+                            std::optional<AnnualDetectorEstimate>& out);
     RunInfo final_info(const Traced& t, double elapsed_s, const std::string& reason) const;
     CheckpointData checkpoint_data(const std::vector<PhotonRange>& done) const;
     std::string latest_checkpoint_note() const;

@@ -368,7 +368,7 @@ private:
         const double cos_axis = glm::dot(sun.frame.n, n);
         const bool in_front = cos_axis > sin_half;
         const double mean_cos = cos_axis * (1.0 + targets_.cos_half_sun) / 2.0;
-        bool cut = false;  // the five fixed rays disagreed
+        bool cut = false;  // the disc is cut: the fixed rays disagreed (points), or the corners' (cells)
         if (geometry_.point() && in_front) {
             const PhiloxSampler::Block none{};
             double z[5];
@@ -400,19 +400,38 @@ private:
             }
         if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return t == terms_.front(); })) {
             sum.value = terms_.front();  // all alike: no rounding to call noise
-            // A disc known to be cut whose rays all agreed: the part they missed is not 0.
-            // The variance of a Bernoulli mean with Jeffreys' p = 1 / (2 (n + 1)) stands in.
+        } else {
+            for (const double t : terms_) sum.value += t;
+            sum.value /= rays;
+            for (const double t : terms_) sum.variance += (t - sum.value) * (t - sum.value);
+            sum.variance /= rays * (rays - 1.0);
+        }
+        // Rays that all passed (or were all blocked) say nothing of the part of a cut disc
+        // they missed, however their glass's T differs between them: a points sensor's disc
+        // is known to be cut when its fixed rays disagreed; an area cell's, when rays from
+        // its corners towards the disc's rim disagree with its own rays. The variance of
+        // a Bernoulli mean with Jeffreys' p = 1 / (2 (n + 1)) is then the least it has
+        // (docs/VALIDATION.md §9.2: without it a penumbra's all-passing rays read as exact).
+        const bool passed = terms_.front() > 0.0;
+        if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return (t > 0.0) == passed; })) {
+            if (!geometry_.point() && in_front) cut = corners_disagree(c, sun, passed);
             if (cut) {
                 const double p = 0.5 / (rays + 1.0);
-                sum.variance = mean_cos * mean_cos * p * (1.0 - p) / rays;
+                sum.variance = std::max(sum.variance, mean_cos * mean_cos * p * (1.0 - p) / rays);
             }
-            return sum;
         }
-        for (const double t : terms_) sum.value += t;
-        sum.value /= rays;
-        for (const double t : terms_) sum.variance += (t - sum.value) * (t - sum.value);
-        sum.variance /= rays * (rays - 1.0);
         return sum;
+    }
+
+    // Whether a ray from some corner of area cell c towards a point of the sun's rim
+    // passes where `passed` says the cell's rays did not (or the other way round): the
+    // rim, not the centre, so that a corner inside a shadow's penumbra says so.
+    bool corners_disagree(std::size_t c, const Sun& sun, bool passed) {
+        double share[16];
+        for (const Vec3& p : geometry_.corners(c))
+            for (const Vec3& d : sun.rim)
+                if (shadow_.passes(p, d, std::numeric_limits<double>::infinity(), share, eps_) != passed) return true;
+        return false;
     }
 
     CellGeometry geometry_;

@@ -113,12 +113,12 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
     const AnnualSky& sky = *annual_.sky;
     if (first + count > grid.cells) throw std::logic_error("AnnualCoefficients: a block beyond the grid");
     if (const DirectCoefficients* d = grid.direct) {
-        if (d->cells != grid.cells || d->entries != sky.sky_entries() || d->suns != sky.suns().size())
-            throw std::logic_error("AnnualCoefficients: direct coefficients of another grid or sky");
+        if (!d->holds(first, first + count) || d->entries != sky.sky_entries() || d->suns != sky.suns().size())
+            throw std::logic_error("AnnualCoefficients: direct coefficients of other cells or another sky");
         // The block's columns of the [entry or sun][cell] tables.
         auto columns = [&](const std::vector<double>& all, std::size_t rows, std::vector<double>& out) {
             out.resize(rows * count);
-            for (std::size_t r = 0; r < rows; ++r) std::copy_n(&all[r * grid.cells + first], count, &out[r * count]);
+            for (std::size_t r = 0; r < rows; ++r) std::copy_n(&all[d->at(r, first)], count, &out[r * count]);
         };
         columns(d->sky_lx, d->entries, shadow_sky_lx_);
         columns(d->sky_var, d->entries, shadow_sky_var_);

@@ -32,8 +32,8 @@ AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, c
         if (!annual_grid(scene.detectors[det])) continue;
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
         const std::size_t first = first_cell(cells, rank, ranks), last = first_cell(cells, rank + 1, ranks);
-        DirectCoefficients mine;
-        mine.resize(cells, entries, suns);
+        DirectCoefficients mine;  // this rank's cells alone
+        mine.resize(ranks == 1 ? cells : last - first, entries, suns, ranks == 1 ? 0 : first);
         direct_daylight(scene, embree, det, options, first, last, mine);
         if (ranks == 1) {
             out[det] = std::move(mine);

@@ -406,8 +406,8 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
     }
     // Each rank's cells' direct coefficients.
     if (shadow) {
-        const std::size_t cells = static_cast<std::size_t>(scene_.detectors[det].cells());
-        own_direct.resize(root ? 0 : cells, scene_.annual->sky->sky_entries(), scene_.annual->sky->suns().size());
+        own_direct.resize(root ? 0 : mine.last - mine.first, scene_.annual->sky->sky_entries(),
+                          scene_.annual->sky->suns().size(), mine.first);
         const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
         std::vector<double> dsend, drecv;
         std::vector<std::size_t> dcounts;

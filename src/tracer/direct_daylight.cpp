@@ -287,8 +287,8 @@ public:
             if (!(entry.luminance_cd_m2 > 0.0) || f->entry[e] < 0) continue;
             if (!reaches_opening(entry.region, corners)) continue;  // dark, as its rays would say
             const StrataSum sum = patch(c, first, e, n, n_sky, corners, *f);
-            out.sky_lx[e * out.cells + c] = entry.luminance_cd_m2 * sum.value;
-            out.sky_var[e * out.cells + c] = entry.luminance_cd_m2 * entry.luminance_cd_m2 * sum.variance;
+            out.sky_lx[out.at(e, c)] = entry.luminance_cd_m2 * sum.value;
+            out.sky_var[out.at(e, c)] = entry.luminance_cd_m2 * entry.luminance_cd_m2 * sum.variance;
         }
         const int sun_rays = targets_.sun_side * targets_.sun_side;
         for (std::size_t s = 0; s < targets_.suns.size(); ++s, block += static_cast<std::uint32_t>(sun_rays)) {
@@ -297,8 +297,8 @@ public:
             // No ray of the cell's can reach an opening: dark, as its rays would say.
             if (!openings_.empty() && !openings_.may_pass(corners, sun.frame.n, targets_.cos_half_sun)) continue;
             const StrataSum sum = disc(c, block, sun, n);
-            out.sun_lx[s * out.cells + c] = sun.normal_lx * sum.value;
-            out.sun_var[s * out.cells + c] = sun.normal_lx * sun.normal_lx * sum.variance;
+            out.sun_lx[out.at(s, c)] = sun.normal_lx * sum.value;
+            out.sun_var[out.at(s, c)] = sun.normal_lx * sun.normal_lx * sum.variance;
         }
     }
 
@@ -457,7 +457,7 @@ void direct_daylight(const Scene& scene, const EmbreeScene& embree, std::size_t 
     if (scene.band_count() != 1) throw std::logic_error("direct_daylight: annual scenes have one band");
     const Targets targets(scene, options);
     const PortalOpenings openings(scene);
-    if (out.entries != targets.entries.size() || out.suns != targets.suns.size() || last > out.cells)
+    if (out.entries != targets.entries.size() || out.suns != targets.suns.size() || !out.holds(first, last))
         throw std::logic_error("direct_daylight: coefficients sized for another detector or sky");
     // The facings of the grid's normals, up to a few (a points grid may have as many as
     // sensors: the others are the tracer's own business).

@@ -17,33 +17,40 @@
 namespace luxtrace {
 
 struct DirectCoefficients {
-    std::size_t cells = 0, entries = 0, suns = 0;
+    // Cells [first, first + cells) of the grid (a rank's share, or the whole grid).
+    std::size_t cells = 0, entries = 0, suns = 0, first = 0;
     // [entry][cell], [sun][cell].
     std::vector<double> sky_lx, sky_var;
     std::vector<double> sun_lx, sun_var;
 
-    double sky(std::size_t entry, std::size_t cell) const { return sky_lx[entry * cells + cell]; }
-    double sun(std::size_t s, std::size_t cell) const { return sun_lx[s * cells + cell]; }
-    // The four arrays' values of cells [first, last), row by row (a row: an entry or a
-    // sun), appended to `out`; unpack_cells puts them back.
-    void pack_cells(std::size_t first, std::size_t last, std::vector<double>& out) const {
-        for (const std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
-            for (std::size_t row = 0; row < a->size() / cells; ++row)
-                out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(row * cells + first),
-                           a->begin() + static_cast<std::ptrdiff_t>(row * cells + last));
+    // The index of grid cell `cell` in row `row` (an entry, or a sun) of the arrays.
+    std::size_t at(std::size_t row, std::size_t cell) const { return row * cells + (cell - first); }
+    bool holds(std::size_t first_cell, std::size_t last_cell) const {
+        return first <= first_cell && first_cell <= last_cell && last_cell <= first + cells;
     }
-    void unpack_cells(std::span<const double> in, std::size_t first, std::size_t last) {
-        std::size_t at = 0;
+    double sky(std::size_t entry, std::size_t cell) const { return sky_lx[at(entry, cell)]; }
+    double sun(std::size_t s, std::size_t cell) const { return sun_lx[at(s, cell)]; }
+    // The four arrays' values of grid cells [from, to), row by row (a row: an entry or a
+    // sun), appended to `out`; unpack_cells puts them back.
+    void pack_cells(std::size_t from, std::size_t to, std::vector<double>& out) const {
+        for (const std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
+            for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
+                out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(at(row, from)),
+                           a->begin() + static_cast<std::ptrdiff_t>(at(row, to)));
+    }
+    void unpack_cells(std::span<const double> in, std::size_t from, std::size_t to) {
+        std::size_t k = 0;
         for (std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
-            for (std::size_t row = 0; row < a->size() / cells; ++row)
-                for (std::size_t c = first; c < last; ++c) (*a)[row * cells + c] = in[at++];
+            for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
+                for (std::size_t c = from; c < to; ++c) (*a)[at(row, c)] = in[k++];
     }
     // The words pack_cells writes for n cells.
     std::size_t packed_words(std::size_t n) const { return n * 2 * (entries + suns); }
-    void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_) {
+    void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_, std::size_t first_ = 0) {
         cells = cells_;
         entries = entries_;
         suns = suns_;
+        first = first_;
         sky_lx.assign(entries * cells, 0.0);
         sky_var = sky_lx;
         sun_lx.assign(suns * cells, 0.0);

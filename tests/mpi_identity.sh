@@ -15,7 +15,9 @@ mpi=("$mpiexec" --oversubscribe --bind-to none --mca btl self,vader --mca oob_tc
 common=(--photons 300000 --seed 7 --quiet --sampler "$sampler")
 "$lux" run "$scene" "${common[@]}" --threads 1 --output "$work/r1t1.h5"
 "$lux" run "$scene" "${common[@]}" --threads 2 --output "$work/r1t2.h5"
-"${mpi[@]}" -n 2 "$lux" run "$scene" "${common[@]}" --threads 1 --output "$work/r2t1.h5"
+# 2 ranks share an annual scene's post-processing, one part each, as the ranks of two nodes
+# would (the hidden --annual-parts ranks); 3 ranks on one node leave it to rank 0.
+"${mpi[@]}" -n 2 "$lux" run "$scene" "${common[@]}" --threads 1 --annual-parts ranks --output "$work/r2t1.h5"
 "${mpi[@]}" -n 3 "$lux" run "$scene" "${common[@]}" --threads 2 --output "$work/r3t2.h5"
 "$lux" run "$scene" --photons 300000 --seed 8 --quiet --sampler "$sampler" --threads 2 --output "$work/seed8.h5"
 # A run stopped by a target at a reduction at photon counts holds exactly that

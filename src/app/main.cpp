@@ -106,6 +106,7 @@ struct RunArgs {
     std::optional<std::int64_t> replicates;
     std::string output, checkpoint, restart, sampler;
     std::string inject_fault;  // tests (hidden): run/write_steps.hpp
+    std::string annual_parts;  // tests (hidden): "nodes" or "ranks", RunOptions::annual_parts_per_rank
     bool quiet = false;
 };
 
@@ -238,6 +239,9 @@ int cmd_run(const Communicator& comm, const RunArgs& a) {
             throw InputError("--inject-fault: " + why);
         opt.inject_fault = a.inject_fault;
     }
+    if (!a.annual_parts.empty() && a.annual_parts != "nodes" && a.annual_parts != "ranks")
+        throw InputError("--annual-parts: \"" + a.annual_parts + "\" is neither nodes nor ranks");
+    opt.annual_parts_per_rank = a.annual_parts == "ranks";
     opt.signal = &g_stop_signal;
     std::signal(SIGTERM, on_stop_signal);
     std::signal(SIGUSR1, on_stop_signal);
@@ -337,6 +341,9 @@ void add_run_command(CLI::App& app, CommandLine& c) {
     run->add_flag("--quiet", ra.quiet, "no progress output");
     // Hidden (group ""): tests make one step of a write after tracing fail (docs/RELIABILITY.md).
     run->add_option("--inject-fault", ra.inject_fault, "FILE:STEP of a write after tracing that fails (tests)")
+        ->group("");
+    // Hidden: tests share the annual post-processing among the ranks of one node.
+    run->add_option("--annual-parts", ra.annual_parts, "nodes | ranks: who shares the annual post-processing (tests)")
         ->group("");
 }
 

@@ -59,6 +59,19 @@ Communicator::Communicator(int* argc, char*** argv) {
     MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    if (size_ > 1) {
+        // The ranks that share this one's memory (a node): the first of them leads it.
+        MPI_Comm node;
+        MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+        int node_rank = 0;
+        MPI_Comm_rank(node, &node_rank);
+        MPI_Comm_free(&node);
+        const int leads = node_rank == 0 ? 1 : 0;
+        int before = 0;
+        MPI_Exscan(&leads, &before, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+        MPI_Allreduce(&leads, &nodes_, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+        node_index_ = leads != 0 ? (rank_ == 0 ? 0 : before) : -1;
+    }
 }
 
 Communicator::~Communicator() {

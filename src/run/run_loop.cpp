@@ -333,7 +333,17 @@ struct RunLoop::PartAttempt {
 void RunLoop::share_annual_estimates() {
     shared_annual_.reset();
     const Traced t = traced();
-    if (!scene_.annual || ranks_ == 1 || t.photons == 0) return;
+    // One part per node (its first rank, on all the node's cores): between the ranks of one
+    // node, moving the counts and the series costs more than it saves (docs/ANNUAL.md
+    // step 7), so one node leaves it to rank 0's write.
+    const bool per_rank = opt_.annual_parts_per_rank;
+    const int parts = per_rank ? ranks_ : comm_.nodes();
+    if (!scene_.annual || parts == 1 || t.photons == 0) return;
+    // Each rank's part (-1: none), known to every rank.
+    std::vector<std::uint64_t> part_of(static_cast<std::size_t>(ranks_), 0);
+    part_of[static_cast<std::size_t>(comm_.rank())] = static_cast<std::uint64_t>(
+        (per_rank ? comm_.rank() : comm_.node_index()) + 1);
+    comm_.allreduce_sum(part_of);
     const double s0 = comm_.wtime();
     std::vector<std::optional<AnnualDetectorEstimate>> out(scene_.detectors.size());
     PartAttempt attempt;
@@ -341,7 +351,8 @@ void RunLoop::share_annual_estimates() {
         if (!annual_grid(scene_.detectors[det])) continue;
         const std::size_t cells = static_cast<std::size_t>(scene_.detectors[det].cells());
         std::vector<AnnualCellRange> ranges;
-        for (int r = 0; r < ranks_; ++r) ranges.push_back(annual_part_cells(cells, r, ranks_));
+        for (const std::uint64_t p : part_of)
+            ranges.push_back(p == 0 ? AnnualCellRange{} : annual_part_cells(cells, static_cast<int>(p - 1), parts));
         DirectCoefficients own_direct;
         const DirectCoefficients* direct = nullptr;
         const AnnualDarkRates dark = share_annual_inputs(det, ranges, t, own_direct, direct, attempt);

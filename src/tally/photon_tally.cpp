@@ -77,9 +77,12 @@ void PhotonTally::add_registrations(const TallyLayout& layout, TallyBuffer& out)
         i = j;
     }
     close_detector();
+    // A grid whose direct light comes from shadow rays keeps no direct count: its slots stay
+    // zero and take no memory (WordArray), and no reduction sends them.
     if (layout.direct_scores())
         for (const Registration& r : regs_)
-            if (r.direct) out.add(layout.detector_direct(r.detector, r.cell, bin_.detector_column), 1);
+            if (r.direct && !(apart && layout.direct_apart(r.detector)))
+                out.add(layout.detector_direct(r.detector, r.cell, bin_.detector_column), 1);
     regs_.clear();
 }
 

@@ -46,6 +46,10 @@ public:
     int rank() const { return rank_; }
     int size() const { return size_; }
     bool is_root() const { return rank_ == 0; }
+    // The nodes (sets of ranks sharing memory) of the run, and this rank's node's index when
+    // it leads its node (the node's first rank), else -1. Rank 0 leads node 0.
+    int nodes() const { return nodes_; }
+    int node_index() const { return node_index_; }
 
     // Non-blocking: `recv` (rank 0 only, resized there) receives the element-wise sum of
     // every rank's `send`, which must stay untouched until the reduction completes.
@@ -89,6 +93,8 @@ public:
 private:
     int rank_ = 0;
     int size_ = 1;
+    int nodes_ = 1;
+    int node_index_ = 0;
     std::size_t max_per_call_ = kMaxElementsPerCall;
 };
 

@@ -13,8 +13,8 @@
 //   broadcast  every rank gets rank 0's Decision
 //   checkpoint a periodic checkpoint: the owners' sides gathered on rank 0, which writes;
 //              snapshot .. checkpoint repeat until the decision stops the run
-//   write      the final reduction; the annual grids' post-processing, every rank its
-//              share; the result file and the final checkpoint (rank 0)
+//   write      the final reduction; the annual grids' post-processing, on several nodes
+//              each node its share; the result file and the final checkpoint (rank 0)
 //
 // The members are the state the phases share.
 #include "luxtrace/annual/direct_coefficients.hpp"
@@ -88,11 +88,12 @@ private:
     void estimate_owned_sides();
     // Rank 0's totals_ get every rank's sides (for the result and checkpoints).
     void gather_map();
-    // The final result's annual post-processing on every rank (more than one): rank 0 hands
-    // each rank its share of each grid's cells (their counts, their direct coefficients and
-    // the grid's dark rates), each rank runs its blocks on every core, and rank 0 merges
-    // the parts into shared_annual_. Any failure leaves shared_annual_ empty, and rank 0's
-    // write computes the estimates itself (and says what failed).
+    // The final result's annual post-processing shared by the nodes (more than one; or by
+    // the ranks, RunOptions::annual_parts_per_rank): rank 0 hands each part's rank its share
+    // of each grid's cells (their counts, their direct coefficients and the grid's dark
+    // rates), each part runs its blocks on every core, and rank 0 merges the parts into
+    // shared_annual_. Any failure leaves shared_annual_ empty, and rank 0's write computes
+    // the estimates itself (and says what failed).
     void share_annual_estimates();
 
     // Rank 0 writes the result or a checkpoint from the reduced message, in named steps

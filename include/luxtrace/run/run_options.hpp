@@ -38,6 +38,10 @@ struct RunOptions {
     // Tests: steps of writing a file after tracing that fail on purpose, "FILE:STEP" items
     // separated by commas (run/write_steps.hpp); empty: none.
     std::string inject_fault;
+    // Who shares the final annual post-processing (RunLoop::share_annual_estimates): one
+    // part per node, its first rank on all its cores (false, the default; one node: rank 0
+    // alone), or (tests, hidden --annual-parts ranks) one part per rank.
+    bool annual_parts_per_rank = false;
 };
 
 struct RunSummary {

@@ -5,6 +5,7 @@
 #include "luxtrace/light/uniform_sampling.hpp"
 #include "luxtrace/sampler/philox_sampler.hpp"
 #include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tracer/cell_geometry.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/portal_openings.hpp"
 #include "luxtrace/tracer/shadow_ray.hpp"
@@ -217,24 +218,6 @@ Facings facings_of(const Targets& t, const Vec3& normal) {
                       });
     return f;
 }
-
-// Where a cell's samples start and which way it faces.
-struct CellGeometry {
-    const Detector& d;
-    bool point() const { return d.type == DetectorType::points; }
-    Vec3 normal(std::size_t cell) const { return point() ? d.sensors.directions()[cell] : d.normal; }
-    Vec3 position(std::size_t cell, double u1, double u2) const {
-        if (point()) return d.sensors.positions()[cell];
-        const int i = static_cast<int>(cell) % d.nx, j = static_cast<int>(cell) / d.nx;
-        const double a = (i + u1) / d.nx - 0.5, b = (j + u2) / d.ny - 0.5;
-        return d.center + a * d.size_u * d.u_axis + b * d.size_v * d.v_axis;
-    }
-    // The cell's corners (a point sensor: its point): every sample lies in their hull.
-    std::vector<Vec3> corners(std::size_t cell) const {
-        if (point()) return {position(cell, 0.0, 0.0)};
-        return {position(cell, 0.0, 0.0), position(cell, 1.0, 0.0), position(cell, 0.0, 1.0), position(cell, 1.0, 1.0)};
-    }
-};
 
 // A stratified estimate sum_k w_k Z_k, Z_k what the scene lets through along stratum k's
 // sample (0 to 1), and its variance by collapsed strata: strata (2j, 2j + 1) of a row form

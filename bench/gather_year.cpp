@@ -49,10 +49,13 @@ int main(int argc, char** argv) {
     std::string scene_file, detector = "sensors";
     std::vector<std::string> results;
     int rays = 4096;
+    std::vector<double> check;  // the reference's mean ratio must lie in [lo, hi]
     app.add_option("scene", scene_file, "the scene the results were run on")->required();
     app.add_option("results", results, "the reference result, then the runs to compare")->required();
     app.add_option("--detector", detector, "the points or illuminance grid");
     app.add_option("--rays", rays, "gather rays per cell");
+    app.add_option("--check-ratio", check, "LO HI: exit 1 unless the reference's mean gathered / disc lies in [LO, HI]")
+        ->expected(2);
     CLI11_PARSE(app, argc, argv);
     try {
         const Scene scene = load_scene(scene_file);
@@ -85,6 +88,11 @@ int main(int argc, char** argv) {
                     hi = std::max(hi, x);
                 }
                 std::printf("%s: gathered / disc values, mean %.4f, by cell %.3f-%.3f\n", file.c_str(), mean, lo, hi);
+                if (check.size() == 2 && !(mean >= check[0] && mean <= check[1])) {
+                    std::fprintf(stderr, "gather_year: the mean ratio %.4f lies outside [%g, %g]\n", mean, check[0],
+                                 check[1]);
+                    return 1;
+                }
                 continue;
             }
             double e_gather = 0.0, e_disc = 0.0;

@@ -217,36 +217,44 @@ void Communicator::allreduce_sum(std::vector<std::uint64_t>& values) const {
     allreduce_in_place(values, MPI_SUM, max_per_call_);
 }
 
+template <class Post>
+void Communicator::root_pieces(const std::vector<std::size_t>& counts, Post post) const {
+    std::vector<MPI_Request> requests;
+    auto post_pieces = [&](int peer, std::size_t first, std::size_t n) {
+        for (const auto& [off, m] : pieces(n, max_per_call_)) {
+            MPI_Request req;
+            post(peer, first + off, m, &req);
+            requests.push_back(req);
+        }
+    };
+    if (rank_ == 0) {
+        std::size_t at = counts[0];
+        for (int r = 1; r < size_; ++r) {
+            post_pieces(r, at, counts[static_cast<std::size_t>(r)]);
+            at += counts[static_cast<std::size_t>(r)];
+        }
+    } else {
+        post_pieces(0, 0, counts[static_cast<std::size_t>(rank_)]);
+    }
+    wait_politely(requests);
+}
+
 template <class Word>
 void Communicator::gather_to_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
                                   std::vector<Word>& recv) const {
     if (send.size() != counts.at(static_cast<std::size_t>(rank_)))
         throw std::logic_error("gather_to_root: this rank's words do not match its count");
-    constexpr int kTag = 26;
-    std::vector<MPI_Request> requests;
     if (rank_ == 0) {
         std::size_t total = 0;
         for (std::size_t c : counts) total += c;
         recv.resize(total);
         std::copy(send.begin(), send.end(), recv.begin());
-        std::size_t at = counts[0];
-        for (int r = 1; r < size_; ++r) {
-            const std::size_t n = counts[static_cast<std::size_t>(r)];
-            for (const auto& [off, m] : pieces(n, max_per_call_)) {
-                MPI_Request req;
-                MPI_Irecv(recv.data() + at + off, m, mpi_type<Word>(), r, kTag, MPI_COMM_WORLD, &req);
-                requests.push_back(req);
-            }
-            at += n;
-        }
-    } else {
-        for (const auto& [off, m] : pieces(send.size(), max_per_call_)) {
-            MPI_Request req;
-            MPI_Isend(send.data() + off, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, &req);
-            requests.push_back(req);
-        }
     }
-    wait_politely(requests);
+    constexpr int kTag = 26;
+    root_pieces(counts, [&](int peer, std::size_t at, int m, MPI_Request* req) {
+        if (rank_ == 0) MPI_Irecv(recv.data() + at, m, mpi_type<Word>(), peer, kTag, MPI_COMM_WORLD, req);
+        else MPI_Isend(send.data() + at, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, req);
+    });
 }
 
 template void Communicator::gather_to_root(std::span<const std::uint64_t>, const std::vector<std::size_t>&,
@@ -257,32 +265,18 @@ template void Communicator::gather_to_root(std::span<const double>, const std::v
 template <class Word>
 void Communicator::scatter_from_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
                                      std::vector<Word>& recv) const {
-    constexpr int kTag = 27;
     recv.resize(counts.at(static_cast<std::size_t>(rank_)));
-    std::vector<MPI_Request> requests;
     if (rank_ == 0) {
         std::size_t total = 0;
         for (std::size_t c : counts) total += c;
         if (send.size() != total) throw std::logic_error("scatter_from_root: the words do not match the counts");
         std::copy_n(send.begin(), counts[0], recv.begin());
-        std::size_t at = counts[0];
-        for (int r = 1; r < size_; ++r) {
-            const std::size_t n = counts[static_cast<std::size_t>(r)];
-            for (const auto& [off, m] : pieces(n, max_per_call_)) {
-                MPI_Request req;
-                MPI_Isend(send.data() + at + off, m, mpi_type<Word>(), r, kTag, MPI_COMM_WORLD, &req);
-                requests.push_back(req);
-            }
-            at += n;
-        }
-    } else {
-        for (const auto& [off, m] : pieces(recv.size(), max_per_call_)) {
-            MPI_Request req;
-            MPI_Irecv(recv.data() + off, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, &req);
-            requests.push_back(req);
-        }
     }
-    wait_politely(requests);
+    constexpr int kTag = 27;
+    root_pieces(counts, [&](int peer, std::size_t at, int m, MPI_Request* req) {
+        if (rank_ == 0) MPI_Isend(send.data() + at, m, mpi_type<Word>(), peer, kTag, MPI_COMM_WORLD, req);
+        else MPI_Irecv(recv.data() + at, m, mpi_type<Word>(), 0, kTag, MPI_COMM_WORLD, req);
+    });
 }
 
 template void Communicator::scatter_from_root(std::span<const std::uint64_t>, const std::vector<std::size_t>&,

@@ -339,7 +339,7 @@ void RunLoop::share_annual_estimates() {
     const bool per_rank = opt_.annual_parts_per_rank;
     const int parts = per_rank ? ranks_ : comm_.nodes();
     if (!scene_.annual || parts == 1 || t.photons == 0) return;
-    // Each rank's part (-1: none), known to every rank.
+    // Each rank's part plus 1 (0: none), known to every rank.
     std::vector<std::uint64_t> part_of(static_cast<std::size_t>(ranks_), 0);
     part_of[static_cast<std::size_t>(comm_.rank())] = static_cast<std::uint64_t>(
         (per_rank ? comm_.rank() : comm_.node_index()) + 1);

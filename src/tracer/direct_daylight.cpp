@@ -279,7 +279,7 @@ public:
             if (!(sun.normal_lx > 0.0) || glm::dot(sun.frame.n, n) <= -0.01) continue;
             // No ray of the cell's can reach an opening: dark, as its rays would say.
             if (!openings_.empty() && !openings_.may_pass(corners, sun.frame.n, targets_.cos_half_sun)) continue;
-            const StrataSum sum = disc(c, block, sun, n);
+            const StrataSum sum = disc(c, block, sun, n, corners);
             out.sun_lx[out.at(s, c)] = sun.normal_lx * sum.value;
             out.sun_var[out.at(s, c)] = sun.normal_lx * sun.normal_lx * sum.variance;
         }
@@ -345,8 +345,9 @@ private:
     // blocked or all pass, so does the whole disc (but for an edge that cuts the disc
     // between them), and the value is exact (their mean transmittance); where they differ,
     // the disc is cut, and its rays tell how much (penumbra). An illuminance grid's cell
-    // samples its area and the disc together.
-    StrataSum disc(std::size_t c, std::uint32_t first, const Sun& sun, const Vec3& n) {
+    // samples its area and the disc together. `corners`: the cell's (CellGeometry::corners).
+    StrataSum disc(std::size_t c, std::uint32_t first, const Sun& sun, const Vec3& n,
+                   const std::vector<Vec3>& corners) {
         const double sin_half = std::sqrt(1.0 - targets_.cos_half_sun * targets_.cos_half_sun);
         const double cos_axis = glm::dot(sun.frame.n, n);
         const bool in_front = cos_axis > sin_half;
@@ -397,7 +398,7 @@ private:
         // (docs/VALIDATION.md §9.2: without it a penumbra's all-passing rays read as exact).
         const bool passed = terms_.front() > 0.0;
         if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return (t > 0.0) == passed; })) {
-            if (!geometry_.point() && in_front) cut = corners_disagree(c, sun, passed);
+            if (!geometry_.point() && in_front) cut = corners_disagree(corners, sun, passed);
             if (cut) {
                 const double p = 0.5 / (rays + 1.0);
                 sum.variance = std::max(sum.variance, mean_cos * mean_cos * p * (1.0 - p) / rays);
@@ -406,12 +407,12 @@ private:
         return sum;
     }
 
-    // Whether a ray from some corner of area cell c towards a point of the sun's rim
+    // Whether a ray from some corner of an area cell towards a point of the sun's rim
     // passes where `passed` says the cell's rays did not (or the other way round): the
     // rim, not the centre, so that a corner inside a shadow's penumbra says so.
-    bool corners_disagree(std::size_t c, const Sun& sun, bool passed) {
+    bool corners_disagree(const std::vector<Vec3>& corners, const Sun& sun, bool passed) {
         double share[16];
-        for (const Vec3& p : geometry_.corners(c))
+        for (const Vec3& p : corners)
             for (const Vec3& d : sun.rim)
                 if (shadow_.passes(p, d, std::numeric_limits<double>::infinity(), share, eps_) != passed) return true;
         return false;

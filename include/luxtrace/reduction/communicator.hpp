@@ -91,6 +91,14 @@ public:
     void set_max_elements_per_call(std::size_t n) { max_per_call_ = n; }
 
 private:
+    // The point-to-point messages of gather_to_root and scatter_from_root, in pieces: on rank
+    // 0 one exchange with each other rank r, at its part's place in rank 0's array (after
+    // the earlier ranks' counts); on rank r one with rank 0, from its own words' start.
+    // post(peer, at, count, request) posts a piece (a send or a receive); returns once all
+    // are done.
+    template <class Post>
+    void root_pieces(const std::vector<std::size_t>& counts, Post post) const;
+
     int rank_ = 0;
     int size_ = 1;
     int nodes_ = 1;

@@ -32,7 +32,7 @@ std::vector<double> gathered(const Scene& scene, const SensorGather& k, const st
     const std::size_t triangles = scene.triangle_count();
     for (std::size_t c = 0; c < k.cells; ++c)
         for (std::size_t i = k.offset[c]; i < k.offset[c + 1]; ++i) {
-            const std::size_t side = k.side[i], tri = side % triangles, face = side / triangles;
+            const std::size_t side = k.site[i], tri = side % triangles, face = side / triangles;
             const Material& m = scene.materials[scene.triangle_material[tri]];
             const double rho = m.type == MaterialType::diffuse && !m.diffuse_reflectance.empty()
                                    ? m.diffuse_reflectance[0]

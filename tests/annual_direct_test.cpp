@@ -4,7 +4,10 @@
 // glossy floor that sends sunlight on by reflection. Both ways estimate the same light,
 // so per work-plane cell the year's exposure (plain detector plus the shadow rays' direct
 // exposure, against the plain detector) agrees within the two runs' errors, and so does
-// each hour's direct sun. Different seeds: the runs' noise is independent.
+// each hour's direct sun. Different seeds: the runs' noise is independent. The same holds
+// with the light after a diffuse reflection gathered ([annual] indirect = "gather"): the
+// floor's 4 m triangles cut into patches, the glossy floor's specular part still counted
+// by the cells.
 #include "luxtrace/io/result_reader.hpp"
 
 #include "test_support.hpp"
@@ -21,7 +24,7 @@ namespace fs = std::filesystem;
 
 const std::string kWeather = std::string(LUXTRACE_TEST_DATA_DIR) + "/weather/chicago.epw";
 
-std::string room(const std::string& direct, int seed) {
+std::string room(const std::string& direct, int seed, const std::string& indirect = "photons") {
     auto rect = [](const std::string& center, const std::string& normal, const std::string& size,
                    const std::string& material) {
         return "[[shape]]\ntype = \"rectangle\"\ncenter = " + center + "\nnormal = " + normal + "\nsize = " + size +
@@ -29,7 +32,7 @@ std::string room(const std::string& direct, int seed) {
     };
     return "[site]\nlatitude_deg = 41.98\nlongitude_deg = -87.92\nutc_offset_h = -6\nnorth = [0, 1, 0]\n"
            "[annual]\nweather = \"" +
-           kWeather + "\"\ndirect = \"" + direct +
+           kWeather + "\"\ndirect = \"" + direct + "\"\nindirect = \"" + indirect +
            "\"\n"
            "[[material]]\nname = \"wall\"\nreflectance = 0.5\n"
            "[[material]]\nname = \"glossy\"\ntype = \"general\"\ndiffuse_reflectance = 0.2\n"
@@ -51,6 +54,51 @@ std::string room(const std::string& direct, int seed) {
            std::to_string(seed) + "\nphotons = 3000000\n";
 }
 
+// Per cell, the year's exposure and its standard error: the plain detector, plus the
+// shadow rays' direct exposure and the gathered light where the run has them.
+struct Year {
+    std::vector<double> value, sigma;
+};
+Year year_of(const ResultReader& r) {
+    Year y{r.f64("/detectors/desk/value"), r.f64("/detectors/desk/sigma_rel")};
+    // A cell the plain detector saw nothing in has sigma_rel NaN: its plain part is 0.
+    for (std::size_t c = 0; c < y.value.size(); ++c) y.sigma[c] = y.value[c] > 0.0 ? y.sigma[c] * y.value[c] : 0.0;
+    const std::string g = "/annual/detectors/desk/";
+    for (const std::string part : {"shadow_direct_sky", "shadow_direct_sun", "gathered_sky", "gathered_sun"}) {
+        if (!r.has(g + part + "_lx_h")) continue;
+        const std::vector<double> v = r.f64(g + part + "_lx_h"), s = r.f64(g + part + "_sigma_lx_h");
+        for (std::size_t c = 0; c < y.value.size(); ++c) {
+            y.value[c] += v[c];
+            y.sigma[c] = std::hypot(y.sigma[c], s[c]);
+        }
+    }
+    return y;
+}
+
+// Two runs' years agree per cell within their errors.
+void expect_same_year(const Year& a, const Year& b, const std::string& what) {
+    ASSERT_EQ(a.value.size(), b.value.size());
+    double chi2 = 0.0, sum_z = 0.0, total_a = 0.0, total_b = 0.0, var_a = 0.0, var_b = 0.0;
+    for (std::size_t c = 0; c < a.value.size(); ++c) {
+        const double z = (b.value[c] - a.value[c]) / std::hypot(a.sigma[c], b.sigma[c]);
+        chi2 += z * z;
+        sum_z += z;
+        total_a += a.value[c];
+        total_b += b.value[c];
+        var_a += std::pow(a.sigma[c] / a.value[c], 2);
+        var_b += std::pow(b.sigma[c] / b.value[c], 2);
+    }
+    const double cells = static_cast<double>(a.value.size());
+    std::cout << "[annual direct] " << what << ": year's exposure, " << a.value.size() << " cells: chi2/dof "
+              << chi2 / cells << ", mean z " << sum_z / cells << ", totals " << total_b / total_a
+              << "; mean relative error " << std::sqrt(var_a / cells) << " against " << std::sqrt(var_b / cells)
+              << "\n";
+    // chi2 of 36 cells: 99.9 % within [0.40, 2.0] times the dof.
+    EXPECT_GT(chi2 / cells, 0.40) << what;
+    EXPECT_LT(chi2 / cells, 2.0) << what;
+    EXPECT_LT(std::abs(sum_z / std::sqrt(cells)), 3.5) << what;
+}
+
 TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     test_support::ScratchDir dir("annual_direct");
     test_support::CommandOutcome o;
@@ -58,43 +106,19 @@ TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     ASSERT_EQ(o.code, 0) << o.out;
     const fs::path shadow = test_support::run_scene_text(dir, "shadow", room("shadow_rays", 12), &o);
     ASSERT_EQ(o.code, 0) << o.out;
-    const ResultReader p(photons), s(shadow);
+    const fs::path gather = test_support::run_scene_text(dir, "gather", room("shadow_rays", 13, "gather"), &o);
+    ASSERT_EQ(o.code, 0) << o.out;
+    // Another gather: its noise and its rays' (the gather's rays follow the seed) are the
+    // first one's size, which this tests.
+    const fs::path gather2 = test_support::run_scene_text(dir, "gather2", room("shadow_rays", 14, "gather"), &o);
+    ASSERT_EQ(o.code, 0) << o.out;
+    const ResultReader p(photons), s(shadow), g(gather), g2(gather2);
     EXPECT_EQ(s.attr_str("/annual", "direct"), "shadow_rays");
-
-    // The year's exposure per cell.
-    const std::vector<double> vp = p.f64("/detectors/desk/value"), rp = p.f64("/detectors/desk/sigma_rel");
-    const std::vector<double> vs = s.f64("/detectors/desk/value"), rs = s.f64("/detectors/desk/sigma_rel");
-    const std::string g = "/annual/detectors/desk/";
-    const std::vector<double> d_sky = s.f64(g + "shadow_direct_sky_lx_h"), d_sun = s.f64(g + "shadow_direct_sun_lx_h");
-    const std::vector<double> s_sky = s.f64(g + "shadow_direct_sky_sigma_lx_h"),
-                              s_sun = s.f64(g + "shadow_direct_sun_sigma_lx_h");
-    std::vector<double> d(d_sky.size()), ds(d_sky.size());
-    for (std::size_t c = 0; c < d.size(); ++c) {
-        d[c] = d_sky[c] + d_sun[c];
-        ds[c] = std::hypot(s_sky[c], s_sun[c]);
-    }
-    ASSERT_EQ(d.size(), vp.size());
-    double chi2 = 0.0, sum_z = 0.0, total_p = 0.0, total_s = 0.0, var_p = 0.0, var_s = 0.0;
-    for (std::size_t c = 0; c < vp.size(); ++c) {
-        const double es = vs[c] + d[c];
-        const double sp = rp[c] * vp[c], ss2 = rs[c] * vs[c] * rs[c] * vs[c] + ds[c] * ds[c];
-        const double z = (es - vp[c]) / std::sqrt(sp * sp + ss2);
-        chi2 += z * z;
-        sum_z += z;
-        total_p += vp[c];
-        total_s += es;
-        var_p += sp * sp / vp[c] / vp[c];
-        var_s += ss2 / es / es;
-    }
-    const double cells = static_cast<double>(vp.size());
-    std::cout << "[annual direct] year's exposure, " << vp.size() << " cells: chi2/dof " << chi2 / cells << ", mean z "
-              << sum_z / cells << ", totals " << total_s / total_p << " (shadow / photons); mean "
-              << "relative error photons " << std::sqrt(var_p / cells) << ", shadow rays " << std::sqrt(var_s / cells)
-              << "\n";
-    // chi2 of 36 cells: 99.9 % within [0.40, 2.0] times the dof.
-    EXPECT_GT(chi2 / cells, 0.40);
-    EXPECT_LT(chi2 / cells, 2.0);
-    EXPECT_LT(std::abs(sum_z / std::sqrt(cells)), 3.5);
+    EXPECT_EQ(g.attr_str("/annual", "indirect"), "gather");
+    const Year by_photons = year_of(p);
+    expect_same_year(by_photons, year_of(s), "shadow rays against photons");
+    expect_same_year(by_photons, year_of(g), "shadow rays and the gather against photons");
+    expect_same_year(year_of(g), year_of(g2), "the gather against itself");
 
     // Each hour's direct sun (LM-83's ASE) per cell: the photons' direct count against the
     // shadow rays'. Over the sunny hours, the z scores' mean and spread.

@@ -179,6 +179,15 @@ TEST_F(Loader, AnnualBadInputNamesItsKey) {
     expect_bad(kAnnual + "direct = \"shadow_rays\"\ndirect_sun_rays = 0\n" + kMat + kFloor, "direct_sun_rays",
                {"square of an even number"});
     expect_bad(kAnnual + "direct_sun_rays = 16\n" + kMat + kFloor, "direct_sun_rays", {"shadow_rays"});
+    const std::string shadow = "direct = \"shadow_rays\"\n";
+    expect_bad(kAnnual + shadow + "indirect = \"map\"\n" + kMat + kFloor, "indirect", {"photons", "gather"});
+    expect_bad(kAnnual + "indirect = \"gather\"\n" + kMat + kFloor, "indirect", {"shadow_rays"});
+    expect_bad(kAnnual + shadow + "gather_rays = 64\n" + kMat + kFloor, "gather_rays", {"gather"});
+    expect_bad(kAnnual + shadow + "indirect = \"gather\"\ngather_rays = 50\n" + kMat + kFloor, "gather_rays",
+               {"square of an even number", "50"});
+    expect_bad(kAnnual + shadow + "indirect = \"gather\"\ngather_patch_m = 0\n" + kMat + kFloor, "gather_patch_m",
+               {"(0, 1000]"});
+    expect_bad(kAnnual + shadow + "gather_patch_m = 0.3\n" + kMat + kFloor, "gather_patch_m", {"gather"});
     // A [site] that contradicts the weather file.
     expect_bad("[site]\nlatitude_deg = 52.5\nlongitude_deg = 13.4\nutc_offset_h = 1\n" + kAnnual + kMat + kFloor,
                "weather", {"latitude_deg", "41.98"});
@@ -198,6 +207,16 @@ TEST_F(Loader, AnnualDirectByShadowRaysKeepsTheGridsDirectApart) {
     EXPECT_EQ(shadow.annual->options.direct_sky_rays, 16);
     EXPECT_EQ(shadow.annual->options.direct_sun_rays, 36);
     EXPECT_TRUE(tally_layout(shadow).direct_apart(0));
+    EXPECT_FALSE(tally_layout(shadow).gathered(0));
+    const Scene gather = load(kAnnual +
+                              "direct = \"shadow_rays\"\nindirect = \"gather\"\ngather_rays = 256\n"
+                              "gather_patch_m = 0.25\n" +
+                              kMat + kFloor + kGrid);
+    EXPECT_TRUE(gather.annual->options.gathers());
+    EXPECT_EQ(gather.annual->options.gather_rays, 256);
+    EXPECT_EQ(gather.annual->options.gather_patch_m, 0.25);
+    EXPECT_TRUE(tally_layout(gather).gathered(0));
+    EXPECT_GT(tally_layout(gather).size(), tally_layout(shadow).size());
 }
 
 TEST_F(Loader, AnnualTruncatedWeatherFileNamesItsLine) {

@@ -593,8 +593,8 @@ TEST_F(Cli, AnnualResultSummariesAreCompactAndReadTheFile) {
         << o.out;
     const Outcome info = run("info " + out.string());
     ASSERT_EQ(info.code, 0) << info.out;
-    // The annual lines: the year's two (and the notes on the plain values and the direct light
-    // by shadow rays), the grid's six.
+    // The annual lines: the year's two (and the notes on the plain values, the direct light
+    // by shadow rays and the gathered light), the grid's six.
     std::istringstream lines(info.out);
     std::vector<std::string> annual;
     bool in_grid = false;
@@ -603,7 +603,7 @@ TEST_F(Cli, AnnualResultSummariesAreCompactAndReadTheFile) {
         else if (line.rfind("detector ", 0) == 0 || line.rfind("  whole grid", 0) == 0) in_grid = false;
         if (in_grid && line.rfind("               U0", 0) != 0) annual.push_back(line);
     }
-    ASSERT_EQ(annual.size(), 5u + 6u) << info.out;
+    ASSERT_EQ(annual.size(), 8u + 6u) << info.out;
     for (const std::string& line : annual) EXPECT_NE(o.out.find(line), std::string::npos) << "run and info agree";
     EXPECT_NE(annual[0].find("4412 daylit hours of 8760, 3925 with a sun; CIE type 12 skies over 145 patches"),
               std::string::npos)
@@ -611,18 +611,19 @@ TEST_F(Cli, AnnualResultSummariesAreCompactAndReadTheFile) {
     EXPECT_NE(annual[1].find("occupied 9-17 h: 2920 hours; EN 17037: 4380 daylight hours"), std::string::npos)
         << annual[1];
     EXPECT_NE(annual[3].find("direct light by shadow rays"), std::string::npos) << annual[3];
+    EXPECT_NE(annual[5].find("light after a diffuse reflection gathered"), std::string::npos) << annual[5];
     const luxtrace::ResultReader r(out);
     const std::string g = "/annual/detectors/plane";
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(annual[5], m, std::regex(R"(sDA300/50% ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[5];
+    ASSERT_TRUE(std::regex_search(annual[8], m, std::regex(R"(sDA300/50% ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[8];
     EXPECT_NEAR(std::stod(m[1]), 100.0 * r.attr_f64(g, "sda"), 0.005);
     EXPECT_NEAR(std::stod(m[2]), 100.0 * r.attr_f64(g, "sda_sigma"), 0.005);
-    ASSERT_TRUE(std::regex_search(annual[6], m, std::regex(R"(DA +mean ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[6];
+    ASSERT_TRUE(std::regex_search(annual[9], m, std::regex(R"(DA +mean ([0-9.]+) \+- ([0-9.]+) %)"))) << annual[9];
     EXPECT_NEAR(std::stod(m[1]), 100.0 * r.attr_f64(g, "mean_da"), 0.005);
     EXPECT_NEAR(std::stod(m[2]), 100.0 * r.attr_f64(g, "mean_da_sigma"), 0.005);
     const char* levels[] = {"minimum", "medium", "high"};
     for (int l = 0; l < 3; ++l) {
-        const std::string& line = annual[8 + l];
+        const std::string& line = annual[11 + l];
         const std::string n = std::string("en17037_") + levels[l];
         EXPECT_NE(line.find(levels[l]), std::string::npos) << line;
         EXPECT_NE(line.find(r.attr_u64(g, n + "_pass") ? ": pass (flip " : ": fail (flip "), std::string::npos) << line;

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
         // Annual daylight (issue 24): every detector's coefficients per light group.
         for (const std::string& d :
              a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
-            for (const char* n : {"count", "sumsq", "direct_count"})
+            for (const char* n : {"count", "sumsq", "direct_count", "gathered", "gathered_sumsq"})
                 if (a.has("/annual/detectors/" + d + "/coefficients/" + n))
                     names.push_back("/annual/detectors/" + d + "/coefficients/" + n);
         // ... and with direct = "shadow_rays", the direct exposure and every hour's values,
@@ -49,6 +49,12 @@ int main(int argc, char** argv) {
                      {"shadow_direct_sky_lx_h", "shadow_direct_sky_sigma_lx_h", "shadow_direct_sun_lx_h",
                       "shadow_direct_sun_sigma_lx_h", "illuminance_lx", "illuminance_sigma_lx", "direct_sun_lx"})
                     reals.push_back("/annual/detectors/" + d + "/" + n);
+        // ... and with indirect = "gather", the gathered exposure.
+        for (const std::string& d :
+             a.has("/annual/detectors") ? a.children("/annual/detectors") : std::vector<std::string>{})
+            for (const char* n :
+                 {"gathered_sky_lx_h", "gathered_sky_sigma_lx_h", "gathered_sun_lx_h", "gathered_sun_sigma_lx_h"})
+                if (a.has("/annual/detectors/" + d + "/" + n)) reals.push_back("/annual/detectors/" + d + "/" + n);
         // The metrics and their replicates' errors, made block by block on every core
         // (issue 37): the same bits on any thread or rank count.
         for (const std::string& d :

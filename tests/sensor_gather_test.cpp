@@ -4,10 +4,15 @@
 // - a rectangle parallel to the sensor gets its configuration factor times pi (a closed
 //   form), on and off its axis, within the stratified rays' scatter over seeds;
 // - behind a glazing pane, a ceiling gets the pane's transmittance and a floor its
-//   reflectance, each integrated over the projected hemisphere (2 pi int T(mu) mu dmu).
+//   reflectance, each integrated over the projected hemisphere (2 pi int T(mu) mu dmu);
+// - a triangle's patches are m^2 of equal area: points uniform over the triangle fall in
+//   each equally often (chi-square), and the rays a triangle takes are shared out among its
+//   patches, none lost.
 #include "luxtrace/tracer/sensor_gather.hpp"
+#include "luxtrace/sampler/philox_bits.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/gather_patches.hpp"
 
 #include "test_support.hpp"
 
@@ -16,6 +21,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <random>
 #include <string>
 
 namespace luxtrace {
@@ -41,7 +47,7 @@ protected:
     static double total(const SensorGather& g, std::size_t cell, const std::vector<bool>& sides) {
         double sum = 0.0;
         for (std::size_t i = g.offset[cell]; i < g.offset[cell + 1]; ++i)
-            if (sides.empty() || sides[g.side[i]]) sum += g.weight_sr[i];
+            if (sides.empty() || sides[g.site[i]]) sum += g.weight_sr[i];
         return sum;
     }
 };
@@ -89,9 +95,9 @@ TEST_F(SensorGatherTest, AClosedRoomFillsTheHemisphere) {
             EXPECT_NEAR(total(g, c, {}), kPi, 1e-9) << "detector " << det << ", cell " << c;
             for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
                 // Every wall is seen on its inner side, the side its normal points to.
-                EXPECT_LT(g.side[i], scene.triangle_count());
+                EXPECT_LT(g.site[i], scene.triangle_count());
                 if (i > g.offset[c]) {
-                    EXPECT_GT(g.side[i], g.side[i - 1]);
+                    EXPECT_GT(g.site[i], g.site[i - 1]);
                 }
             }
         }
@@ -163,6 +169,67 @@ TEST_F(SensorGatherTest, WeightsDoNotDependOnWhichCellsAreComputedTogether) {
                                   both.weight_sr.end()),
               second.weight_sr);
     EXPECT_THROW(sensor_gather(scene, embree, 0, {}, 0, 3), std::logic_error);
+}
+
+TEST(GatherPatches, PointsUniformOverATriangleFillItsPatchesEvenly) {
+    PhiloxBits bits(7, 1);
+    for (const std::uint32_t m : {1u, 2u, 3u, 7u}) {
+        const std::size_t patches = static_cast<std::size_t>(m) * m, n = 2000 * patches;
+        std::vector<double> seen(patches, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            // Uniform over the triangle u, v >= 0, u + v <= 1 (folding the unit square).
+            double u = std::generate_canonical<double, 53>(bits), v = std::generate_canonical<double, 53>(bits);
+            if (u + v > 1.0) {
+                u = 1.0 - u;
+                v = 1.0 - v;
+            }
+            const std::size_t p = GatherPatches::within(m, static_cast<float>(u), static_cast<float>(v));
+            ASSERT_LT(p, patches) << "m " << m;
+            seen[p] += 1.0;
+        }
+        const double expected = static_cast<double>(n) / static_cast<double>(patches);
+        double chi2 = 0.0;
+        for (const double o : seen) chi2 += (o - expected) * (o - expected) / expected;
+        const double dof = static_cast<double>(patches - 1);
+        std::cout << "[gather] " << m << " x " << m << " patches: chi2 " << chi2 << " on " << dof << " dof\n";
+        // Far beyond 5 sigma of chi2 (dof + 5 sqrt(2 dof)), and every patch reached.
+        EXPECT_LT(chi2, dof + 5.0 * std::sqrt(2.0 * dof) + 1.0) << "m " << m;
+        for (const double o : seen) EXPECT_GT(o, 0.0) << "m " << m;
+    }
+    // The corners and the hypotenuse stay in the triangle's patches.
+    for (const auto& [u, v] :
+         std::vector<std::pair<float, float>>{{0.f, 0.f}, {1.f, 0.f}, {0.f, 1.f}, {0.5f, 0.5f}, {0.6f, 0.40001f}})
+        EXPECT_LT(GatherPatches::within(5, u, v), 25u) << u << ", " << v;
+}
+
+TEST_F(SensorGatherTest, PatchesShareOutTheirTrianglesRays) {
+    const Scene scene = load(std::string(kMaterials) + rectangle("[0, 0, 1]", "[0, 0, -1]", 3, 3, "grey"));
+    const EmbreeScene embree(scene);
+    const GatherPatches patches(scene, 0.4);  // the 4.2 m diagonal: 11 cuts
+    ASSERT_EQ(scene.triangle_count(), 2u);
+    ASSERT_EQ(patches.cuts(0), 11u);
+    ASSERT_EQ(patches.cuts(1), 11u);
+    double area = 0.0;
+    for (std::size_t p = 0; p < patches.count(); ++p) area += patches.area_m2(p);
+    EXPECT_NEAR(area, scene.total_area_m2(), 1e-9 * area);
+    SensorGatherOptions o;
+    o.patches = &patches;
+    const SensorGather whole = sensor_gather(scene, embree, 0, {}, 0, 2),
+                       cut = sensor_gather(scene, embree, 0, o, 0, 2);
+    for (std::size_t c = 0; c < 2; ++c) {
+        // Per triangle side, the patches' weights add to the whole triangle's (the same rays).
+        std::vector<double> by_side(2 * scene.triangle_count(), 0.0), patched(by_side);
+        std::size_t used = 0;
+        for (std::size_t i = whole.offset[c]; i < whole.offset[c + 1]; ++i)
+            by_side[whole.site[i]] += whole.weight_sr[i];
+        for (std::size_t i = cut.offset[c]; i < cut.offset[c + 1]; ++i, ++used) {
+            const std::size_t side = cut.site[i] / patches.count(), patch = cut.site[i] % patches.count();
+            const std::size_t tri = patch / (11 * 11);  // both triangles have 11 x 11
+            patched[side * scene.triangle_count() + tri] += cut.weight_sr[i];
+        }
+        EXPECT_GT(used, 50u);  // the rays fall on many patches
+        for (std::size_t s = 0; s < by_side.size(); ++s) EXPECT_NEAR(patched[s], by_side[s], 1e-12) << "side " << s;
+    }
 }
 
 }  // namespace

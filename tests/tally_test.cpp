@@ -1,6 +1,7 @@
 // Tallies: layout indices are disjoint, and write-combining buffers flushed from many
 // threads give exactly the serial sums (integers: order cannot matter).
 #include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tally/photon_tally.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +24,7 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
     };
     for (const Case k : {Case{1, 1, 0}, Case{1, 1, 4}, Case{3, 3, 0}, Case{3, 1, 4}, Case{2, 2, 2}}) {
         const std::size_t B = 3;
-        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates, false, {}}, {4, 9});
+        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates, false, {}, {}}, {4, 9});
         const std::string what = "groups " + std::to_string(k.groups) + ", map groups " + std::to_string(k.map_groups) +
                                  ", R " + std::to_string(k.replicates);
         std::set<std::size_t> seen;
@@ -88,13 +89,77 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
     }
 }
 
+TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
+    const std::size_t groups = 5;
+    const TallyLayout L(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {1, 0}}, {4, 6});
+    const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}}, {4, 6});
+    EXPECT_TRUE(L.gathered(0));
+    EXPECT_FALSE(L.gathered(1));
+    EXPECT_EQ(L.size(), plain.size() + 4 * groups * 2);  // two words per cell and column
+    std::set<std::size_t> seen;
+    for (std::size_t d = 0; d < 2; ++d)
+        for (std::size_t c = 0; c < (d == 0 ? 4u : 6u); ++c)
+            for (std::size_t g = 0; g < groups; ++g) {
+                seen.insert({L.detector_n(d, c, 0, g), L.detector_q(d, c, 0, g), L.detector_direct(d, c, g)});
+                if (d == 0) {
+                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g)).second);
+                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 1).second);
+                    EXPECT_LT(L.detector_gathered(d, c, g) + 1, L.size());
+                    // A column's cells lie together.
+                    EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + 2 * c);
+                    if (g + 1 < groups) {
+                        EXPECT_EQ(L.detector_gathered(d, c, g) + L.gathered_column_stride(d),
+                                  L.detector_gathered(d, c, g + 1));
+                    }
+                }
+            }
+}
+
+TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseReflection) {
+    const TallyLayout L(3, TallyDims{1, 2, 1, 0, true, {1}, {1}}, {3});
+    TallyStore store(L);
+    const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0)},
+                                 {L.detector_gathered(0, 1, 0), L.gathered_column_stride(0)},
+                                 {L.detector_gathered(0, 2, 0), L.gathered_column_stride(0)}};
+    const std::uint64_t big = std::uint64_t{3} << 30;  // Y^2 beyond 64 bits before the shift
+    {
+        TallyBuffer out(store);
+        PhotonTally t;
+        for (int photon = 0; photon < 2; ++photon) {
+            t.begin(L.bin(0, 1, 0, photon == 1));
+            const GatherEntry first[2] = {{0, 3}, {2, 7}}, second[1] = {{0, 5}};
+            t.gather(first, slots);
+            t.gather(second, slots);
+            t.registrations().push_back({0, 1, false, true});   // after a diffuse reflection: the gather's
+            t.registrations().push_back({0, 1, false, false});  // after a mirror: the cell's
+            t.end(L, TallyLayout::kAbsorbed, out);
+        }
+        t.begin(L.bin(0, 0, 0, false));
+        const GatherEntry huge[1] = {{1, static_cast<std::uint32_t>(big >> 8)}};
+        for (int i = 0; i < 256; ++i) t.gather(huge, slots);
+        t.end(L, TallyLayout::kAbsorbed, out);
+    }
+    const std::uint64_t s = TallyLayout::kGatherSquareShift;
+    auto square = [&](std::uint64_t y) {
+        return static_cast<std::uint64_t>((static_cast<long double>(y) * y) / (1 << s) + 0.5L);
+    };
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1)], 2u * 8u);  // two photons, 3 + 5 each
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 1], 2u * ((64u + (1u << (s - 1))) >> s));
+    EXPECT_EQ(store[L.detector_gathered(0, 2, 1)], 14u);
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 1)], 0u);
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 0)], big);
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 1], square(big));
+    EXPECT_EQ(store[L.detector_n(0, 1, 0, 1)], 2u);  // the mirror's registrations only
+    EXPECT_EQ(store[L.detector_q(0, 1, 0, 1)], 2u);
+}
+
 TEST(TallyLayout, OneGroupWithoutReplicatesKeepsTheRandomLayout) {
     // The group dimension of one group adds no word: a scene without light groups has the
     // layout (and so the checkpoints) of before.
-    const TallyLayout one(7, TallyDims{2, 1, 1, 0, false, {}}, {4});
+    const TallyLayout one(7, TallyDims{2, 1, 1, 0, false, {}, {}}, {4});
     EXPECT_EQ(one.size(), TallyLayout::kCounters + 7 * 2 * 2 * TallyLayout::kSurfaceSlots + (4 * 2 * 2 + 3));
     // group_maps = false: the map has one column per band whatever the groups.
-    const TallyLayout shared(7, TallyDims{2, 5, 1, 0, false, {}}, {4});
+    const TallyLayout shared(7, TallyDims{2, 5, 1, 0, false, {}, {}}, {4});
     EXPECT_EQ(shared.surface_end(), one.surface_end());
     EXPECT_EQ(shared.bin(1, 4, 0, true).map_column, 1u);
     EXPECT_EQ(shared.bin(1, 4, 0, true).detector_column, 1u * 5 + 4);

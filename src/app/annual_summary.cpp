@@ -61,9 +61,14 @@ void print_annual_year(const ResultReader& r, std::ostream& out) {
     if (r.attr_u64(kAnnual, "clamped_hours") > 0)
         out << "; " << r.attr_u64(kAnnual, "clamped_hours") << " hours outside the Perez model's range (clamped)";
     out << "\n               (the plain map and detectors hold the year's exposure, lx h)\n";
+    const bool gathered = r.has_attr(kAnnual, "indirect") && r.attr_str(kAnnual, "indirect") == "gather";
     if (r.has_attr(kAnnual, "direct") && r.attr_str(kAnnual, "direct") == "shadow_rays")
         out << "               direct light by shadow rays: the grids' plain values hold the rest, the direct is\n"
                "               /annual/detectors/NAME/shadow_direct_sky_lx_h (with the ground) and ..._sun_lx_h\n";
+    if (gathered)
+        out << "               light after a diffuse reflection gathered: the grids' plain values hold what came\n"
+               "               off other surfaces, the gathered is /annual/detectors/NAME/gathered_sky_lx_h and\n"
+               "               ..._sun_lx_h\n";
     out.flags(flags);
 }
 

@@ -32,11 +32,12 @@ struct AnnualCoefficients::Counts {
     // The photons' n and q hold no direct registration (shadow rays give the direct light):
     // for the estimate their direct count is then 0.
     bool direct_apart = false;
+    bool gathered = false;
     std::size_t first = 0;  // the block's first cell: `cell` below counts from it
 
     Counts(const AnnualGridCounts& g, std::size_t first_cell)
         : annual(g.annual), layout(g.layout), data(g.data), det(g.det), group_flux_lm(g.group_flux_lm),
-          direct_apart(g.layout.direct_apart(g.det)), first(first_cell) {}
+          direct_apart(g.layout.direct_apart(g.det)), gathered(g.layout.gathered(g.det)), first(first_cell) {}
 
     double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
     double n(std::size_t cell, std::size_t group) const {
@@ -44,6 +45,15 @@ struct AnnualCoefficients::Counts {
     }
     double q(std::size_t cell, std::size_t group) const {
         return static_cast<double>(data[layout.detector_q(det, first + cell, 0, group)]);
+    }
+    // The gathered sum Y and sum of squares Q, in units and units^2 (tally.hpp).
+    double gather_y(std::size_t cell, std::size_t group) const {
+        return gathered ? static_cast<double>(data[layout.detector_gathered(det, first + cell, group)]) : 0.0;
+    }
+    double gather_q(std::size_t cell, std::size_t group) const {
+        return gathered ? std::ldexp(static_cast<double>(data[layout.detector_gathered(det, first + cell, group) + 1]),
+                                     TallyLayout::kGatherSquareShift)
+                        : 0.0;
     }
     double direct(std::size_t cell, std::size_t group) const {
         return layout.direct_scores() && !direct_apart
@@ -109,7 +119,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
                                        const AnnualDarkRates& dark)
     : annual_(grid.annual), shadow_(grid.direct != nullptr), first_(first), cells_(count),
       inv_photons_(grid.photons > 0 ? 1.0 / static_cast<double>(grid.photons) : 0.0), per_count_(grid.per_count),
-      dark_(dark) {
+      gather_per_unit_(grid.gather_per_unit), dark_(dark) {
     const AnnualSky& sky = *annual_.sky;
     if (first + count > grid.cells) throw std::logic_error("AnnualCoefficients: a block beyond the grid");
     if (const DirectCoefficients* d = grid.direct) {
@@ -146,6 +156,8 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
     const double k2 = per_count_ * per_count_;
     sky_.assign(entries * cells_, 0.0);
     sky_q_ = sky_var_ = sky_;
+    const double kg = gather_per_unit_, kg2 = kg * kg;
+    if (c.gathered) sky_gather_var_ = sky_;
     double sky_flux = 0.0;
     for (std::size_t e = 0; e < entries; ++e) sky_flux += c.flux(c.sky_group(e));
     std::vector<double> indirect(cells_, 0.5);
@@ -167,6 +179,11 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
             sky_q_[i] = n > 0.0 ? k2 * qq : k2 * indirect[cell] * share;
             // The replicates' variance: the plain counts' (no floor: see sun_coefficients).
             sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
+            if (!c.gathered) continue;
+            const double y = c.gather_y(cell, g), yq = c.gather_q(cell, g);
+            sky_[i] += kg * y;
+            sky_q_[i] += kg2 * yq;
+            sky_gather_var_[i] = std::max(0.0, kg2 * (yq - y * y * inv_photons_));
         }
     }
 }
@@ -253,6 +270,8 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
     sun_q_ = direct_ = direct_var_ = sun_;
     rep_direct_mu_.assign(suns * cells_, 0.0f);
     rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
+    const double kg = gather_per_unit_, kg2 = kg * kg;
+    if (c.gathered) sun_gather_ = sun_gather_var_ = sun_;
     for (std::size_t s = 0; s < suns; ++s) {
         if (!c.sun_emits(s)) continue;
         const double flux = c.flux(c.sun_group(s));
@@ -308,6 +327,12 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // Its variance in the pooled counts' proportion of second moment to count (a
             // photon may register a cell more than once).
             rep_indirect_var_[i] = static_cast<float>(centre_i * (i_sum > 0.0 ? std::max(1.0, v_sum / i_sum) : 1.0));
+            if (!c.gathered) continue;
+            const double y = c.gather_y(cell, c.sun_group(s)), yq = c.gather_q(cell, c.sun_group(s));
+            sun_gather_[i] = kg * y;
+            sun_gather_var_[i] = std::max(0.0, kg2 * (yq - y * y * inv_photons_));
+            sun_[i] += sun_gather_[i];
+            sun_q_[i] += kg2 * yq;
         }
     }
 }
@@ -489,6 +514,7 @@ void AnnualCoefficients::centre(AnnualSeries& out) const {
         direct[i] = shadow_ ? shadow_sun_lx_[i] : per_count_ * rep_direct_mu_[i];
     }
     pool(indirect, direct, sun);
+    for (std::size_t i = 0; i < sun_gather_.size(); ++i) sun[i] += sun_gather_[i];
     combine(sky_, sun, direct, out);
 }
 
@@ -499,6 +525,7 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     // threshold every time. Large counts are drawn as normal (the same to 1/sqrt(mu)).
     const double k = per_count_, k2 = k * k;
     std::vector<double> sky(sky_), indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
+    std::vector<double> gathered(sun_gather_.size(), 0.0);
     const std::size_t suns = pool_.size();
     for (std::size_t cell = 0; cell < cells_; ++cell) {
         // The cell's own stream: (seed, replicate, its index in the grid).
@@ -510,23 +537,27 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             if (mu > 1000.0) return k * std::sqrt(mu) * normal(bits);
             return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(bits)) - mu);
         };
-        // The shadow rays' direct light: normal around its value with its own variance.
-        auto shadow_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
+        // The shadow rays' direct light and the gathered light: normal around their values
+        // with their own variances.
+        auto normal_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
         for (const std::size_t e : entries_) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
-            if (shadow_) sky[i] += shadow_draw(shadow_sky_var_[i]);
+            if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
+            if (!sky_gather_var_.empty()) sky[i] += normal_draw(sky_gather_var_[i]);
         }
         // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
             const std::size_t i = s * cells_ + cell;
             const double mu_d = rep_direct_mu_[i];
-            if (shadow_) direct[i] = shadow_sun_lx_[i] + shadow_draw(shadow_sun_var_[i]);
+            if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(shadow_sun_var_[i]);
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
+            if (!sun_gather_.empty()) gathered[i] = sun_gather_[i] + normal_draw(sun_gather_var_[i]);
         }
     }
     draw_sun_indirect(seed, replicate, indirect);
     pool(indirect, direct, sun);
+    for (std::size_t i = 0; i < gathered.size(); ++i) sun[i] += gathered[i];
     combine(sky, sun, direct, out);
 }
 

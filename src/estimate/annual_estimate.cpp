@@ -49,8 +49,11 @@ AnnualGridCounts grid_counts(const Scene& scene, std::size_t det, const TallyLay
     const Detector& d = scene.detectors[det];
     if (scene.annual->options.shadow_rays() != (direct != nullptr))
         throw std::logic_error("estimate_annual_grid: direct coefficients missing or not asked for");
-    return {*scene.annual,         layout,  data,       det,   static_cast<std::size_t>(d.cells()),
-            e0 * d.value_per_lm(), photons, group_flux, direct};
+    if (layout.gathered(det) && !(direct != nullptr && direct->gather_unit_lx_per_lm > 0.0))
+        throw std::logic_error("estimate_annual_grid: a gathered grid without its unit");
+    const double gather_per_unit = layout.gathered(det) ? e0 * direct->gather_unit_lx_per_lm : 0.0;
+    return {*scene.annual,         layout,          data,    det,        static_cast<std::size_t>(d.cells()),
+            e0 * d.value_per_lm(), gather_per_unit, photons, group_flux, direct};
 }
 
 const DirectCoefficients* direct_of(const AnnualDirect& direct, std::size_t det) {
@@ -121,6 +124,7 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     const AnnualHours hours = annual_hours(*scene.annual);
     AnnualDetectorEstimate e;
     if (dc != nullptr) direct_year(*dc, e);
+    annual_gather_year(scene, det, layout, data, e0, photons, dc, e);
     if (series)
         for (AnnualSeries* x : {&e.value, &e.sigma}) size_series(hours.occupied.size(), grid.cells, *x);
     // Block by block on every core: each block's coefficients, its hourly series and its
@@ -135,6 +139,35 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
                                                series ? &place : nullptr);
     e.metrics = estimate_annual_metrics(draws, grid.cells, kBlockCells, hours, {}, replicates);
     return e;
+}
+
+void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                        std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                        const DirectCoefficients* direct, AnnualDetectorEstimate& e) {
+    if (!layout.gathered(det)) return;
+    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const AnnualGridCounts g = grid_counts(scene, det, layout, data, e0, photons, group_flux, direct);
+    const AnnualSetup& a = *scene.annual;
+    const double kg = g.gather_per_unit, inv_n = photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0;
+    for (auto* v : {&e.gather_sky_lx_h, &e.gather_sky_sigma_lx_h, &e.gather_sun_lx_h, &e.gather_sun_sigma_lx_h})
+        v->assign(g.cells, 0.0);
+    const std::size_t patches = a.sky->sky_entries() - 1;  // the ground is the last entry
+    for (std::size_t grp = 0; grp < layout.groups(); ++grp) {
+        const bool sun = grp >= a.first_sun_group && grp < a.first_sun_group + a.sky->suns().size();
+        const bool sky = grp == a.ground_group || (grp >= a.first_patch_group && grp < a.first_patch_group + patches);
+        if (!sun && !sky) continue;
+        std::vector<double>& sum = sun ? e.gather_sun_lx_h : e.gather_sky_lx_h;
+        std::vector<double>& var = sun ? e.gather_sun_sigma_lx_h : e.gather_sky_sigma_lx_h;
+        for (std::size_t c = 0; c < g.cells; ++c) {
+            const std::size_t at = layout.detector_gathered(det, c, grp);
+            const double y = static_cast<double>(data[at]);
+            const double q = std::ldexp(static_cast<double>(data[at + 1]), TallyLayout::kGatherSquareShift);
+            sum[c] += kg * y;
+            var[c] += kg * kg * std::max(0.0, q - y * y * inv_n);
+        }
+    }
+    for (auto* v : {&e.gather_sky_sigma_lx_h, &e.gather_sun_sigma_lx_h})
+        for (double& x : *v) x = std::sqrt(x);
 }
 
 AnnualCellRange annual_part_cells(std::size_t cells, int part, int parts) {

@@ -143,6 +143,16 @@ void write_coefficients(hid_t g, const AnnualSetup& annual, const TallyLayout& l
     dataset(cg, "count", {groups, cells}, n.data());
     dataset(cg, "sumsq", {groups, cells}, q.data());
     dataset(cg, "direct_count", {groups, cells}, direct.data());
+    if (layout.gathered(det)) {
+        // The gathered sums Y and sum of Y^2 / 2^24 (tally.hpp), in the gather's units.
+        for (std::size_t grp = 0; grp < groups; ++grp)
+            for (std::size_t c = 0; c < cells; ++c) {
+                n[grp * cells + c] = tallies[layout.detector_gathered(det, c, grp)];
+                q[grp * cells + c] = tallies[layout.detector_gathered(det, c, grp) + 1];
+            }
+        dataset(cg, "gathered", {groups, cells}, n.data());
+        dataset(cg, "gathered_sumsq", {groups, cells}, q.data());
+    }
     attr(cg, "first_patch_group", static_cast<std::uint64_t>(annual.first_patch_group));
     attr(cg, "ground_group", static_cast<std::uint64_t>(annual.ground_group));
     attr(cg, "first_sun_group", static_cast<std::uint64_t>(annual.first_sun_group));
@@ -165,6 +175,11 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
     attr(g, "sky_mf", static_cast<std::uint64_t>(annual.options.sky_mf));
     attr(g, "ground_reflectance", annual.options.ground_reflectance);
     attr(g, "direct", annual.options.direct);
+    attr(g, "indirect", annual.options.indirect);
+    if (annual.options.gathers()) {
+        attr(g, "gather_rays", static_cast<std::uint64_t>(annual.options.gather_rays));
+        attr(g, "gather_patch_m", annual.options.gather_patch_m);
+    }
     attr(g, "occupied_hours", std::vector<double>{annual.options.occupied_from_h, annual.options.occupied_to_h});
     attr(g, "daylit_hours", static_cast<std::uint64_t>(annual.sky->daylit_hours()));
     attr(g, "sun_hours", static_cast<std::uint64_t>(annual.sky->suns().size()));
@@ -190,6 +205,13 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
             dataset(dg, "shadow_direct_sky_sigma_lx_h", {n}, e.direct_sky_sigma_lx_h.data());
             dataset(dg, "shadow_direct_sun_lx_h", {n}, e.direct_sun_lx_h.data());
             dataset(dg, "shadow_direct_sun_sigma_lx_h", {n}, e.direct_sun_sigma_lx_h.data());
+        }
+        if (!e.gather_sky_lx_h.empty()) {
+            const std::size_t n = e.gather_sky_lx_h.size();
+            dataset(dg, "gathered_sky_lx_h", {n}, e.gather_sky_lx_h.data());
+            dataset(dg, "gathered_sky_sigma_lx_h", {n}, e.gather_sky_sigma_lx_h.data());
+            dataset(dg, "gathered_sun_lx_h", {n}, e.gather_sun_lx_h.data());
+            dataset(dg, "gathered_sun_sigma_lx_h", {n}, e.gather_sun_sigma_lx_h.data());
         }
     }
 }

@@ -7,6 +7,7 @@
 #include "result_parts.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace luxtrace {
@@ -67,6 +68,13 @@ std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, cons
     });
 }
 
+std::string annual_indirect_tag(const std::string& indirect, int gather_rays, double gather_patch_m) {
+    if (indirect != "gather") return indirect;
+    std::ostringstream o;
+    o << "gather rays " << gather_rays << " patch " << gather_patch_m << " m";
+    return o.str();
+}
+
 CheckpointState read_checkpoint(const std::filesystem::path& path) {
     const ResultReader r(path);
     const std::string where = path.string() + ": ";
@@ -91,8 +99,16 @@ CheckpointState read_checkpoint(const std::filesystem::path& path) {
         if (r.has_attr("/", "replicates")) s.replicates = r.attr_u64("/", "replicates");
         if (r.has_attr("/", "light_groups")) s.light_groups = r.attr_strs("/", "light_groups");
         if (r.has_attr("/", "group_maps")) s.group_maps = r.attr_u64("/", "group_maps") != 0;
-        if (r.has("/annual"))
+        if (r.has("/annual")) {
             s.annual_direct = r.has_attr("/annual", "direct") ? r.attr_str("/annual", "direct") : "photons";
+            const std::string indirect = r.has_attr("/annual", "indirect") ? r.attr_str("/annual", "indirect")
+                                                                           : "photons";
+            s.annual_indirect = indirect == "gather"
+                                    ? annual_indirect_tag(indirect,
+                                                          static_cast<int>(r.attr_u64("/annual", "gather_rays")),
+                                                          r.attr_f64("/annual", "gather_patch_m"))
+                                    : indirect;
+        }
         s.format_version = r.attr_u64("/", "format_version");
         s.elapsed_s = r.attr_f64("/", "elapsed_s");
         const auto t = r.f64("/history/time_s");

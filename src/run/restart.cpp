@@ -11,7 +11,7 @@
 namespace luxtrace {
 
 RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
-                                const std::vector<std::string>& light_groups) {
+                                const std::vector<std::string>& light_groups, const std::string& annual_indirect) {
     CheckpointState ck = read_checkpoint(path);
     if (ck.format_version != kResultFormatVersion)
         throw InputError(path + ": the checkpoint has result format " + std::to_string(ck.format_version) +
@@ -52,6 +52,10 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
     if (!ck.annual_direct.empty() && (ck.annual_direct == "shadow_rays") != layout.any_direct_apart())
         throw InputError(path + ": the checkpoint was made with [annual] direct = \"" + ck.annual_direct +
                          "\"; restart with the same");
+    // A gathered grid's counts hold the weights of one gather table.
+    if (!annual_indirect.empty() && !ck.annual_indirect.empty() && ck.annual_indirect != annual_indirect)
+        throw InputError(path + ": the checkpoint was made with [annual] indirect = " + ck.annual_indirect +
+                         ", this scene asks " + annual_indirect + "; restart with the same");
     if (ck.seed != run.seed || ck.sampler != run.sampler)
         throw InputError(path + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " + ck.sampler +
                          "; restart with the same (drop --seed/--sampler)");

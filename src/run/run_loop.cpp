@@ -75,13 +75,21 @@ std::vector<MessagePart> every_rank_sides(const TallyLayout& layout, int ranks) 
     return parts;
 }
 
+// The scene's annual_indirect_tag, which a checkpoint must match (empty without [annual]).
+std::string indirect_tag(const Scene& scene) {
+    if (!scene.annual) return {};
+    const AnnualOptions& o = scene.annual->options;
+    return annual_indirect_tag(o.indirect, o.gather_rays, o.gather_patch_m);
+}
+
 }  // namespace
 
 RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
     : scene_(scene), run_(scene.run), comm_(comm), opt_(opt), out_(out), t0_(comm.wtime()), ranks_(comm.size()),
       threads_(opt.threads > 0 ? opt.threads : available_cores()), layout_(tally_layout(scene)), store_(layout_),
-      restored_(opt.restart.empty() ? RestartState{}
-                                    : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups)),
+      restored_(opt.restart.empty()
+                    ? RestartState{}
+                    : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups, indirect_tag(scene))),
       plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),
       embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)), surfaces_(scene, embree_),
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
@@ -134,6 +142,8 @@ void RunLoop::trace() {
     if (scene_.annual && scene_.annual->options.shadow_rays()) {
         const double d0 = comm_.wtime();
         annual_direct_ = annual_direct_pass(scene_, embree_, comm_);
+        for (std::size_t det = 0; det < annual_direct_.size(); ++det)
+            if (layout_.gathered(det)) annual_direct_[det].gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
         if (show_)
             out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
                  << comm_.wtime() - d0 << " s\n"
@@ -362,6 +372,9 @@ void RunLoop::share_annual_estimates() {
                                         ranges[static_cast<std::size_t>(comm_.rank())], dark, direct);
         });
         gather_annual_part(det, ranges, std::move(part), direct, attempt, out[det]);
+        if (comm_.is_root() && out[det])
+            attempt(
+                [&] { annual_gather_year(scene_, det, layout_, totals_.span(), t.e0, t.photons, direct, *out[det]); });
     }
     shared_annual_s_ = comm_.wtime() - s0;
     if (!comm_.is_root()) return;
@@ -385,13 +398,17 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
             dark = {d.total, d.direct};
         });
     comm_.broadcast(dark);
-    // Each rank's cells' counts: their n and q, and their direct counts, where rank 0 keeps
-    // them in totals_.
+    // Each rank's cells' counts: their n and q, their direct counts and their gathered
+    // sums, where rank 0 keeps them in totals_.
     auto word_runs = [&](const AnnualCellRange& r) {
         std::vector<std::pair<std::size_t, std::size_t>> w{
             {layout_.detector_cell(det, r.first, 0), layout_.detector_cell(det, r.last, 0)}};
         if (layout_.direct_scores())
             w.emplace_back(layout_.detector_direct(det, r.first, 0), layout_.detector_direct(det, r.last, 0));
+        if (layout_.gathered(det))  // column by column (tally.hpp)
+            for (std::size_t col = 0; col < layout_.detector_columns(); ++col)
+                w.emplace_back(layout_.detector_gathered(det, r.first, col),
+                               layout_.detector_gathered(det, r.last, col));
         return w;
     };
     const std::span<std::uint64_t> totals = totals_.span();
@@ -419,6 +436,7 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
     if (shadow) {
         own_direct.resize(root ? 0 : mine.last - mine.first, scene_.annual->sky->sky_entries(),
                           scene_.annual->sky->suns().size(), mine.first);
+        if (layout_.gathered(det)) own_direct.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
         const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
         std::vector<double> dsend, drecv;
         std::vector<std::size_t> dcounts;

@@ -57,19 +57,33 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
             r.fail("direct", "must be \"photons\" or \"shadow_rays\", got '" + *direct + "'");
         o.direct = *direct;
     }
+    if (const auto indirect = r.string("indirect")) {
+        if (*indirect != "photons" && *indirect != "gather")
+            r.fail("indirect", "must be \"photons\" or \"gather\", got '" + *indirect + "'");
+        if (*indirect == "gather" && !o.shadow_rays()) r.fail("indirect", "\"gather\" needs direct = \"shadow_rays\"");
+        o.indirect = *indirect;
+    }
+    if (const auto patch = r.number("gather_patch_m")) {
+        if (!(*patch > 0.0 && *patch <= 1e3)) r.fail("gather_patch_m", "must lie in (0, 1000] m");
+        if (!o.gathers()) r.fail("gather_patch_m", "is for indirect = \"gather\"");
+        o.gather_patch_m = *patch;
+    }
     struct RaysKey {
         const char* key;
         int* rays;
         const char* zero;  // what 0 means, if allowed
     };
-    for (const RaysKey k : {RaysKey{"direct_sky_rays", &o.direct_sky_rays, "about 9,216 per sensor"},
-                            RaysKey{"direct_sun_rays", &o.direct_sun_rays, nullptr}})
+    for (const RaysKey k :
+         {RaysKey{"direct_sky_rays", &o.direct_sky_rays, "about 9,216 per sensor"},
+          RaysKey{"direct_sun_rays", &o.direct_sun_rays, nullptr}, RaysKey{"gather_rays", &o.gather_rays, nullptr}})
         if (const auto n = r.integer(k.key)) {
             if (!(AnnualOptions::valid_direct_rays(*n) || (k.zero != nullptr && *n == 0)))
                 r.fail(k.key, std::string("must be the square of an even number, 4 to 4096 (4, 16, 36, 64, ...)") +
                                   (k.zero != nullptr ? std::string(", or 0 for ") + k.zero : "") + ", got " +
                                   std::to_string(*n));
-            if (!o.shadow_rays()) r.fail(k.key, "is for direct = \"shadow_rays\"");
+            const bool gather_key = std::string(k.key) == "gather_rays";
+            if (gather_key && !o.gathers()) r.fail(k.key, "is for indirect = \"gather\"");
+            if (!gather_key && !o.shadow_rays()) r.fail(k.key, "is for direct = \"shadow_rays\"");
             *k.rays = static_cast<int>(*n);
         }
     if (const auto year = r.integer("year")) {

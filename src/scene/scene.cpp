@@ -34,6 +34,7 @@ TallyDims dims_of(const Scene& scene) {
     d.direct_scores = scene.annual.has_value();
     if (scene.annual && scene.annual->options.shadow_rays())
         for (const Detector& det : scene.detectors) d.direct_apart.push_back(annual_grid(det) ? 1 : 0);
+    if (scene.annual && scene.annual->options.gathers()) d.gathered = d.direct_apart;
     return d;
 }
 }  // namespace

@@ -20,7 +20,7 @@ const std::vector<SceneTableSchema>& scene_schema() {
         {"radiance", {"file", "scale", "photometry"}},
         {"annual",
          {"weather", "sky_mf", "sky", "cie_type", "ground_reflectance", "occupied_hours", "year", "ladybug_folder",
-          "direct", "direct_sky_rays", "direct_sun_rays"}},
+          "direct", "direct_sky_rays", "direct_sun_rays", "indirect", "gather_rays", "gather_patch_m"}},
         {"portal", {"shape", "flip"}},
         {"site",
          {"latitude_deg", "longitude_deg", "utc_offset_h", "elevation_m", "north", "time", "pressure_mbar",

@@ -5,6 +5,7 @@
 namespace luxtrace {
 
 PhotonTally::PhotonTally() {
+    touched_.reserve(64);
     regs_.reserve(32);
     arrivals_.reserve(64);
     indices_.reserve(32);
@@ -16,6 +17,22 @@ void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, Tall
     if (arrivals_.size() > 1) add_repeats(out);  // a photon arriving once repeats nothing
     arrivals_.clear();
     if (!regs_.empty()) add_registrations(layout, out);
+    if (!touched_.empty()) add_gathered(out);
+}
+
+void PhotonTally::add_gathered(TallyBuffer& out) {
+    // Y and Y^2 / 2^s per cell (in 128 bits on the way: no overflow).
+    __extension__ using Wide = unsigned __int128;
+    constexpr int s = TallyLayout::kGatherSquareShift;
+    for (const std::uint32_t cell : touched_) {
+        const std::uint64_t y = gathered_[cell];
+        const std::size_t slot = slots_[cell].first + bin_.detector_column * slots_[cell].column_stride;
+        const Wide y2 = static_cast<Wide>(y) * y;
+        out.add(slot, y);
+        out.add(slot + 1, static_cast<std::uint64_t>((y2 + (Wide{1} << (s - 1))) >> s));
+        gathered_[cell] = 0;
+    }
+    touched_.clear();
 }
 
 void PhotonTally::add_repeats(TallyBuffer& out) {
@@ -45,8 +62,10 @@ void PhotonTally::add_registrations(const TallyLayout& layout, TallyBuffer& out)
     const std::size_t group = bin_.detector_column % layout.groups();
     indices_.clear();
     const bool apart = layout.any_direct_apart();
+    const bool gathered = layout.any_gathered();
     for (const Registration& r : regs_)
-        if (!(apart && r.direct && layout.direct_apart(r.detector)))
+        if (!(apart && r.direct && layout.direct_apart(r.detector)) &&
+            !(gathered && r.after_diffuse && layout.gathered(r.detector)))
             indices_.push_back(layout.detector_cell(r.detector, r.cell, bin_.detector_column));
     std::sort(indices_.begin(), indices_.end());
     std::size_t det = 0;  // detectors are visited in index order

@@ -5,6 +5,7 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/cell_geometry.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/gather_patches.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,8 @@ public:
     CellGatherer(const Scene& scene, const EmbreeScene& embree, std::size_t det, const SensorGatherOptions& o)
         : scene_(scene), embree_(embree), geometry_{scene.detectors[det]}, sampler_(o.seed ^ kGatherKey),
           side_(static_cast<int>(std::lround(std::sqrt(static_cast<double>(o.rays))))), det_(det),
-          step_m_(4.0 * scene.ray_epsilon_m()) {}
+          step_m_(4.0 * scene.ray_epsilon_m()), patches_(o.patches),
+          sites_per_side_(o.patches != nullptr ? o.patches->count() : scene.triangle_count()) {}
 
     // Cell c's (side, weight) pairs, merged by side.
     std::vector<std::pair<std::uint32_t, double>> cell(std::size_t c) {
@@ -70,7 +72,8 @@ private:
         const bool hole = m.type == MaterialType::glass && m.ior == 1.0;
         if (!glazing && !hole) {
             const std::size_t side = along < 0.0 ? 0 : 1;  // the side the ray arrives on
-            hits_.emplace_back(static_cast<std::uint32_t>(side * scene_.triangle_count() + h.triangle), weight);
+            const std::size_t patch = patches_ != nullptr ? patches_->patch(h.triangle, h.u, h.v) : h.triangle;
+            hits_.emplace_back(static_cast<std::uint32_t>(side * sites_per_side_ + patch), weight);
             return;
         }
         if (panes >= kMaxPanes) return;
@@ -92,6 +95,8 @@ private:
     int side_;
     std::size_t det_;
     double step_m_;
+    const GatherPatches* patches_;
+    std::size_t sites_per_side_;
     std::vector<std::pair<std::uint32_t, double>> hits_;
 };
 
@@ -114,10 +119,10 @@ SensorGather sensor_gather(const Scene& scene, const EmbreeScene& embree, std::s
     out.offset.push_back(0);
     for (const auto& entries : per_cell) {
         for (const auto& [s, w] : entries) {
-            out.side.push_back(s);
+            out.site.push_back(s);
             out.weight_sr.push_back(w);
         }
-        out.offset.push_back(out.side.size());
+        out.offset.push_back(out.site.size());
     }
     return out;
 }

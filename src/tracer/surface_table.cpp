@@ -26,6 +26,10 @@ SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree)
     for_each_index(scene.triangle_count(), 16384, [&](std::size_t t) { fill(scene, embree, t); });
     for (const Material& m : scene.materials)
         for (int b = 0; b < bands_; ++b) models_.push_back(scatter_model(m, b));
+    for (const Material& m : scene.materials)
+        panes_.push_back(
+            (m.type == MaterialType::glazing && m.glazing) || (m.type == MaterialType::glass && m.ior == 1.0) ? 1 : 0);
+    if (scene.annual && scene.annual->options.gathers()) gather_ = GatherTable(scene, embree, tally_layout(scene));
 }
 
 }  // namespace luxtrace

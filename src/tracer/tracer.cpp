@@ -13,7 +13,7 @@ namespace luxtrace {
 PhotonTracer::PhotonTracer(const Scene& scene, const EmbreeScene& embree, const SurfaceTable& surfaces,
                            const TallyLayout& layout, PhotonSampler sampler)
     : scene_(scene), embree_(embree), surfaces_(surfaces), layout_(layout), sampler_(std::move(sampler)),
-      detectors_(scene.detectors) {
+      detectors_(scene.detectors), gather_(surfaces.gather()) {
     const auto& lights = scene.lights.lights();
     all_positioned_ = std::all_of(lights.begin(), lights.end(), [](const Light& l) { return l.draws_position(); });
     // The tallies keep per-replicate counts for exactly the sampler's streams.
@@ -44,6 +44,8 @@ bool PhotonTracer::start(Photon& p, std::uint64_t k, const PhotonSampler::Block&
     p.k = k;
     p.bounce = 0;
     p.direct = true;
+    p.after_diffuse = false;
+    p.panes = 0;
     const LightSet& lights = scene_.lights;
     const std::size_t li = lights.pick_light(PhiloxSampler::uniform(b0[0]));
     p.band = lights.pick_band(li, PhiloxSampler::uniform(b0[1]));
@@ -104,8 +106,11 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     if (detectors_.sees_flights()) {
         const double t_max = hit.found ? static_cast<double>(hit.t) : std::numeric_limits<double>::infinity();
         const Vec3 hit_normal = hit.found ? Vec3(surfaces_.triangle(hit.triangle).normal) : Vec3(0.0);
-        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, hit_normal, p.direct,
-                          p.tally.registrations());
+        std::vector<Registration>& regs = p.tally.registrations();
+        const std::size_t before = regs.size();
+        detectors_.flight(embree_.to_scene(p.origin), p.direction, t_max, hit_normal, p.direct, regs);
+        if (p.after_diffuse)
+            for (std::size_t i = before; i < regs.size(); ++i) regs[i].after_diffuse = true;
     }
     if (!hit.found) {
         end(p, TallyLayout::kEscaped, out);
@@ -117,6 +122,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     const Vec3 ng(t.normal);
     const bool front = glm::dot(p.direction, ng) < 0.0;
     p.tally.arrive(layout_, layout_.side_index(hit.triangle, front ? 0 : 1), p.direct, out);
+    if (!gather_.empty()) gather(p, front);
 
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));
@@ -131,12 +137,24 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     p.origin = spawn_origin(sp, Vec3f(static_cast<double>(s.side) * n_in), t.margin);
     p.direction = s.direction;
     p.direct = p.direct && s.event == ScatterEvent::specular_transmission;
+    if (!gather_.empty()) follow_event(p, s.event, surfaces_.pane(t.material));
     if (detectors_.sees_departures()) depart(p, embree_.to_scene(sp.p));
     if (++p.bounce >= scene_.run.max_bounces) {
         end(p, TallyLayout::kTruncated, out);
         return false;
     }
     return true;
+}
+
+void PhotonTracer::follow_event(Photon& p, ScatterEvent e, bool pane) {
+    if (e == ScatterEvent::diffuse_reflection) {
+        p.after_diffuse = true;
+        p.panes = 0;
+    } else if (pane && p.after_diffuse && ++p.panes <= kGatherPanes) {
+        // Through a pane, or reflected by it, as the gather's rays go on.
+    } else {
+        p.after_diffuse = false;
+    }
 }
 
 template <class SeeRay>

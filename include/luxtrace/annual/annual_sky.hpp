@@ -46,6 +46,16 @@ struct AnnualOptions {
     int direct_sky_rays = 0;   // per patch and sensor, the square of an even number; 0: about 9,216 per sensor
     int direct_sun_rays = 16;  // per sun and sensor where its disc is cut (points), or always (cells)
     bool shadow_rays() const { return direct == "shadow_rays"; }
+    // How they get the light after a diffuse reflection (issue 37): "photons" (the photons
+    // registering over the sensors' discs), or "gather" (shadow rays only): each photon's
+    // arrival on a surface patch gathered to the sensors that see the patch, as its
+    // Lambertian luminance seen through their share of the hemisphere
+    // (tracer/gather_table.hpp); the discs then count only what comes off glossy, mirror
+    // and glass surfaces.
+    std::string indirect = "photons";
+    int gather_rays = 4096;       // per sensor, the square of an even number
+    double gather_patch_m = 0.5;  // the surfaces' patches' longest edge at most this
+    bool gathers() const { return indirect == "gather"; }
     // The rays' rule (but direct_sky_rays' 0): n x n strata, n even, 4 to 4096 rays.
     static bool valid_direct_rays(std::int64_t rays);
 };

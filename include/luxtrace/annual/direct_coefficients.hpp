@@ -19,6 +19,9 @@ namespace luxtrace {
 struct DirectCoefficients {
     // Cells [first, first + cells) of the grid (a rank's share, or the whole grid).
     std::size_t cells = 0, entries = 0, suns = 0, first = 0;
+    // With [annual] indirect = "gather": the gathered tallies' unit, lx per lm
+    // (tracer/gather_table.hpp); 0: the grid gathers nothing.
+    double gather_unit_lx_per_lm = 0.0;
     // [entry][cell], [sun][cell].
     std::vector<double> sky_lx, sky_var;
     std::vector<double> sun_lx, sun_var;

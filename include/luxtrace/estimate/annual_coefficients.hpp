@@ -18,6 +18,12 @@
 // counts hold only the light that arrived after an event (TallyLayout::direct_apart), and
 // each coefficient is the shadow rays' direct plus the photons' rest: the two are
 // independent, so their variances add. The direct sun (ASE) is then the shadow rays'.
+//
+// With the light after a diffuse reflection gathered (tracer/gather_table.hpp), each
+// group's coefficient also has the gathered sum, G_gc = k_G Y_gc (k_G = e0 / W, Y the
+// tally's units) with variance k_G^2 (Q_gc - Y_gc^2 / N) (Q the sum of squares in units^2);
+// a sun's gathered part is its own, not pooled over days (it has no lumps to smooth), and
+// the replicates draw it normal around its value.
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -41,6 +47,7 @@ struct AnnualGridCounts {
     std::span<const std::uint64_t> data;
     std::size_t det = 0, cells = 0;
     double per_count = 0.0;
+    double gather_per_unit = 0.0;  // k_G: lx of a gathered unit, 0 without a gather
     std::uint64_t photons = 0;
     std::span<const double> group_flux_lm;
     const DirectCoefficients* direct = nullptr;
@@ -110,7 +117,8 @@ private:
     bool shadow_ = false;
     std::size_t first_ = 0, cells_ = 0;
     double inv_photons_ = 0.0;
-    double per_count_ = 0.0;  // k
+    double per_count_ = 0.0;        // k
+    double gather_per_unit_ = 0.0;  // k_G
     AnnualDarkRates dark_;
 
     // The block's part of the shadow rays' direct coefficients (DirectCoefficients' layout,
@@ -121,6 +129,9 @@ private:
     // order): the coefficients (lx per unit weight), k^2 q for the hourly error (with a floor
     // where the cell saw nothing) and the plain counts' variances for the replicates.
     std::vector<double> sky_, sky_q_, sky_var_;
+    // The gathered part (empty without a gather): its variance per [entry][cell], and per
+    // [sun][cell] its value and variance.
+    std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
 
     // pool_suns, per sun: the suns of the same hour on the neighbouring days, this sun's

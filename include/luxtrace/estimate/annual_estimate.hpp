@@ -22,6 +22,9 @@ struct AnnualDetectorEstimate {
     // from the suns, with their standard errors; empty otherwise. The plain detector then
     // holds the rest: the three add to the year's exposure.
     std::vector<double> direct_sky_lx_h, direct_sky_sigma_lx_h, direct_sun_lx_h, direct_sun_sigma_lx_h;
+    // [annual] indirect = "gather": the same for the gathered light after a diffuse
+    // reflection (the plain detector then holds what came off other surfaces).
+    std::vector<double> gather_sky_lx_h, gather_sky_sigma_lx_h, gather_sun_lx_h, gather_sun_sigma_lx_h;
 };
 
 // The hours LM-83 and EN 17037 count (occupied; EN 17037's daylight hours: the half of the
@@ -36,6 +39,12 @@ AnnualHours annual_hours(const AnnualSetup& annual);
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                             int replicates, bool series, const AnnualDirect& direct);
+
+// The gathered year's exposure and its errors (AnnualDetectorEstimate::gather_*) from the
+// whole grid's tallies; nothing for a grid that gathers nothing.
+void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& layout,
+                        std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
+                        const DirectCoefficients* direct, AnnualDetectorEstimate& e);
 
 // The post-processing shared among parts (ranks, docs/ANNUAL.md step 7): each part runs the
 // blocks of its cells and rank 0 merges the parts. The figures are those of

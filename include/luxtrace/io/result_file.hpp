@@ -80,6 +80,9 @@ struct CheckpointState {
     // An annual checkpoint's [annual] direct ("photons" in files before it); empty without
     // [annual].
     std::string annual_direct;
+    // ... and its light after a diffuse reflection: "photons" or, with the gather's options
+    // (whose table its tallies were counted with), "gather rays R patch P m".
+    std::string annual_indirect;  // annual_indirect_tag's form
     std::uint64_t format_version = 1;
     double elapsed_s = 0.0;
     std::uint64_t layout_size = 0, triangles = 0, bands = 0;
@@ -103,6 +106,9 @@ std::vector<char> tally_checkpoint_image(const std::filesystem::path& path, cons
 
 // Reads a checkpoint (result_image with CheckpointData, or tally_checkpoint_image); throws
 // InputError.
+// How an annual run gets its light after a diffuse reflection, as a checkpoint records it:
+// "photons", or "gather rays R patch P m".
+std::string annual_indirect_tag(const std::string& indirect, int gather_rays, double gather_patch_m);
 CheckpointState read_checkpoint(const std::filesystem::path& path);
 
 }  // namespace luxtrace

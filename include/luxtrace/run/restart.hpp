@@ -22,8 +22,10 @@ struct RestartState {
 
 // Reads the checkpoint `path` and checks that `run` (seed, sampler, replicates, budget)
 // and `layout` can continue it; throws InputError naming what differs.
-// `light_groups`: the scene's (Scene::light_groups), which the checkpoint's must match.
+// `light_groups`: the scene's (Scene::light_groups), which the checkpoint's must match;
+// `annual_indirect`: the scene's annual_indirect_tag (io/result_file.hpp), empty without
+// [annual].
 RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
-                                const std::vector<std::string>& light_groups);
+                                const std::vector<std::string>& light_groups, const std::string& annual_indirect = {});
 
 }  // namespace luxtrace

@@ -9,15 +9,31 @@
 #include "luxtrace/tally/tally.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace luxtrace {
+
+// A cell's share of an arrival's gathered light (tracer/gather_table.hpp).
+struct GatherEntry {
+    std::uint32_t cell = 0;    // the gathered cell, numbered across the gathered grids
+    std::uint32_t weight = 0;  // units
+};
+
+// A gathered cell's slot in column 0 (TallyLayout::detector_gathered), and the step from
+// one column to the next.
+struct GatherSlot {
+    std::size_t first = 0, column_stride = 0;
+};
 
 // A detector cell the photon registered in.
 struct Registration {
     std::uint32_t detector = 0;
     std::uint32_t cell = 0;
     bool direct = false;  // on the photon's straight line from its light (TallyLayout::detector_direct)
+    // After a diffuse reflection (and panes the gather passes too): a gathered grid's light
+    // (TallyDims::gathered), not its disc's.
+    bool after_diffuse = false;
 };
 
 class PhotonTally {
@@ -37,6 +53,17 @@ public:
         if (layout.replicates() > 0) out.add(layout.map_replicate(side, bin_.map_column, bin_.replicate), 1);
         arrivals_.push_back(layout.map_slot(side, bin_.map_column, TallyLayout::kRepeats));
     }
+    // An arrival whose light goes to the cells of `entries` (gather_table.hpp), summed per
+    // cell until the photon ends; `slots` per gathered cell: where it lies in the layout.
+    void gather(std::span<const GatherEntry> entries, std::span<const GatherSlot> slots) {
+        if (entries.empty()) return;
+        if (gathered_.size() != slots.size()) gathered_.assign(slots.size(), 0);
+        slots_ = slots;
+        for (const GatherEntry& e : entries) {
+            if (gathered_[e.cell] == 0) touched_.push_back(e.cell);
+            gathered_[e.cell] += e.weight;
+        }
+    }
     // Filters append the cells the photon registers in here.
     std::vector<Registration>& registrations() { return regs_; }
     // The photon ended with `fate`: its fate, its replicate's photon count, its repeats and
@@ -46,11 +73,17 @@ public:
 private:
     void add_repeats(TallyBuffer& out);
     void add_registrations(const TallyLayout& layout, TallyBuffer& out);
+    void add_gathered(TallyBuffer& out);
 
     TallyBin bin_;
     std::vector<Registration> regs_;
     std::vector<std::size_t> arrivals_;  // kRepeats slot of every surface arrival
     std::vector<std::size_t> indices_;   // scratch: the registrations' n_c slots
+    // The photon's gathered units per gathered cell (zero where untouched), and the cells
+    // it touched.
+    std::span<const GatherSlot> slots_;
+    std::vector<std::uint64_t> gathered_;
+    std::vector<std::uint32_t> touched_;
 };
 
 }  // namespace luxtrace

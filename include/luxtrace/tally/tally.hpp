@@ -31,6 +31,11 @@ struct TallyDims {
     // not in n, q and the totals (annual grids whose direct light comes from shadow rays,
     // annual_sky.hpp: AnnualOptions::direct).
     std::vector<std::uint8_t> direct_apart;
+    // Per detector (empty: none): it also keeps, per cell and column, the light gathered to
+    // it from the surfaces the photons arrive on (annual grids with [annual] indirect =
+    // "gather", tracer/gather_table.hpp), and its n and q then count no registration that
+    // came after a diffuse reflection.
+    std::vector<std::uint8_t> gathered;
 };
 
 // Where one photon's scores go besides the site, fixed when it starts: a column is a
@@ -67,7 +72,7 @@ public:
     // One light group: the layout of a scene without groups.
     TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
                 std::size_t replicates = 0)
-        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates, false, {}}, detector_cells) {}
+        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates, false, {}, {}}, detector_cells) {}
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }
@@ -160,13 +165,25 @@ public:
     std::size_t detector_direct(std::size_t det, std::size_t cell, std::size_t column) const {
         return direct_offset_[det] + cell * detector_columns() + column;
     }
+    // The gathered light of `cell` in a detector column (gathered detectors only): the sum
+    // over photons of Y, the photon's gathered value in the table's integer units, then the
+    // sum of Y^2 / 2^kGatherSquareShift (rounded): two words, like n_c and q_c. Column by
+    // column: a photon adds to many cells of its own column, which then lie together.
+    bool gathered(std::size_t det) const { return det < dims_.gathered.size() && dims_.gathered[det] != 0; }
+    bool any_gathered() const { return !dims_.gathered.empty(); }
+    std::size_t detector_gathered(std::size_t det, std::size_t cell, std::size_t column) const {
+        return gather_offset_[det] + (column * det_cells_[det] + cell) * 2;
+    }
+    // From a cell's slot in one column to the next column's.
+    std::size_t gathered_column_stride(std::size_t det) const { return det_cells_[det] * 2; }
+    static constexpr int kGatherSquareShift = 24;
     // Photons traced of replicate r (the last R slots).
     std::size_t replicate_photons(std::size_t r) const { return size_ - dims_.replicates + r; }
 
 private:
     std::size_t triangles_ = 0, size_ = kCounters;
     TallyDims dims_;
-    std::vector<std::size_t> det_offset_, rep_offset_, direct_offset_;
+    std::vector<std::size_t> det_offset_, rep_offset_, direct_offset_, gather_offset_;
     std::vector<std::size_t> det_cells_;
 };
 

@@ -20,18 +20,22 @@
 namespace luxtrace {
 
 class EmbreeScene;
+class GatherPatches;
 struct Scene;
 
 struct SensorGatherOptions {
     int rays = 4096;  // per cell, the square of an even number (AnnualOptions::valid_direct_rays)
     std::uint64_t seed = 1;
+    const GatherPatches* patches = nullptr;  // null: whole triangles
 };
 
 struct SensorGather {
     std::size_t first = 0, cells = 0;  // the grid's cells [first, first + cells)
-    // Cell c's (from first) entries are [offset[c], offset[c + 1]), by ascending side.
+    // Cell c's (from first) entries are [offset[c], offset[c + 1]), by ascending site.
     std::vector<std::size_t> offset;
-    std::vector<std::uint32_t> side;  // side index: side * triangles + triangle (TallyLayout's)
+    // A site: side * P + patch, P the patches of one side (without patches: side *
+    // triangles + triangle, TallyLayout's side index).
+    std::vector<std::uint32_t> site;
     std::vector<double> weight_sr;
 };
 

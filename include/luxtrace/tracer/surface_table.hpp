@@ -7,6 +7,7 @@
 // million triangles make 627 MB of records, written by all cores (issue 26).
 #include "luxtrace/core/math.hpp"
 #include "luxtrace/material/material.hpp"
+#include "luxtrace/tracer/gather_table.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -28,17 +29,25 @@ static_assert(sizeof(TriangleRecord) == 64, "one cache line per triangle");
 
 class SurfaceTable {
 public:
+    // With the scene's gather table (empty unless its annual grids gather).
     SurfaceTable(const Scene& scene, const EmbreeScene& embree);
     const TriangleRecord& triangle(std::size_t t) const { return triangles_[t]; }
     const ScatterModel& model(std::uint32_t material, int band) const {
         return models_[material * static_cast<std::size_t>(bands_) + static_cast<std::size_t>(band)];
     }
+    // What an arrival gathers to the annual grids' sensors (gather_table.hpp).
+    const GatherTable& gather() const { return gather_; }
+    // A pane the gather's rays pass (glazing, or glass of index 1): light after a diffuse
+    // reflection stays gathered through it (sensor_gather.hpp).
+    bool pane(std::uint32_t material) const { return panes_[material] != 0; }
 
 private:
     void fill(const Scene& scene, const EmbreeScene& embree, std::size_t t);  // triangle t's record
     std::unique_ptr<TriangleRecord[]> triangles_;                             // written once, not zeroed first
     std::vector<ScatterModel> models_;
     int bands_ = 1;
+    GatherTable gather_;
+    std::vector<std::uint8_t> panes_;
 };
 
 }  // namespace luxtrace

@@ -22,6 +22,7 @@
 #include "luxtrace/tracer/detector_filters.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
+#include "luxtrace/tracer/surface_table.hpp"
 
 #include <array>
 #include <cstdint>
@@ -30,7 +31,6 @@
 namespace luxtrace {
 
 struct Scene;
-class SurfaceTable;
 
 // The random-number layout above, stored in results and checked on restart.
 inline constexpr std::uint64_t kPhotonLayout = 2;
@@ -53,6 +53,8 @@ public:
     void trace_recording(std::uint64_t first, std::uint64_t last, TallyBuffer& out, std::vector<RecordedRay>& rays);
 
     static constexpr int kInFlight = 8;
+    // The panes a gather ray passes (sensor_gather.cpp's kMaxPanes).
+    static constexpr int kGatherPanes = 4;
 
 private:
     struct Photon {
@@ -62,6 +64,10 @@ private:
         // Still on the straight line from its light: no event has turned it (going
         // straight through glazing does not), so its arrivals count as direct light.
         bool direct = true;
+        // Its last event was a diffuse reflection, or that and then panes the gather passes
+        // (at most `kGatherPanes` of them): its light at a gathered grid is the gather's.
+        bool after_diffuse = false;
+        int panes = 0;
         Vec3f origin;
         Vec3 direction;
         Hit hit;
@@ -93,6 +99,12 @@ private:
     // The photon leaves `point` (scene coordinates) along its direction.
     void depart(Photon& p, const Vec3& point);
     void end(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) { p.tally.end(layout_, fate, out); }
+    // The arrival's light gathered to the sensors that see its site (gather_table.hpp); and
+    // after event `e` (on a pane or not), whether the photon's light is the gather's.
+    void gather(Photon& p, bool front) {
+        p.tally.gather(gather_.entries(gather_.site(p.hit.triangle, front ? 0 : 1, p.hit.u, p.hit.v)), gather_.slots());
+    }
+    static void follow_event(Photon& p, ScatterEvent e, bool pane);
 
     const Scene& scene_;
     const EmbreeScene& embree_;
@@ -106,6 +118,7 @@ private:
     // Every light draws a start position (area lights, beams, luminous openings): block 1
     // is then drawn in batches too; otherwise one at a time, for the photons that need it.
     bool all_positioned_ = false;
+    const GatherTable& gather_;
 };
 
 }  // namespace luxtrace

@@ -1,0 +1,63 @@
+#pragma once
+// The light after a diffuse reflection, gathered to the annual grids' sensors ([annual]
+// indirect = "gather", issue 37, docs/ANNUAL.md "Gathering the light after a reflection").
+// A photon of flux e0 arriving on a patch of area A and diffuse reflectance rho makes the
+// patch's Lambertian luminance e0 rho / (pi A) on average (whatever it does next), and a
+// sensor that sees the patch through a projected solid angle K (tracer/sensor_gather.hpp)
+// gets K times that: each arrival adds e0 K rho / (pi A) to every sensor that sees the
+// patch. The sum over photons is unbiased for the light after a diffuse reflection as far
+// as each patch's luminance is uniform over it (patches small against the light's
+// gradients, gather_patches.hpp); the discs then count only what did not come off a
+// diffuse reflection (a registration after one, or after one and panes the gather passes
+// too, counts no more: TallyDims::gathered).
+//
+// Tallies stay integers (any order of addition gives the same bits): a weight is stored as
+// round(W K rho / (pi A)) units, W = 2^kWeightBits / the table's largest weight, so that a
+// weight loses at most half a unit (about 3e-8 of the largest). The table is a pure function
+// of the scene, its seed and the options: every rank builds the same.
+#include "luxtrace/tally/photon_tally.hpp"
+#include "luxtrace/tracer/gather_patches.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace luxtrace {
+
+class EmbreeScene;
+class TallyLayout;
+struct Scene;
+
+class GatherTable {
+public:
+    static constexpr int kWeightBits = 24;
+    GatherTable() = default;  // gathers nothing
+    // The grids `layout` keeps gathered (TallyDims::gathered), their cells on every core.
+    GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout);
+
+    bool empty() const { return cells_ == 0; }
+    const GatherPatches& patches() const { return patches_; }
+    // Triangle `tri`'s side `side` at (u, v): its site (side * patches + patch).
+    std::size_t site(std::size_t tri, std::size_t side, float u, float v) const {
+        return side * patches_.count() + patches_.patch(tri, u, v);
+    }
+    std::span<const GatherEntry> entries(std::size_t site) const {
+        return {entries_.data() + offset_[site], offset_[site + 1] - offset_[site]};
+    }
+    std::size_t cells() const { return cells_; }
+    // Per gathered cell, its slots in the layout.
+    std::span<const GatherSlot> slots() const { return slots_; }
+    // lx per lm of one unit: 1 / W.
+    double unit_lx_per_lm() const { return unit_lx_per_lm_; }
+
+private:
+    GatherPatches patches_;
+    std::vector<std::size_t> offset_;  // per site
+    std::vector<GatherEntry> entries_;
+    std::vector<GatherSlot> slots_;  // per gathered cell
+    std::size_t cells_ = 0;
+    double unit_lx_per_lm_ = 0.0;
+};
+
+}  // namespace luxtrace

@@ -1,0 +1,66 @@
+#include "luxtrace/tracer/gather_table.hpp"
+
+#include "luxtrace/scene/scene.hpp"
+#include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/sensor_gather.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace luxtrace {
+
+GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout) {
+    if (!layout.any_gathered() || !scene.annual) return;
+    const AnnualOptions& o = scene.annual->options;
+    patches_ = GatherPatches(scene, o.gather_patch_m);
+    const std::size_t sites = 2 * patches_.count();
+    // Per patch (either side), the diffuse reflectance over pi times the area: a unit K's
+    // weight in lx per lm.
+    std::vector<double> site_weight(patches_.count(), 0.0);
+    for (std::size_t t = 0, p = 0; t < scene.triangle_count(); ++t) {
+        const double rho = scatter_model(scene.materials[scene.triangle_material[t]], 0).diffuse_reflection;
+        const std::size_t n = static_cast<std::size_t>(patches_.cuts(t)) * patches_.cuts(t);
+        for (std::size_t k = 0; k < n; ++k, ++p) site_weight[p] = rho / (kPi * patches_.area_m2(p));
+    }
+    // Every gathered grid's K, cell by cell (the cells numbered across the grids).
+    struct Kept {
+        std::uint32_t site, cell;
+        double weight;
+    };
+    std::vector<Kept> kept;
+    double largest = 0.0;
+    for (std::size_t det = 0; det < scene.detectors.size(); ++det) {
+        if (!layout.gathered(det)) continue;
+        SensorGatherOptions go;
+        go.rays = o.gather_rays;
+        go.seed = scene.run.seed;
+        go.patches = &patches_;
+        const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
+        const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
+        for (std::size_t c = 0; c < cells; ++c) {
+            slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det)});
+            for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
+                const double w = g.weight_sr[i] * site_weight[g.site[i] % patches_.count()];
+                if (!(w > 0.0)) continue;
+                kept.push_back({g.site[i], static_cast<std::uint32_t>(cells_ + c), w});
+                largest = std::max(largest, w);
+            }
+        }
+        cells_ += cells;
+    }
+    if (cells_ > UINT32_MAX) throw std::runtime_error("gather: more than 2^32 sensor cells");
+    offset_.assign(sites + 1, 0);
+    // No sensor sees a diffuse surface: nothing is gathered, in units of 1 lx per lm.
+    const double units = largest > 0.0 ? std::ldexp(1.0, kWeightBits) / largest : 1.0;
+    unit_lx_per_lm_ = 1.0 / units;
+    // By site (a counting sort keeps each site's cells in ascending order).
+    for (const Kept& k : kept) ++offset_[k.site + 1];
+    for (std::size_t s = 0; s < sites; ++s) offset_[s + 1] += offset_[s];
+    entries_.resize(kept.size());
+    std::vector<std::size_t> at(offset_.begin(), offset_.end() - 1);
+    for (const Kept& k : kept)
+        entries_[at[k.site]++] = {k.cell, static_cast<std::uint32_t>(std::lround(k.weight * units))};
+}
+
+}  // namespace luxtrace

@@ -95,7 +95,7 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
     const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}}, {4, 6});
     EXPECT_TRUE(L.gathered(0));
     EXPECT_FALSE(L.gathered(1));
-    EXPECT_EQ(L.size(), plain.size() + 4 * groups * 2);  // two words per cell and column
+    EXPECT_EQ(L.size(), plain.size() + (4 + 1) * groups * 2);  // two words per cell and column, and the grid's
     std::set<std::size_t> seen;
     for (std::size_t d = 0; d < 2; ++d)
         for (std::size_t c = 0; c < (d == 0 ? 4u : 6u); ++c)
@@ -104,6 +104,11 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
                 if (d == 0) {
                     EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g)).second);
                     EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 1).second);
+                    if (c == 0) {
+                        EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g)).second);
+                        EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g) + 1).second);
+                        EXPECT_LT(L.detector_gathered_total(d, g) + 1, L.size());
+                    }
                     EXPECT_LT(L.detector_gathered(d, c, g) + 1, L.size());
                     // A column's cells lie together.
                     EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + 2 * c);
@@ -118,9 +123,10 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
 TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseReflection) {
     const TallyLayout L(3, TallyDims{1, 2, 1, 0, true, {1}, {1}}, {3});
     TallyStore store(L);
-    const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0)},
-                                 {L.detector_gathered(0, 1, 0), L.gathered_column_stride(0)},
-                                 {L.detector_gathered(0, 2, 0), L.gathered_column_stride(0)}};
+    const std::size_t total = L.detector_gathered_total(0, 0);
+    const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0), total},
+                                 {L.detector_gathered(0, 1, 0), L.gathered_column_stride(0), total},
+                                 {L.detector_gathered(0, 2, 0), L.gathered_column_stride(0), total}};
     const std::uint64_t big = std::uint64_t{3} << 30;  // Y^2 beyond 64 bits before the shift
     {
         TallyBuffer out(store);
@@ -149,6 +155,10 @@ TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseRefl
     EXPECT_EQ(store[L.detector_gathered(0, 1, 1)], 0u);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0)], big);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 1], square(big));
+    // The grid's total per photon: 3 + 7 + 5 = 15 for each of the two, the huge one alone.
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1)], 30u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + 1], 2u * ((225u + (1u << (s - 1))) >> s));
+    EXPECT_EQ(store[L.detector_gathered_total(0, 0)], big);
     EXPECT_EQ(store[L.detector_n(0, 1, 0, 1)], 2u);  // the mirror's registrations only
     EXPECT_EQ(store[L.detector_q(0, 1, 0, 1)], 2u);
 }

@@ -15,6 +15,9 @@ namespace luxtrace {
 namespace {
 // The suns of one clock hour share an empirical-Bayes prior (sun_priors).
 constexpr std::size_t kClockHours = 24;
+// The replicates' common draws of the gathered light, per light group (apart from the cells'
+// streams by their key).
+constexpr std::uint64_t kGatherFactorKey = 0x9A7E5C0FFEE11A7Dull;
 // The replicates' streams of a block's interreflected sun (draw_sun_indirect), apart from
 // its cells' own (a cell index stays below 2^39).
 constexpr std::uint64_t kSunDrawStream = std::uint64_t{1} << 39;
@@ -54,6 +57,14 @@ struct AnnualCoefficients::Counts {
         return gathered ? std::ldexp(static_cast<double>(data[layout.detector_gathered(det, first + cell, group) + 1]),
                                      TallyLayout::kGatherSquareShift)
                         : 0.0;
+    }
+    // The grid's total per photon, as one cell (TallyLayout::detector_gathered_total).
+    double gather_total_y(std::size_t group) const {
+        return static_cast<double>(data[layout.detector_gathered_total(det, group)]);
+    }
+    double gather_total_q(std::size_t group) const {
+        return std::ldexp(static_cast<double>(data[layout.detector_gathered_total(det, group) + 1]),
+                          TallyLayout::kGatherSquareShift);
     }
     double direct(std::size_t cell, std::size_t group) const {
         return layout.direct_scores() && !direct_apart
@@ -136,6 +147,14 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
         columns(d->sun_var, d->suns, shadow_sun_var_);
     }
     const Counts counts(grid, first);
+    if (counts.gathered) {
+        // The grid's loadings (dark_rates) per sky entry and sun.
+        auto loading = [&](std::size_t group) {
+            return group < dark.gather_loading.size() ? dark.gather_loading[group] : 0.0;
+        };
+        for (std::size_t e = 0; e < sky.sky_entries(); ++e) sky_loading_.push_back(loading(counts.sky_group(e)));
+        for (std::size_t s = 0; s < sky.suns().size(); ++s) sun_loading_.push_back(loading(counts.sun_group(s)));
+    }
     sky_coefficients(counts);
     SunPools pools(counts);
     pool_ = std::move(pools.pool);
@@ -221,7 +240,29 @@ AnnualDarkRates AnnualCoefficients::dark_rates(const AnnualGridCounts& grid) {
     AnnualDarkRates r;
     r.total = dark_share > 0.0 ? dark_n / dark_share : 0.5;
     r.direct = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
+    if (c.gathered) r.gather_loading = gather_loadings(grid, c);
     return r;
+}
+
+// Per light group, from the grid's total and its cells' variances (sigma_c): the variance of
+// the sum is sum sigma_c^2 + the covariances, so the mean correlation is rho = (V_total -
+// S2) / (S1^2 - S2), S1 = sum sigma_c, S2 = sum sigma_c^2; drawing each cell's noise as
+// sigma_c (sqrt(rho) Z_g + sqrt(1 - rho) Z_c) gives the sum exactly V_total.
+std::vector<double> AnnualCoefficients::gather_loadings(const AnnualGridCounts& grid, const Counts& c) {
+    const double kg2 = grid.gather_per_unit * grid.gather_per_unit;
+    const double inv_n = grid.photons > 0 ? 1.0 / static_cast<double>(grid.photons) : 0.0;
+    std::vector<double> loading(grid.layout.groups(), 0.0);
+    for (std::size_t g = 0; g < loading.size(); ++g) {
+        double s1 = 0.0, s2 = 0.0;
+        for (std::size_t cell = 0; cell < grid.cells; ++cell) {
+            const double y = c.gather_y(cell, g), v = std::max(0.0, kg2 * (c.gather_q(cell, g) - y * y * inv_n));
+            s1 += std::sqrt(v);
+            s2 += v;
+        }
+        const double y = c.gather_total_y(g), total = std::max(0.0, kg2 * (c.gather_total_q(g) - y * y * inv_n));
+        if (s1 * s1 - s2 > 0.0) loading[g] = std::sqrt(std::clamp((total - s2) / (s1 * s1 - s2), 0.0, 1.0));
+    }
+    return loading;
 }
 
 // The replicates' centre for a sun's interreflected count (empirical Bayes): light too rare
@@ -270,8 +311,6 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
     sun_q_ = direct_ = direct_var_ = sun_;
     rep_direct_mu_.assign(suns * cells_, 0.0f);
     rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
-    const double kg = gather_per_unit_, kg2 = kg * kg;
-    if (c.gathered) sun_gather_ = sun_gather_var_ = sun_;
     for (std::size_t s = 0; s < suns; ++s) {
         if (!c.sun_emits(s)) continue;
         const double flux = c.flux(c.sun_group(s));
@@ -327,12 +366,60 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // Its variance in the pooled counts' proportion of second moment to count (a
             // photon may register a cell more than once).
             rep_indirect_var_[i] = static_cast<float>(centre_i * (i_sum > 0.0 ? std::max(1.0, v_sum / i_sum) : 1.0));
-            if (!c.gathered) continue;
-            const double y = c.gather_y(cell, c.sun_group(s)), yq = c.gather_q(cell, c.sun_group(s));
-            sun_gather_[i] = kg * y;
-            sun_gather_var_[i] = std::max(0.0, kg2 * (yq - y * y * inv_photons_));
-            sun_[i] += sun_gather_[i];
-            sun_q_[i] += kg2 * yq;
+        }
+    }
+    if (c.gathered) sun_gathered(c);
+}
+
+// A sun's gathered light, pooled over the neighbouring days as its interreflected counts
+// are: X = share (Y_s + sum Y_o), variance share^2 sum Q. Where the three days gathered
+// less than their clock hour's suns do per unit flux (few photons, or none), the variance
+// is at least the class's: share^2 r mu Phi_3, mu the class's Y per unit flux and r its Q
+// per unit Y (a sun hour seen as nothing is not exact).
+void AnnualCoefficients::sun_gathered(const Counts& c) {
+    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
+    const std::size_t suns = sun_hours.size();
+    const double kg = gather_per_unit_, kg2 = kg * kg;
+    sun_gather_.assign(suns * cells_, 0.0);
+    sun_gather_var_ = sun_gather_;
+    std::vector<double> class_flux(kClockHours, 0.0), class_y(kClockHours * cells_, 0.0), class_q(class_y);
+    for (std::size_t s = 0; s < suns; ++s) {
+        if (!c.sun_emits(s)) continue;
+        const std::size_t h = sun_hours[s] % kClockHours;
+        class_flux[h] += c.flux(c.sun_group(s));
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const double y = c.gather_y(cell, c.sun_group(s)), q = c.gather_q(cell, c.sun_group(s));
+            sun_gather_[s * cells_ + cell] = kg * y;
+            sun_gather_var_[s * cells_ + cell] = std::max(0.0, kg2 * (q - y * y * inv_photons_));
+            class_y[h * cells_ + cell] += y;
+            class_q[h * cells_ + cell] += q;
+        }
+    }
+    std::vector<double> pooled(suns * cells_, 0.0);
+    pool_gathered(sun_gather_, pooled);
+    for (std::size_t s = 0; s < suns; ++s) {
+        if (!c.sun_emits(s)) continue;
+        const std::size_t h = sun_hours[s] % kClockHours;
+        const double share = pool_share_[s], flux3 = c.flux(c.sun_group(s)) / share;
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const std::size_t i = s * cells_ + cell, j = h * cells_ + cell;
+            double q3 = c.gather_q(cell, c.sun_group(s));
+            for (const std::size_t o : pool_[s]) q3 += c.gather_q(cell, c.sun_group(o));
+            const double expected = class_y[j] > 0.0 ? class_q[j] / class_y[j] * class_y[j] / class_flux[h] * flux3
+                                                     : 0.0;
+            sun_[i] += pooled[i];
+            sun_q_[i] += share * share * kg2 * std::max(q3, expected);
+        }
+    }
+}
+
+void AnnualCoefficients::pool_gathered(const std::vector<double>& own, std::vector<double>& sun) const {
+    for (std::size_t s = 0; s < pool_.size(); ++s) {
+        const double share = pool_share_[s];
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            double x = own[s * cells_ + cell];
+            for (const std::size_t o : pool_[s]) x += own[o * cells_ + cell];
+            sun[s * cells_ + cell] += share * x;
         }
     }
 }
@@ -514,7 +601,7 @@ void AnnualCoefficients::centre(AnnualSeries& out) const {
         direct[i] = shadow_ ? shadow_sun_lx_[i] : per_count_ * rep_direct_mu_[i];
     }
     pool(indirect, direct, sun);
-    for (std::size_t i = 0; i < sun_gather_.size(); ++i) sun[i] += sun_gather_[i];
+    if (!sun_gather_.empty()) pool_gathered(sun_gather_, sun);
     combine(sky_, sun, direct, out);
 }
 
@@ -527,6 +614,15 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     std::vector<double> sky(sky_), indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
     std::vector<double> gathered(sun_gather_.size(), 0.0);
     const std::size_t suns = pool_.size();
+    // The gathered light's common draws, per sky entry and sun: one stream per replicate,
+    // the same for every block.
+    std::vector<double> common_sky, common_sun;
+    if (!sun_gather_.empty()) {
+        PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
+        std::normal_distribution<double> normal;
+        for (const double a : sky_loading_) common_sky.push_back(a * normal(bits));
+        for (const double a : sun_loading_) common_sun.push_back(a * normal(bits));
+    }
     for (std::size_t cell = 0; cell < cells_; ++cell) {
         // The cell's own stream: (seed, replicate, its index in the grid).
         PhiloxBits bits(seed, (replicate << 40) | (first_ + cell));
@@ -540,11 +636,16 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         // The shadow rays' direct light and the gathered light: normal around their values
         // with their own variances.
         auto normal_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
+        // The gathered light's: its part common to the grid (loading a, draw common) and its
+        // own, sqrt(1 - a^2).
+        auto gathered_draw = [&](double var, double loading, double common) {
+            return var > 0.0 ? std::sqrt(var) * (common + std::sqrt(1.0 - loading * loading) * normal(bits)) : 0.0;
+        };
         for (const std::size_t e : entries_) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
             if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
-            if (!sky_gather_var_.empty()) sky[i] += normal_draw(sky_gather_var_[i]);
+            if (!sky_gather_var_.empty()) sky[i] += gathered_draw(sky_gather_var_[i], sky_loading_[e], common_sky[e]);
         }
         // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
@@ -552,12 +653,13 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             const double mu_d = rep_direct_mu_[i];
             if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(shadow_sun_var_[i]);
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
-            if (!sun_gather_.empty()) gathered[i] = sun_gather_[i] + normal_draw(sun_gather_var_[i]);
+            if (!sun_gather_.empty())
+                gathered[i] = sun_gather_[i] + gathered_draw(sun_gather_var_[i], sun_loading_[s], common_sun[s]);
         }
     }
     draw_sun_indirect(seed, replicate, indirect);
     pool(indirect, direct, sun);
-    for (std::size_t i = 0; i < gathered.size(); ++i) sun[i] += gathered[i];
+    if (!gathered.empty()) pool_gathered(gathered, sun);
     combine(sky, sun, direct, out);
 }
 

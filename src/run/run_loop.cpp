@@ -396,7 +396,10 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
             const AnnualDarkRates d = annual_dark_rates(scene_, det, layout_, totals_.span(), t.e0, t.photons,
                                                         shadow ? &annual_direct_[det] : nullptr);
             dark = {d.total, d.direct};
+            dark.insert(dark.end(), d.gather_loading.begin(), d.gather_loading.end());
         });
+    // A gathered grid's loadings, one per light group, after the two rates.
+    if (layout_.gathered(det)) dark.resize(2 + layout_.groups(), 0.0);
     comm_.broadcast(dark);
     // Each rank's cells' counts: their n and q, their direct counts and their gathered
     // sums, where rank 0 keeps them in totals_.
@@ -448,7 +451,7 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
         if (!root) own_direct.unpack_cells(drecv, mine.first, mine.last);
         direct = root ? &annual_direct_[det] : &own_direct;
     }
-    return {dark[0], dark[1]};
+    return {dark[0], dark[1], std::vector<double>(dark.begin() + 2, dark.end())};
 }
 
 void RunLoop::gather_annual_part(std::size_t det, const std::vector<AnnualCellRange>& ranges, AnnualGridPart part,

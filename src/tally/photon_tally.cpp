@@ -21,17 +21,25 @@ void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, Tall
 }
 
 void PhotonTally::add_gathered(TallyBuffer& out) {
-    // Y and Y^2 / 2^s per cell (in 128 bits on the way: no overflow).
+    // Y and Y^2 / 2^s per cell and per grid (in 128 bits on the way: no overflow).
     __extension__ using Wide = unsigned __int128;
     constexpr int s = TallyLayout::kGatherSquareShift;
-    for (const std::uint32_t cell : touched_) {
-        const std::uint64_t y = gathered_[cell];
-        const std::size_t slot = slots_[cell].first + bin_.detector_column * slots_[cell].column_stride;
+    auto add = [&](std::size_t slot, std::uint64_t y) {
         const Wide y2 = static_cast<Wide>(y) * y;
         out.add(slot, y);
         out.add(slot + 1, static_cast<std::uint64_t>((y2 + (Wide{1} << (s - 1))) >> s));
+    };
+    totals_.clear();
+    for (const std::uint32_t cell : touched_) {
+        const std::uint64_t y = gathered_[cell];
+        const GatherSlot& g = slots_[cell];
+        add(g.first + bin_.detector_column * g.column_stride, y);
         gathered_[cell] = 0;
+        auto t = std::find_if(totals_.begin(), totals_.end(), [&](const auto& x) { return x.first == g.total; });
+        if (t == totals_.end()) totals_.emplace_back(g.total, y);
+        else t->second += y;
     }
+    for (const auto& [slot, y] : totals_) add(slot + bin_.detector_column * 2, y);
     touched_.clear();
 }
 

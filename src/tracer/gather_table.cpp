@@ -39,7 +39,8 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
         const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
         for (std::size_t c = 0; c < cells; ++c) {
-            slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det)});
+            slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det),
+                              layout.detector_gathered_total(det, 0)});
             for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
                 const double w = g.weight_sr[i] * site_weight[g.site[i] % patches_.count()];
                 if (!(w > 0.0)) continue;

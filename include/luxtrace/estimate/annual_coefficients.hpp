@@ -22,8 +22,9 @@
 // With the light after a diffuse reflection gathered (tracer/gather_table.hpp), each
 // group's coefficient also has the gathered sum, G_gc = k_G Y_gc (k_G = e0 / W, Y the
 // tally's units) with variance k_G^2 (Q_gc - Y_gc^2 / N) (Q the sum of squares in units^2);
-// a sun's gathered part is its own, not pooled over days (it has no lumps to smooth), and
-// the replicates draw it normal around its value.
+// a sun's gathered part is pooled over the neighbouring days like its interreflected counts
+// (a sun hour's few photons), and the replicates draw it normal around its value, with the
+// grid's correlation (AnnualDarkRates::gather_loading).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -57,6 +58,11 @@ struct AnnualGridCounts {
 // neighbouring days read nothing: its total and its direct count, over the whole grid.
 struct AnnualDarkRates {
     double total = 0.5, direct = 0.5;
+    // With a gather, per light group: the square root of the mean correlation between the
+    // grid's cells of their gathered light's noise (one photon lights many sensors), from
+    // the grid's total: the replicates draw each cell's noise as a common part of this
+    // weight plus its own, so that a grid figure's error holds the correlation.
+    std::vector<double> gather_loading;
 };
 
 // The coefficients of a block of the grid's cells, and the hourly series made of them.
@@ -93,9 +99,11 @@ private:
     //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
     struct Counts;
     struct SunPools;
+    static std::vector<double> gather_loadings(const AnnualGridCounts& grid, const Counts& c);
     void sky_coefficients(const Counts& counts);
     void sun_priors(const Counts& counts);
     void sun_coefficients(const Counts& counts);
+    void sun_gathered(const Counts& counts);
 
     // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
     void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
@@ -130,8 +138,11 @@ private:
     // where the cell saw nothing) and the plain counts' variances for the replicates.
     std::vector<double> sky_, sky_q_, sky_var_;
     // The gathered part (empty without a gather): its variance per [entry][cell], and per
-    // [sun][cell] its value and variance.
+    // [sun][cell] the sun's own (unpooled) value and variance.
     std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
+    std::vector<double> sky_loading_, sun_loading_;  // per entry, per sun (AnnualDarkRates)
+    // sun += pool share x (own + the neighbours' own), per [sun][cell].
+    void pool_gathered(const std::vector<double>& own, std::vector<double>& sun) const;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
 
     // pool_suns, per sun: the suns of the same hour on the neighbouring days, this sun's

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace luxtrace {
@@ -20,10 +21,10 @@ struct GatherEntry {
     std::uint32_t weight = 0;  // units
 };
 
-// A gathered cell's slot in column 0 (TallyLayout::detector_gathered), and the step from
-// one column to the next.
+// A gathered cell's slot in column 0 (TallyLayout::detector_gathered), the step from one
+// column to the next, and its grid's total slot in column 0 (detector_gathered_total).
 struct GatherSlot {
-    std::size_t first = 0, column_stride = 0;
+    std::size_t first = 0, column_stride = 0, total = 0;
 };
 
 // A detector cell the photon registered in.
@@ -84,6 +85,7 @@ private:
     std::span<const GatherSlot> slots_;
     std::vector<std::uint64_t> gathered_;
     std::vector<std::uint32_t> touched_;
+    std::vector<std::pair<std::size_t, std::uint64_t>> totals_;  // scratch: per grid total slot, Y
 };
 
 }  // namespace luxtrace

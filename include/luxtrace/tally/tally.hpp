@@ -176,6 +176,12 @@ public:
     }
     // From a cell's slot in one column to the next column's.
     std::size_t gathered_column_stride(std::size_t det) const { return det_cells_[det] * 2; }
+    // The whole grid as one cell: per column, the sum over photons of the photon's Y summed
+    // over the grid's cells, then of its square / 2^kGatherSquareShift: with the cells'
+    // variances it gives their mean correlation (the grid's figures' errors).
+    std::size_t detector_gathered_total(std::size_t det, std::size_t column) const {
+        return gather_offset_[det] + (detector_columns() * det_cells_[det] + column) * 2;
+    }
     static constexpr int kGatherSquareShift = 24;
     // Photons traced of replicate r (the last R slots).
     std::size_t replicate_photons(std::size_t r) const { return size_ - dims_.replicates + r; }

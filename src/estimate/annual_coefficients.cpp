@@ -145,6 +145,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
         columns(d->sky_var, d->entries, shadow_sky_var_);
         columns(d->sun_lx, d->suns, shadow_sun_lx_);
         columns(d->sun_var, d->suns, shadow_sun_var_);
+        if (!d->gather_rel_var.empty()) columns(d->gather_rel_var, 1, gather_rel_var_);
     }
     const Counts counts(grid, first);
     if (counts.gathered) {
@@ -176,7 +177,7 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
     sky_.assign(entries * cells_, 0.0);
     sky_q_ = sky_var_ = sky_;
     const double kg = gather_per_unit_, kg2 = kg * kg;
-    if (c.gathered) sky_gather_var_ = sky_;
+    if (c.gathered) sky_gather_var_ = sky_gather_ = sky_;
     double sky_flux = 0.0;
     for (std::size_t e = 0; e < entries; ++e) sky_flux += c.flux(c.sky_group(e));
     std::vector<double> indirect(cells_, 0.5);
@@ -200,6 +201,7 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
             sky_var_[i] = n > 0.0 ? std::max(0.0, k2 * (qq - n * n * inv_photons_)) : 0.0;
             if (!c.gathered) continue;
             const double y = c.gather_y(cell, g), yq = c.gather_q(cell, g);
+            sky_gather_[i] = kg * y;
             sky_[i] += kg * y;
             sky_q_[i] += kg2 * yq;
             sky_gather_var_[i] = std::max(0.0, kg2 * (yq - y * y * inv_photons_));
@@ -395,7 +397,8 @@ void AnnualCoefficients::sun_gathered(const Counts& c) {
             class_q[h * cells_ + cell] += q;
         }
     }
-    std::vector<double> pooled(suns * cells_, 0.0);
+    std::vector<double>& pooled = sun_gather_pooled_;
+    pooled.assign(suns * cells_, 0.0);
     pool_gathered(sun_gather_, pooled);
     for (std::size_t s = 0; s < suns; ++s) {
         if (!c.sun_emits(s)) continue;
@@ -542,8 +545,9 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
     sigma.sensors = cells_;
     sigma.total_lx.assign(estimate.total_lx.size(), 0.0);
     sigma.direct_lx.assign(estimate.direct_lx.size(), 0.0);
-    std::vector<double> row(cells_), direct, direct_var;
+    std::vector<double> row(cells_), direct, direct_var, gathered;
     if (shadow_) direct.resize(cells_), direct_var.resize(cells_);
+    if (!gather_rel_var_.empty()) gathered.resize(cells_);
     for (std::size_t h = 0; h < s.hours().size(); ++h) {
         const AnnualHour& hour = s.hours()[h];
         if (!hour.daylit) continue;
@@ -566,9 +570,18 @@ void AnnualCoefficients::series(AnnualSeries& estimate, AnnualSeries& sigma) con
             continue;
         }
         // The photons' part (the estimate less the shadow rays' direct), plus the shadow
-        // rays' own variance.
+        // rays' own variance, and the gather's rays' (relative, on the gathered part).
         direct_hour(hour, false, direct);
         direct_hour(hour, true, direct_var);
+        if (!gathered.empty()) {
+            sky_row(hour, sky_gather_, 1, gathered);
+            const double* sun = hour.sun >= 0 ? &sun_gather_pooled_[static_cast<std::size_t>(hour.sun) * cells_]
+                                              : nullptr;
+            for (std::size_t cell = 0; cell < cells_; ++cell) {
+                const double g = gathered[cell] + (sun != nullptr ? sun[cell] : 0.0);
+                direct_var[cell] += gather_rel_var_[cell] * g * g;
+            }
+        }
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             const double e = e_h[cell] - direct[cell];
             sig[cell] = std::sqrt(std::max(0.0, row[cell] - e * e * inv_photons_) + direct_var[cell]);
@@ -641,11 +654,14 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         auto gathered_draw = [&](double var, double loading, double common) {
             return var > 0.0 ? std::sqrt(var) * (common + std::sqrt(1.0 - loading * loading) * normal(bits)) : 0.0;
         };
+        // The gather's rays' error: one relative draw for all the cell's light and hours.
+        const double rays = gather_rel_var_.empty() ? 0.0 : std::sqrt(gather_rel_var_[cell]) * normal(bits);
         for (const std::size_t e : entries_) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);
             if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
-            if (!sky_gather_var_.empty()) sky[i] += gathered_draw(sky_gather_var_[i], sky_loading_[e], common_sky[e]);
+            if (!sky_gather_var_.empty())
+                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], sky_loading_[e], common_sky[e]);
         }
         // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
@@ -654,7 +670,8 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(shadow_sun_var_[i]);
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
             if (!sun_gather_.empty())
-                gathered[i] = sun_gather_[i] + gathered_draw(sun_gather_var_[i], sun_loading_[s], common_sun[s]);
+                gathered[i] = (1.0 + rays) * sun_gather_[i] +
+                              gathered_draw(sun_gather_var_[i], sun_loading_[s], common_sun[s]);
         }
     }
     draw_sun_indirect(seed, replicate, indirect);

@@ -166,6 +166,16 @@ void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& 
             var[c] += kg * kg * std::max(0.0, q - y * y * inv_n);
         }
     }
+    // The gather's own rays' error, relative and common to all its light.
+    if (direct != nullptr && direct->gather_rel_var.size() == g.cells) {
+        e.gather_rays_sigma_rel.resize(g.cells);
+        for (std::size_t c = 0; c < g.cells; ++c) {
+            const double r = direct->gather_rel_var[c];
+            e.gather_rays_sigma_rel[c] = std::sqrt(r);
+            e.gather_sky_sigma_lx_h[c] += r * e.gather_sky_lx_h[c] * e.gather_sky_lx_h[c];
+            e.gather_sun_sigma_lx_h[c] += r * e.gather_sun_lx_h[c] * e.gather_sun_lx_h[c];
+        }
+    }
     for (auto* v : {&e.gather_sky_sigma_lx_h, &e.gather_sun_sigma_lx_h})
         for (double& x : *v) x = std::sqrt(x);
 }

@@ -212,6 +212,8 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
             dataset(dg, "gathered_sky_sigma_lx_h", {n}, e.gather_sky_sigma_lx_h.data());
             dataset(dg, "gathered_sun_lx_h", {n}, e.gather_sun_lx_h.data());
             dataset(dg, "gathered_sun_sigma_lx_h", {n}, e.gather_sun_sigma_lx_h.data());
+            if (e.gather_rays_sigma_rel.size() == n)
+                dataset(dg, "gathered_rays_sigma_rel", {n}, e.gather_rays_sigma_rel.data());
         }
     }
 }

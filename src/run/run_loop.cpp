@@ -143,7 +143,11 @@ void RunLoop::trace() {
         const double d0 = comm_.wtime();
         annual_direct_ = annual_direct_pass(scene_, embree_, comm_);
         for (std::size_t det = 0; det < annual_direct_.size(); ++det)
-            if (layout_.gathered(det)) annual_direct_[det].gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
+            if (layout_.gathered(det)) {
+                DirectCoefficients& d = annual_direct_[det];
+                d.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
+                d.gather_rel_var = surfaces_.gather().rel_var(det, d.cells);
+            }
         if (show_)
             out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
                  << comm_.wtime() - d0 << " s\n"
@@ -439,7 +443,10 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
     if (shadow) {
         own_direct.resize(root ? 0 : mine.last - mine.first, scene_.annual->sky->sky_entries(),
                           scene_.annual->sky->suns().size(), mine.first);
-        if (layout_.gathered(det)) own_direct.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
+        if (layout_.gathered(det)) {
+            own_direct.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
+            own_direct.gather_rel_var.assign(own_direct.cells, 0.0);  // filled from rank 0's below
+        }
         const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
         std::vector<double> dsend, drecv;
         std::vector<std::size_t> dcounts;

@@ -17,11 +17,16 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     const std::size_t sites = 2 * patches_.count();
     // Per patch (either side), the diffuse reflectance over pi times the area: a unit K's
     // weight in lx per lm.
-    std::vector<double> site_weight(patches_.count(), 0.0);
+    std::vector<double> site_weight(patches_.count(), 0.0), luminance(sites, 0.0);
     for (std::size_t t = 0, p = 0; t < scene.triangle_count(); ++t) {
         const double rho = scatter_model(scene.materials[scene.triangle_material[t]], 0).diffuse_reflection;
         const std::size_t n = static_cast<std::size_t>(patches_.cuts(t)) * patches_.cuts(t);
-        for (std::size_t k = 0; k < n; ++k, ++p) site_weight[p] = rho / (kPi * patches_.area_m2(p));
+        for (std::size_t k = 0; k < n; ++k, ++p) {
+            site_weight[p] = rho / (kPi * patches_.area_m2(p));
+            // The gather's own error is estimated as if every surface had the same
+            // irradiance: its luminance rho / pi.
+            luminance[p] = luminance[patches_.count() + p] = rho / kPi;
+        }
     }
     // Every gathered grid's K, cell by cell (the cells numbered across the grids).
     struct Kept {
@@ -30,14 +35,18 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     };
     std::vector<Kept> kept;
     double largest = 0.0;
+    first_cell_.assign(scene.detectors.size(), 0);
     for (std::size_t det = 0; det < scene.detectors.size(); ++det) {
         if (!layout.gathered(det)) continue;
         SensorGatherOptions go;
         go.rays = o.gather_rays;
         go.seed = scene.run.seed;
         go.patches = &patches_;
+        go.site_luminance = &luminance;
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
         const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
+        first_cell_[det] = cells_;
+        rel_var_.insert(rel_var_.end(), g.rel_var.begin(), g.rel_var.end());
         for (std::size_t c = 0; c < cells; ++c) {
             slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det),
                               layout.detector_gathered_total(det, 0)});

@@ -30,11 +30,14 @@ public:
         : scene_(scene), embree_(embree), geometry_{scene.detectors[det]}, sampler_(o.seed ^ kGatherKey),
           side_(static_cast<int>(std::lround(std::sqrt(static_cast<double>(o.rays))))), det_(det),
           step_m_(4.0 * scene.ray_epsilon_m()), patches_(o.patches),
-          sites_per_side_(o.patches != nullptr ? o.patches->count() : scene.triangle_count()) {}
+          sites_per_side_(o.patches != nullptr ? o.patches->count() : scene.triangle_count()),
+          luminance_(o.site_luminance) {}
 
-    // Cell c's (side, weight) pairs, merged by side.
-    std::vector<std::pair<std::uint32_t, double>> cell(std::size_t c) {
+    // Cell c's (site, weight) pairs, merged by site; with a luminance per site, the relative
+    // variance of its gathered light by collapsed strata into `rel_var`.
+    std::vector<std::pair<std::uint32_t, double>> cell(std::size_t c, double& rel_var) {
         hits_.clear();
+        double sum = 0.0, pairs = 0.0, previous = 0.0;
         const Frame frame = Frame::around(geometry_.normal(c));
         const double weight = kPi / (side_ * side_);
         const std::uint64_t key = (static_cast<std::uint64_t>(det_) << 40) | c;
@@ -47,8 +50,20 @@ public:
                 const double r = std::sqrt(r2);
                 const Vec3 d = frame.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - r2)));
                 const Vec3 p = geometry_.position(c, PhiloxSampler::uniform(w[2]), PhiloxSampler::uniform(w[3]));
+                const std::size_t before = hits_.size();
                 follow(p, d, 0.0, weight, 0);
+                if (luminance_ == nullptr) continue;
+                // The stratum's light, and strata (a, 2j) and (a, 2j + 1) collapsed into a
+                // pair: sum over pairs of (f1 - f2)^2 estimates the variance of the sum
+                // (conservative where the pair's means differ).
+                double f = 0.0;
+                for (std::size_t i = before; i < hits_.size(); ++i)
+                    f += hits_[i].second * (*luminance_)[hits_[i].first];
+                sum += f;
+                if (b % 2 == 1) pairs += (f - previous) * (f - previous);
+                previous = f;
             }
+        rel_var = sum > 0.0 ? pairs / (sum * sum) : 0.0;
         std::sort(hits_.begin(), hits_.end());
         std::vector<std::pair<std::uint32_t, double>> merged;
         for (const auto& [s, x] : hits_) {
@@ -97,6 +112,7 @@ private:
     double step_m_;
     const GatherPatches* patches_;
     std::size_t sites_per_side_;
+    const std::vector<double>* luminance_;
     std::vector<std::pair<std::uint32_t, double>> hits_;
 };
 
@@ -109,13 +125,15 @@ SensorGather sensor_gather(const Scene& scene, const EmbreeScene& embree, std::s
     if (det >= scene.detectors.size() || first > last || last > static_cast<std::size_t>(scene.detectors[det].cells()))
         throw std::logic_error("sensor_gather: cells beyond the detector");
     std::vector<std::vector<std::pair<std::uint32_t, double>>> per_cell(last - first);
+    std::vector<double> rel_var(last - first, 0.0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& r) {
         CellGatherer g(scene, embree, det, options);
-        for (std::size_t c = r.begin(); c < r.end(); ++c) per_cell[c - first] = g.cell(c);
+        for (std::size_t c = r.begin(); c < r.end(); ++c) per_cell[c - first] = g.cell(c, rel_var[c - first]);
     });
     SensorGather out;
     out.first = first;
     out.cells = last - first;
+    if (options.site_luminance != nullptr) out.rel_var = std::move(rel_var);
     out.offset.push_back(0);
     for (const auto& entries : per_cell) {
         for (const auto& [s, w] : entries) {

@@ -22,6 +22,9 @@ struct DirectCoefficients {
     // With [annual] indirect = "gather": the gathered tallies' unit, lx per lm
     // (tracer/gather_table.hpp); 0: the grid gathers nothing.
     double gather_unit_lx_per_lm = 0.0;
+    // ... and per cell, the gathered light's relative variance from the gather's own rays
+    // (GatherTable::rel_var); empty without a gather.
+    std::vector<double> gather_rel_var;
     // [entry][cell], [sun][cell].
     std::vector<double> sky_lx, sky_var;
     std::vector<double> sun_lx, sun_var;
@@ -33,22 +36,24 @@ struct DirectCoefficients {
     }
     double sky(std::size_t entry, std::size_t cell) const { return sky_lx[at(entry, cell)]; }
     double sun(std::size_t s, std::size_t cell) const { return sun_lx[at(s, cell)]; }
-    // The four arrays' values of grid cells [from, to), row by row (a row: an entry or a
+    // The arrays' values of grid cells [from, to), row by row (a row: an entry or a
     // sun), appended to `out`; unpack_cells puts them back.
     void pack_cells(std::size_t from, std::size_t to, std::vector<double>& out) const {
-        for (const std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
+        for (const std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var, &gather_rel_var})
             for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
                 out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(at(row, from)),
                            a->begin() + static_cast<std::ptrdiff_t>(at(row, to)));
     }
     void unpack_cells(std::span<const double> in, std::size_t from, std::size_t to) {
         std::size_t k = 0;
-        for (std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
+        for (std::vector<double>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var, &gather_rel_var})
             for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
                 for (std::size_t c = from; c < to; ++c) (*a)[at(row, c)] = in[k++];
     }
     // The words pack_cells writes for n cells.
-    std::size_t packed_words(std::size_t n) const { return n * 2 * (entries + suns); }
+    std::size_t packed_words(std::size_t n) const {
+        return n * (2 * (entries + suns) + (gather_unit_lx_per_lm > 0.0 ? 1 : 0));
+    }
     void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_, std::size_t first_ = 0) {
         cells = cells_;
         entries = entries_;

@@ -141,6 +141,10 @@ private:
     // [sun][cell] the sun's own (unpooled) value and variance.
     std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
     std::vector<double> sky_loading_, sun_loading_;  // per entry, per sun (AnnualDarkRates)
+    // The gathered value per [entry][cell] and, pooled, per [sun][cell]; per cell the
+    // relative variance of the gather's own rays (DirectCoefficients::gather_rel_var), an
+    // error common to every hour.
+    std::vector<double> sky_gather_, sun_gather_pooled_, gather_rel_var_;
     // sun += pool share x (own + the neighbours' own), per [sun][cell].
     void pool_gathered(const std::vector<double>& own, std::vector<double>& sun) const;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit

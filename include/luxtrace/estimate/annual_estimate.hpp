@@ -25,6 +25,9 @@ struct AnnualDetectorEstimate {
     // [annual] indirect = "gather": the same for the gathered light after a diffuse
     // reflection (the plain detector then holds what came off other surfaces).
     std::vector<double> gather_sky_lx_h, gather_sky_sigma_lx_h, gather_sun_lx_h, gather_sun_sigma_lx_h;
+    // ... and per cell the relative error of its gathered light from the gather's own rays
+    // (in the sigmas above and in every hour's).
+    std::vector<double> gather_rays_sigma_rel;
 };
 
 // The hours LM-83 and EN 17037 count (occupied; EN 17037's daylight hours: the half of the

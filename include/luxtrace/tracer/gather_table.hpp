@@ -50,6 +50,13 @@ public:
     std::span<const GatherSlot> slots() const { return slots_; }
     // lx per lm of one unit: 1 / W.
     double unit_lx_per_lm() const { return unit_lx_per_lm_; }
+    // Detector det's cells' relative variance of their gathered light from the rays'
+    // sampling (SensorGather::rel_var: as if every surface had the same irradiance), the
+    // same for every light group and hour.
+    std::vector<double> rel_var(std::size_t det, std::size_t cells) const {
+        return {rel_var_.begin() + static_cast<std::ptrdiff_t>(first_cell_[det]),
+                rel_var_.begin() + static_cast<std::ptrdiff_t>(first_cell_[det] + cells)};
+    }
 
 private:
     GatherPatches patches_;
@@ -58,6 +65,8 @@ private:
     std::vector<GatherSlot> slots_;  // per gathered cell
     std::size_t cells_ = 0;
     double unit_lx_per_lm_ = 0.0;
+    std::vector<std::size_t> first_cell_;  // per detector, its first gathered cell
+    std::vector<double> rel_var_;          // per gathered cell
 };
 
 }  // namespace luxtrace

@@ -27,6 +27,9 @@ struct SensorGatherOptions {
     int rays = 4096;  // per cell, the square of an even number (AnnualOptions::valid_direct_rays)
     std::uint64_t seed = 1;
     const GatherPatches* patches = nullptr;  // null: whole triangles
+    // Per site, a luminance to estimate the gather's own error with (SensorGather::rel_var),
+    // or null.
+    const std::vector<double>* site_luminance = nullptr;
 };
 
 struct SensorGather {
@@ -37,6 +40,10 @@ struct SensorGather {
     // triangles + triangle, TallyLayout's side index).
     std::vector<std::uint32_t> site;
     std::vector<double> weight_sr;
+    // With SensorGatherOptions::site_luminance: per cell, the relative variance of
+    // sum K L over the sites from the rays' sampling (collapsed strata: pairs of
+    // neighbouring strata in azimuth).
+    std::vector<double> rel_var;
 };
 
 // Cells [first, last) of Scene::detectors[det] (a sensor grid), on every core.

@@ -96,19 +96,17 @@ PerezSkyInput perez_input(const weather::WeatherHour& w, const SunPosition& sun,
 
 // The sky patches' luminances of one hour (cd/m2): the model's relative luminance
 // averaged over each patch, scaled to the hour's diffuse horizontal illuminance.
-std::vector<double> patch_luminances(const SkyPatches& patches, const SkyModel& model, const SunPosition& sun,
-                                     double diffuse_horizontal_lx, int sky_mf) {
+// `quadrature`: the patches' nodes (patch_quadrature), the same every hour.
+std::vector<double> patch_luminances(const SkyPatches& patches, const SkyPatches::Quadrature& quadrature,
+                                     const SkyModel& model, const SunPosition& sun, double diffuse_horizontal_lx) {
     const auto luminance = [&](const Vec3& d) { return model.relative_luminance(d); };
-    // 4 x 4 nodes per Tregenza patch, 2 x 2 per finer one: the luminance varies
-    // smoothly over a patch except at the sun, and the hour's total is exact below.
-    const int nodes = sky_mf == 1 ? 4 : 2;
     // The sun's patch is cut at the sun, where the luminance has its kink.
     const Vec3 sun_dir = sky_direction_deg(sun.altitude_deg, sun.azimuth_deg);
-    // Solid-angle means: each patch emits what the sky sends from it, so the error of a
+    // Solid-angle means (patch_quadrature): each patch emits what the sky sends from it, so the error of a
     // uniform patch is of second order for a sensor of any orientation (a
     // cosine-weighted mean would be exact for horizontal ones only and 1.6 % high
     // on a vertical one under the overcast sky at MF 1).
-    std::vector<double> means = patches.solid_angle_means(luminance, nodes, sun_dir);
+    std::vector<double> means = patches.means(quadrature, luminance, sun_dir);
     // The relative luminances scaled so that the patches carry the hour's diffuse
     // horizontal illuminance exactly (Perez 1993's normalisation, done over the
     // patches, as gendaymtx does).
@@ -117,6 +115,13 @@ std::vector<double> patch_luminances(const SkyPatches& patches, const SkyModel& 
     const double scale = e_h > 0.0 ? diffuse_horizontal_lx / e_h : 0.0;
     for (double& m : means) m *= scale;
     return means;
+}
+
+// 4 x 4 nodes per Tregenza patch, 2 x 2 per finer one: the luminance varies smoothly over a
+// patch except at the sun, and the hour's total is exact (patch_luminances). Solid-angle
+// means.
+SkyPatches::Quadrature patch_quadrature(const SkyPatches& patches, int sky_mf) {
+    return patches.quadrature(sky_mf == 1 ? 4 : 2, false);
 }
 
 }  // namespace
@@ -177,10 +182,11 @@ void AnnualSky::sky_vectors(const std::vector<RowSky>& rows, const AnnualOptions
     luminance_.assign(rows.size() * entries, 0.0);
     // This part's rows, on every core (each row its own: the same bits on any core count).
     const std::size_t first = offsets[part] / entries, last = offsets[part + 1] / entries;
+    const SkyPatches::Quadrature quadrature = patch_quadrature(patches_, options.sky_mf);
     for_each_index(last - first, 16, [&](std::size_t i) {
         const std::size_t r = first + i;
-        std::vector<double> means = patch_luminances(patches_, rows[r].model, rows[r].sun,
-                                                     rows[r].diffuse_horizontal_lx, options.sky_mf);
+        std::vector<double> means = patch_luminances(patches_, quadrature, rows[r].model, rows[r].sun,
+                                                     rows[r].diffuse_horizontal_lx);
         // Radiance's ground glow: a uniform lower hemisphere of luminance rho E_h,global / pi.
         means.push_back(rows[r].ground_lx / kPi);
         std::copy(means.begin(), means.end(), luminance_.begin() + static_cast<std::ptrdiff_t>(r * entries));

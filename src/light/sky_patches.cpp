@@ -163,48 +163,88 @@ std::vector<double> SkyPatches::solid_angle_means(const std::function<double(con
     return means(L, nodes, cusp, false);
 }
 
+template <class Node>
+void SkyPatches::box_nodes(const std::vector<double>& x, const std::vector<double>& w, const Box& b, bool polar,
+                           bool cosine_weighted, Node node) {
+    // Integrals of L w and of w over a box, w = sin(altitude) or 1, by the product rule in
+    // (sin altitude, azimuth); in the zenith cap in (zenith angle, azimuth) instead, since
+    // directions are not smooth in sin altitude at the zenith.
+    const double v_lo = polar ? std::acos(std::min(1.0, b.s_hi)) : b.s_lo;
+    const double v_hi = polar ? std::acos(b.s_lo) : b.s_hi;
+    const double v_mid = 0.5 * (v_hi + v_lo), v_half = 0.5 * (v_hi - v_lo);
+    const double phi_mid = 0.5 * (b.phi_hi + b.phi_lo), phi_half = 0.5 * (b.phi_hi - b.phi_lo);
+    for (std::size_t a = 0; a < x.size(); ++a) {
+        const double v = v_mid + v_half * x[a];
+        const double s = polar ? std::cos(v) : v;
+        const double ws = w[a] * v_half * phi_half * (polar ? std::sin(v) : 1.0) * (cosine_weighted ? s : 1.0);
+        for (std::size_t k = 0; k < x.size(); ++k) node(direction_at(s, phi_mid + phi_half * x[k]), ws * w[k]);
+    }
+}
+
+void SkyPatches::pieces_of(std::size_t i, const std::optional<Vec3>& cusp, std::vector<Box>& pieces) const {
+    const Box b = box(i);
+    const bool polar = i + 1 == count();
+    // The cap in as many azimuth sectors as the row below has patches: a sky that varies
+    // fast near its rim (a sun just below it) is then resolved as in that row.
+    pieces.clear();
+    const int sectors = polar ? static_cast<int>(row_count(rows() - 2)) : 1;
+    for (int k = 0; k < sectors; ++k) {
+        const double w = (b.phi_hi - b.phi_lo) / sectors;
+        pieces.push_back({b.s_lo, b.s_hi, b.phi_lo + k * w, k + 1 == sectors ? b.phi_hi : b.phi_lo + (k + 1) * w});
+    }
+    if (cusp && i == index_of(*cusp)) cut_at(pieces, *cusp);
+}
+
 std::vector<double> SkyPatches::means(const std::function<double(const Vec3&)>& L, int nodes,
                                       const std::optional<Vec3>& cusp, bool cosine_weighted) const {
+    return means(quadrature(nodes, cosine_weighted), L, cusp);
+}
+
+SkyPatches::Quadrature SkyPatches::quadrature(int nodes, bool cosine_weighted) const {
     if (nodes < 1 || nodes > kMaxNodes)
         throw std::invalid_argument("quadrature nodes " + std::to_string(nodes) + " is not 1 to " +
                                     std::to_string(kMaxNodes));
     const GaussRule g = gauss_legendre(nodes);
-    // Integrals of L w and of w over a box, w = sin(altitude) or 1, by the product rule in
-    // (sin altitude, azimuth); in the zenith cap in (zenith angle, azimuth) instead, since
-    // directions are not smooth in sin altitude at the zenith.
-    const auto integrate = [&](const Box& b, bool polar, double& num, double& den) {
-        const double v_lo = polar ? std::acos(std::min(1.0, b.s_hi)) : b.s_lo;
-        const double v_hi = polar ? std::acos(b.s_lo) : b.s_hi;
-        const double v_mid = 0.5 * (v_hi + v_lo), v_half = 0.5 * (v_hi - v_lo);
-        const double phi_mid = 0.5 * (b.phi_hi + b.phi_lo), phi_half = 0.5 * (b.phi_hi - b.phi_lo);
-        for (std::size_t a = 0; a < g.x.size(); ++a) {
-            const double v = v_mid + v_half * g.x[a];
-            const double s = polar ? std::cos(v) : v;
-            const double ws = g.w[a] * v_half * phi_half * (polar ? std::sin(v) : 1.0) * (cosine_weighted ? s : 1.0);
-            for (std::size_t k = 0; k < g.x.size(); ++k) {
-                const double wk = ws * g.w[k];
-                num += wk * L(direction_at(s, phi_mid + phi_half * g.x[k]));
-                den += wk;
-            }
-        }
-    };
-    const std::size_t cusp_patch = cusp ? index_of(*cusp) : count();
-    std::vector<double> out(count());
+    Quadrature q;
+    q.nodes = nodes;
+    q.cosine_weighted = cosine_weighted;
     std::vector<Box> pieces;
     for (std::size_t i = 0; i < count(); ++i) {
-        const Box b = box(i);
-        const bool polar = i + 1 == count();
-        // The cap in as many azimuth sectors as the row below has patches: a sky that varies
-        // fast near its rim (a sun just below it) is then resolved as in that row.
-        pieces.clear();
-        const int sectors = polar ? static_cast<int>(row_count(rows() - 2)) : 1;
-        for (int k = 0; k < sectors; ++k) {
-            const double w = (b.phi_hi - b.phi_lo) / sectors;
-            pieces.push_back({b.s_lo, b.s_hi, b.phi_lo + k * w, k + 1 == sectors ? b.phi_hi : b.phi_lo + (k + 1) * w});
-        }
-        if (i == cusp_patch) cut_at(pieces, *cusp);
+        q.first.push_back(q.direction.size());
+        pieces_of(i, std::nullopt, pieces);
+        double total = 0.0;
+        for (const Box& piece : pieces)
+            box_nodes(g.x, g.w, piece, i + 1 == count(), cosine_weighted, [&](const Vec3& d, double w) {
+                q.direction.push_back(d);
+                q.weight.push_back(w);
+                total += w;
+            });
+        q.total.push_back(total);
+    }
+    q.first.push_back(q.direction.size());
+    return q;
+}
+
+std::vector<double> SkyPatches::means(const Quadrature& q, const std::function<double(const Vec3&)>& L,
+                                      const std::optional<Vec3>& cusp) const {
+    const std::size_t cusp_patch = cusp ? index_of(*cusp) : count();
+    std::vector<double> out(count());
+    for (std::size_t i = 0; i < count(); ++i) {
         double num = 0.0, den = 0.0;
-        for (const Box& piece : pieces) integrate(piece, polar, num, den);
+        if (i != cusp_patch) {
+            for (std::size_t n = q.first[i]; n < q.first[i + 1]; ++n) num += q.weight[n] * L(q.direction[n]);
+            den = q.total[i];
+        } else {
+            // The sun's patch, cut at the sun: its own nodes.
+            const GaussRule g = gauss_legendre(q.nodes);
+            std::vector<Box> pieces;
+            pieces_of(i, cusp, pieces);
+            for (const Box& piece : pieces)
+                box_nodes(g.x, g.w, piece, i + 1 == count(), q.cosine_weighted, [&](const Vec3& d, double w) {
+                    num += w * L(d);
+                    den += w;
+                });
+        }
         out[i] = num / den;
     }
     return out;

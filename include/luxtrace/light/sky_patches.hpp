@@ -103,6 +103,22 @@ public:
     std::vector<double> solid_angle_means(const std::function<double(const Vec3&)>& L, int nodes = 8,
                                           const std::optional<Vec3>& cusp = std::nullopt) const;
 
+    // The nodes and weights of those rules, every patch's, made once for many luminance
+    // functions (a year's skies: the directions are the same every hour but at the sun's
+    // patch, which means() still cuts at its cusp). means() with them gives the same
+    // values, to the bit, as the functions above.
+    struct Quadrature {
+        int nodes = 0;
+        bool cosine_weighted = false;
+        std::vector<std::size_t> first;  // per patch, its first node; count() + 1 entries
+        std::vector<Vec3> direction;
+        std::vector<double> weight;
+        std::vector<double> total;  // per patch, the sum of its weights
+    };
+    Quadrature quadrature(int nodes, bool cosine_weighted) const;
+    std::vector<double> means(const Quadrature& q, const std::function<double(const Vec3&)>& L,
+                              const std::optional<Vec3>& cusp = std::nullopt) const;
+
 private:
     // (sin alt, azimuth in radians) bounds of patch i.
     struct Box {
@@ -113,7 +129,12 @@ private:
     static void cut_at(std::vector<Box>& pieces, const Vec3& cusp);
     std::vector<double> means(const std::function<double(const Vec3&)>& L, int nodes, const std::optional<Vec3>& cusp,
                               bool cosine_weighted) const;
-
+    // Patch i's pieces (the cap's sectors; cut at `cusp` when it lies in the patch).
+    void pieces_of(std::size_t i, const std::optional<Vec3>& cusp, std::vector<Box>& pieces) const;
+    // Calls node(direction, weight) for each node of the product rule over `b`.
+    template <class Node>
+    static void box_nodes(const std::vector<double>& x, const std::vector<double>& w, const Box& b, bool polar,
+                          bool cosine_weighted, Node node);
     double alpha_deg_;
     std::vector<double> row_sin_;         // sin of each row's lower altitude, and 1 at the end
     std::vector<std::size_t> row_first_;  // first patch of each row, and count() at the end

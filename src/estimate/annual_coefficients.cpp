@@ -1,5 +1,6 @@
 #include "luxtrace/estimate/annual_coefficients.hpp"
 
+#include "luxtrace/sampler/normal_quantile.hpp"
 #include "luxtrace/sampler/philox_bits.hpp"
 
 #include <immintrin.h>
@@ -632,9 +633,8 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     std::vector<double> common_sky, common_sun;
     if (!sun_gather_.empty()) {
         PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
-        std::normal_distribution<double> normal;
-        for (const double a : sky_loading_) common_sky.push_back(a * normal(bits));
-        for (const double a : sun_loading_) common_sun.push_back(a * normal(bits));
+        for (const double a : sky_loading_) common_sky.push_back(a * standard_normal(bits));
+        for (const double a : sun_loading_) common_sun.push_back(a * standard_normal(bits));
     }
     for (std::size_t cell = 0; cell < cells_; ++cell) {
         // The cell's own stream: (seed, replicate, its index in the grid).
@@ -651,11 +651,13 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         auto normal_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
         // The gathered light's: its part common to the grid (loading a, draw common) and its
         // own, sqrt(1 - a^2).
+        // (By the quantile: thousands of these per cell and replicate.)
         auto gathered_draw = [&](double var, double loading, double common) {
-            return var > 0.0 ? std::sqrt(var) * (common + std::sqrt(1.0 - loading * loading) * normal(bits)) : 0.0;
+            return var > 0.0 ? std::sqrt(var) * (common + std::sqrt(1.0 - loading * loading) * standard_normal(bits))
+                             : 0.0;
         };
         // The gather's rays' error: one relative draw for all the cell's light and hours.
-        const double rays = gather_rel_var_.empty() ? 0.0 : std::sqrt(gather_rel_var_[cell]) * normal(bits);
+        const double rays = gather_rel_var_.empty() ? 0.0 : std::sqrt(gather_rel_var_[cell]) * standard_normal(bits);
         for (const std::size_t e : entries_) {
             const std::size_t i = e * cells_ + cell;
             sky[i] += draw(sky_var_[i]);

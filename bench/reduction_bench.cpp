@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
 
     const std::size_t patches = 144 * static_cast<std::size_t>(mf * mf) + 1;
     const std::size_t groups = patches + 1 + suns;
-    const TallyLayout L(0, TallyDims{1, groups, 1, 0, true, {}, {}}, {static_cast<int>(cells)});
+    const TallyLayout L(0, TallyDims{1, groups, 1, 0, true, {}, {}, 0}, {static_cast<int>(cells)});
     const std::size_t words = L.size() + 2 * static_cast<std::size_t>(comm.size()) + 4;  // + progress, flags
     std::vector<std::uint64_t> message(words, 0), packed, packed_sum, reduced;
     fill(L, cells, patches, f, comm.rank(), message);

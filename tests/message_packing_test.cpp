@@ -80,7 +80,7 @@ TEST(MessagePacking, AnnualDetectorsSendOnlyTheBlocksSomeRankWrote) {
     // written the sky patches' n_c and q_c in most cells, few suns' and few direct counts,
     // as a side-lit room's sensors would.
     const std::size_t G = 300, patches = 100;
-    const TallyLayout L(4, TallyDims{1, G, 1, 0, true, {}, {}}, {10, 3});
+    const TallyLayout L(4, TallyDims{1, G, 1, 0, true, {}, {}, 0}, {10, 3});
     const std::size_t words = L.size() + 3;
     ASSERT_NE((words - L.surface_end()) % kMessageBlockWords, 0u);
     auto message = [&](unsigned seed) {
@@ -120,7 +120,7 @@ TEST(MessagePacking, AnnualDetectorsSendOnlyTheBlocksSomeRankWrote) {
 }
 
 TEST(MessagePacking, NothingWrittenSendsTheCountersAndTheTrailingWordsOnly) {
-    const TallyLayout L(6, TallyDims{2, 50, 1, 0, true, {}, {}}, {20});
+    const TallyLayout L(6, TallyDims{2, 50, 1, 0, true, {}, {}, 0}, {20});
     std::vector<std::uint64_t> m(L.size() + 4, 0);
     m[TallyLayout::kAbsorbed] = 5;
     m[L.size() + 1] = 7;  // a rank's progress

@@ -24,7 +24,7 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
     };
     for (const Case k : {Case{1, 1, 0}, Case{1, 1, 4}, Case{3, 3, 0}, Case{3, 1, 4}, Case{2, 2, 2}}) {
         const std::size_t B = 3;
-        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates, false, {}, {}}, {4, 9});
+        const TallyLayout L(7, TallyDims{B, k.groups, k.map_groups, k.replicates, false, {}, {}, 0}, {4, 9});
         const std::string what = "groups " + std::to_string(k.groups) + ", map groups " + std::to_string(k.map_groups) +
                                  ", R " + std::to_string(k.replicates);
         std::set<std::size_t> seen;
@@ -91,8 +91,8 @@ TEST(TallyLayout, EveryIndexIsDistinctAndInRange) {
 
 TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
     const std::size_t groups = 5;
-    const TallyLayout L(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {1, 0}}, {4, 6});
-    const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}}, {4, 6});
+    const TallyLayout L(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {1, 0}, 0}, {4, 6});
+    const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}, 0}, {4, 6});
     EXPECT_TRUE(L.gathered(0));
     EXPECT_FALSE(L.gathered(1));
     EXPECT_EQ(L.size(), plain.size() + (4 + 1) * groups * 2);  // two words per cell and column, and the grid's
@@ -121,7 +121,7 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
 }
 
 TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseReflection) {
-    const TallyLayout L(3, TallyDims{1, 2, 1, 0, true, {1}, {1}}, {3});
+    const TallyLayout L(3, TallyDims{1, 2, 1, 0, true, {1}, {1}, 0}, {3});
     TallyStore store(L);
     const std::size_t total = L.detector_gathered_total(0, 0);
     const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0), total},
@@ -166,10 +166,10 @@ TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseRefl
 TEST(TallyLayout, OneGroupWithoutReplicatesKeepsTheRandomLayout) {
     // The group dimension of one group adds no word: a scene without light groups has the
     // layout (and so the checkpoints) of before.
-    const TallyLayout one(7, TallyDims{2, 1, 1, 0, false, {}, {}}, {4});
+    const TallyLayout one(7, TallyDims{2, 1, 1, 0, false, {}, {}, 0}, {4});
     EXPECT_EQ(one.size(), TallyLayout::kCounters + 7 * 2 * 2 * TallyLayout::kSurfaceSlots + (4 * 2 * 2 + 3));
     // group_maps = false: the map has one column per band whatever the groups.
-    const TallyLayout shared(7, TallyDims{2, 5, 1, 0, false, {}, {}}, {4});
+    const TallyLayout shared(7, TallyDims{2, 5, 1, 0, false, {}, {}, 0}, {4});
     EXPECT_EQ(shared.surface_end(), one.surface_end());
     EXPECT_EQ(shared.bin(1, 4, 0, true).map_column, 1u);
     EXPECT_EQ(shared.bin(1, 4, 0, true).detector_column, 1u * 5 + 4);

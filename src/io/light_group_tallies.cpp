@@ -140,7 +140,8 @@ LightGroupTallies read_light_group_tallies(const ResultFile& file) {
     }
     t.daylight = stored_daylight(file.raw(), groups.size());
     const std::vector<std::uint64_t> rep_photons = file.replicate_photons();
-    const TallyDims dims{t.bands, groups.size(), t.group_maps ? groups.size() : 1, rep_photons.size(), false, {}, {}};
+    const TallyDims dims{t.bands, groups.size(), t.group_maps ? groups.size() : 1, rep_photons.size(), false, {}, {},
+                         0};
     t.layout = TallyLayout(t.triangle_area_m2.size(), dims, cells);
     t.data.assign(t.layout.size(), 0);
     for (std::size_t g = 0; g < groups.size(); ++g) {

@@ -146,7 +146,7 @@ void RunLoop::trace() {
             if (layout_.gathered(det)) {
                 DirectCoefficients& d = annual_direct_[det];
                 d.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
-                d.gather_rel_var = surfaces_.gather().rel_var(det, d.cells);
+                d.gather_rel_var.assign(d.cells, 0.0);  // update_gather_errors
             }
         if (show_)
             out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
@@ -344,9 +344,32 @@ struct RunLoop::PartAttempt {
     }
 };
 
+void RunLoop::update_gather_errors(double e0) {
+    if (!comm_.is_root() || !layout_.any_gathered()) return;
+    const GatherTable& g = surfaces_.gather();
+    const std::span<const std::uint64_t> totals = totals_.span();
+    // Each site's irradiance from its arrivals, and each cell's gathered light with it.
+    std::vector<double> site_lx(g.sites()), arrivals(g.sites());
+    for (std::size_t i = 0; i < site_lx.size(); ++i) {
+        arrivals[i] = static_cast<double>(totals[layout_.gather_site(i)]);
+        site_lx[i] = e0 * arrivals[i] / g.site_area_m2(i);
+    }
+    for (std::size_t det = 0; det < annual_direct_.size(); ++det) {
+        if (!layout_.gathered(det)) continue;
+        DirectCoefficients& d = annual_direct_[det];
+        std::vector<double> gathered_lx(d.cells, 0.0);
+        const double per_unit = e0 * d.gather_unit_lx_per_lm;
+        for (std::size_t grp = 0; grp < layout_.groups(); ++grp)
+            for (std::size_t c = 0; c < d.cells; ++c)
+                gathered_lx[c] += per_unit * static_cast<double>(totals[layout_.detector_gathered(det, c, grp)]);
+        d.gather_rel_var = g.rays_rel_var(det, d.cells, site_lx, arrivals, gathered_lx);
+    }
+}
+
 void RunLoop::share_annual_estimates() {
     shared_annual_.reset();
     const Traced t = traced();
+    update_gather_errors(t.e0);
     // One part per node (its first rank, on all the node's cores): between the ranks of one
     // node, moving the counts and the series costs more than it saves (docs/ANNUAL.md
     // step 7), so one node leaves it to rank 0's write.
@@ -550,6 +573,7 @@ Decision RunLoop::decide() {
     in.stall_s = stall_s_;
     in.work_s = work_s_;
     in.write_s = write_s_;
+    update_gather_errors(traced().e0);
     in.annual_direct = &annual_direct_;
     Decision d;
     try {
@@ -637,6 +661,7 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
         shared_annual_used_ = true;
     } else if (scene_.annual)
         est.annual = steps.run("annual", [&] {
+            update_gather_errors(e0);
             return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates,
                                    annual_direct_);
         });

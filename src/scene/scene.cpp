@@ -1,6 +1,7 @@
 #include "luxtrace/scene/scene.hpp"
 
 #include "luxtrace/annual/annual_grid.hpp"
+#include "luxtrace/tracer/gather_patches.hpp"
 
 #include <algorithm>
 
@@ -34,7 +35,10 @@ TallyDims dims_of(const Scene& scene) {
     d.direct_scores = scene.annual.has_value();
     if (scene.annual && scene.annual->options.shadow_rays())
         for (const Detector& det : scene.detectors) d.direct_apart.push_back(annual_grid(det) ? 1 : 0);
-    if (scene.annual && scene.annual->options.gathers()) d.gathered = d.direct_apart;
+    if (scene.annual && scene.annual->options.gathers()) {
+        d.gathered = d.direct_apart;
+        d.gather_sites = 2 * GatherPatches(scene, scene.annual->options.gather_patch_m).count();
+    }
     return d;
 }
 }  // namespace

@@ -28,6 +28,8 @@ TallyLayout::TallyLayout(std::size_t triangles, const TallyDims& dims, const std
         gather_offset_.push_back(size_);
         if (gathered(d)) size_ += (det_cells_[d] + 1) * detector_columns() * 2;
     }
+    gather_sites_begin_ = size_;
+    size_ += dims_.gather_sites;
     size_ += dims_.replicates;  // photons per replicate
 }
 

@@ -17,17 +17,14 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     const std::size_t sites = 2 * patches_.count();
     // Per patch (either side), the diffuse reflectance over pi times the area: a unit K's
     // weight in lx per lm.
-    std::vector<double> site_weight(patches_.count(), 0.0), luminance(sites, 0.0);
+    std::vector<double> site_weight(patches_.count(), 0.0);
     for (std::size_t t = 0, p = 0; t < scene.triangle_count(); ++t) {
         const double rho = scatter_model(scene.materials[scene.triangle_material[t]], 0).diffuse_reflection;
         const std::size_t n = static_cast<std::size_t>(patches_.cuts(t)) * patches_.cuts(t);
-        for (std::size_t k = 0; k < n; ++k, ++p) {
-            site_weight[p] = rho / (kPi * patches_.area_m2(p));
-            // The gather's own error is estimated as if every surface had the same
-            // irradiance: its luminance rho / pi.
-            luminance[p] = luminance[patches_.count() + p] = rho / kPi;
-        }
+        for (std::size_t k = 0; k < n; ++k, ++p) site_weight[p] = rho / (kPi * patches_.area_m2(p));
     }
+    site_rho_pi_.resize(patches_.count());
+    for (std::size_t p = 0; p < patches_.count(); ++p) site_rho_pi_[p] = site_weight[p] * patches_.area_m2(p);
     // Every gathered grid's K, cell by cell (the cells numbered across the grids).
     struct Kept {
         std::uint32_t site, cell;
@@ -42,11 +39,15 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         go.rays = o.gather_rays;
         go.seed = scene.run.seed;
         go.patches = &patches_;
-        go.site_luminance = &luminance;
+        go.rays_form = true;
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
         const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
         first_cell_[det] = cells_;
-        rel_var_.insert(rel_var_.end(), g.rel_var.begin(), g.rel_var.end());
+        for (std::size_t c = 0; c < cells; ++c) {
+            form_offset_.push_back(form_.size());
+            form_.insert(form_.end(), g.form.begin() + static_cast<std::ptrdiff_t>(g.form_offset[c]),
+                         g.form.begin() + static_cast<std::ptrdiff_t>(g.form_offset[c + 1]));
+        }
         for (std::size_t c = 0; c < cells; ++c) {
             slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det),
                               layout.detector_gathered_total(det, 0)});
@@ -59,6 +60,7 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         }
         cells_ += cells;
     }
+    form_offset_.push_back(form_.size());
     if (cells_ > UINT32_MAX) throw std::runtime_error("gather: more than 2^32 sensor cells");
     offset_.assign(sites + 1, 0);
     // No sensor sees a diffuse surface: nothing is gathered, in units of 1 lx per lm.
@@ -71,6 +73,33 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     std::vector<std::size_t> at(offset_.begin(), offset_.end() - 1);
     for (const Kept& k : kept)
         entries_[at[k.site]++] = {k.cell, static_cast<std::uint32_t>(std::lround(k.weight * units))};
+}
+
+}  // namespace luxtrace
+
+namespace luxtrace {
+
+std::vector<double> GatherTable::rays_rel_var(std::size_t det, std::size_t cells, std::span<const double> site_lx,
+                                              std::span<const double> site_arrivals,
+                                              std::span<const double> gathered_lx) const {
+    std::vector<double> out(cells, 0.0);
+    if (first_cell_.size() <= det) return out;
+    const std::size_t P = patches_.count();
+    auto luminance = [&](std::uint32_t site) { return site_rho_pi_[site % P] * site_lx[site]; };
+    for (std::size_t c = 0; c < cells; ++c) {
+        const std::size_t g = first_cell_[det] + c;
+        double var = 0.0;
+        for (std::size_t i = form_offset_[g]; i < form_offset_[g + 1]; ++i) {
+            const FormTerm& t = form_[i];
+            // L_a^2 from n arrivals overstates its square by its Poisson variance, L_a^2 / n.
+            const double n = site_arrivals[t.a];
+            const double product = t.a == t.b ? (n > 0.0 ? luminance(t.a) * luminance(t.a) * (1.0 - 1.0 / n) : 0.0)
+                                              : luminance(t.a) * luminance(t.b);
+            var += t.coef * product;
+        }
+        out[c] = gathered_lx[c] > 0.0 ? std::max(0.0, var) / (gathered_lx[c] * gathered_lx[c]) : 0.0;
+    }
+    return out;
 }
 
 }  // namespace luxtrace

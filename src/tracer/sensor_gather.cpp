@@ -30,14 +30,14 @@ public:
         : scene_(scene), embree_(embree), geometry_{scene.detectors[det]}, sampler_(o.seed ^ kGatherKey),
           side_(static_cast<int>(std::lround(std::sqrt(static_cast<double>(o.rays))))), det_(det),
           step_m_(4.0 * scene.ray_epsilon_m()), patches_(o.patches),
-          sites_per_side_(o.patches != nullptr ? o.patches->count() : scene.triangle_count()),
-          luminance_(o.site_luminance) {}
+          sites_per_side_(o.patches != nullptr ? o.patches->count() : scene.triangle_count()), form_(o.rays_form) {}
 
-    // Cell c's (site, weight) pairs, merged by site; with a luminance per site, the relative
-    // variance of its gathered light by collapsed strata into `rel_var`.
-    std::vector<std::pair<std::uint32_t, double>> cell(std::size_t c, double& rel_var) {
+    // Cell c's (site, weight) pairs, merged by site; with `form`, the rays' variance as a
+    // quadratic form in the sites' luminances (SensorGather::form), merged by site pair.
+    std::vector<std::pair<std::uint32_t, double>> cell(std::size_t c, std::vector<FormTerm>* form) {
         hits_.clear();
-        double sum = 0.0, pairs = 0.0, previous = 0.0;
+        terms_.clear();
+        std::size_t pair_first = 0;  // the first hit of the stratum pair's first stratum
         const Frame frame = Frame::around(geometry_.normal(c));
         const double weight = kPi / (side_ * side_);
         const std::uint64_t key = (static_cast<std::uint64_t>(det_) << 40) | c;
@@ -51,19 +51,16 @@ public:
                 const Vec3 d = frame.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(1.0 - r2)));
                 const Vec3 p = geometry_.position(c, PhiloxSampler::uniform(w[2]), PhiloxSampler::uniform(w[3]));
                 const std::size_t before = hits_.size();
+                if (b % 2 == 0) pair_first = before;
                 follow(p, d, 0.0, weight, 0);
-                if (luminance_ == nullptr) continue;
-                // The stratum's light, and strata (a, 2j) and (a, 2j + 1) collapsed into a
-                // pair: sum over pairs of (f1 - f2)^2 estimates the variance of the sum
-                // (conservative where the pair's means differ).
-                double f = 0.0;
-                for (std::size_t i = before; i < hits_.size(); ++i)
-                    f += hits_[i].second * (*luminance_)[hits_[i].first];
-                sum += f;
-                if (b % 2 == 1) pairs += (f - previous) * (f - previous);
-                previous = f;
+                // Strata (a, 2j) and (a, 2j + 1) collapsed into a pair: sum over pairs of
+                // (f1 - f2)^2, f a stratum's sum of w L over its hits, estimates the
+                // variance of the gathered sum (conservative where the pair's means differ);
+                // as a form in L, each pair adds s_h s_k w_h w_k L_h L_k over its hits h, k
+                // (s = +1 in the first stratum, -1 in the second).
+                if (form != nullptr && b % 2 == 1) add_pair(pair_first, before);
             }
-        rel_var = sum > 0.0 ? pairs / (sum * sum) : 0.0;
+        if (form != nullptr) merge_form(*form);
         std::sort(hits_.begin(), hits_.end());
         std::vector<std::pair<std::uint32_t, double>> merged;
         for (const auto& [s, x] : hits_) {
@@ -74,6 +71,29 @@ public:
     }
 
 private:
+    // The form's terms of the stratum pair whose hits are [first, hits_.size()), the second
+    // stratum's from `second`.
+    void add_pair(std::size_t first, std::size_t second) {
+        for (std::size_t h = first; h < hits_.size(); ++h)
+            for (std::size_t k = h; k < hits_.size(); ++k) {
+                const double sign = (h < second) == (k < second) ? 1.0 : -1.0;
+                const double coef = sign * hits_[h].second * hits_[k].second * (h == k ? 1.0 : 2.0);
+                const std::uint32_t x = hits_[h].first, y = hits_[k].first;
+                terms_.push_back({std::min(x, y), std::max(x, y), coef});
+            }
+    }
+    // The terms merged by site pair (pairs of one site with one weight cancel, and go).
+    void merge_form(std::vector<FormTerm>& form) {
+        std::sort(terms_.begin(), terms_.end(),
+                  [](const FormTerm& l, const FormTerm& r) { return l.a != r.a ? l.a < r.a : l.b < r.b; });
+        form.clear();
+        for (const FormTerm& t : terms_) {
+            if (!form.empty() && form.back().a == t.a && form.back().b == t.b) form.back().coef += t.coef;
+            else form.push_back(t);
+        }
+        std::erase_if(form, [](const FormTerm& t) { return std::abs(t.coef) < 1e-18; });
+    }
+
     // The ray o + t d, t >= t_near, carrying `weight`: the first surface it meets takes it,
     // but a pane of glazing passes it on, reflected and straight through, each times the
     // pane's share at the ray's incidence (an open hole, straight on whole).
@@ -112,7 +132,8 @@ private:
     double step_m_;
     const GatherPatches* patches_;
     std::size_t sites_per_side_;
-    const std::vector<double>* luminance_;
+    bool form_;
+    std::vector<FormTerm> terms_;
     std::vector<std::pair<std::uint32_t, double>> hits_;
 };
 
@@ -125,15 +146,22 @@ SensorGather sensor_gather(const Scene& scene, const EmbreeScene& embree, std::s
     if (det >= scene.detectors.size() || first > last || last > static_cast<std::size_t>(scene.detectors[det].cells()))
         throw std::logic_error("sensor_gather: cells beyond the detector");
     std::vector<std::vector<std::pair<std::uint32_t, double>>> per_cell(last - first);
-    std::vector<double> rel_var(last - first, 0.0);
+    std::vector<std::vector<FormTerm>> forms(options.rays_form ? last - first : 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 4), [&](const tbb::blocked_range<std::size_t>& r) {
         CellGatherer g(scene, embree, det, options);
-        for (std::size_t c = r.begin(); c < r.end(); ++c) per_cell[c - first] = g.cell(c, rel_var[c - first]);
+        for (std::size_t c = r.begin(); c < r.end(); ++c)
+            per_cell[c - first] = g.cell(c, options.rays_form ? &forms[c - first] : nullptr);
     });
     SensorGather out;
     out.first = first;
     out.cells = last - first;
-    if (options.site_luminance != nullptr) out.rel_var = std::move(rel_var);
+    if (options.rays_form) {
+        out.form_offset.push_back(0);
+        for (const std::vector<FormTerm>& f : forms) {
+            out.form.insert(out.form.end(), f.begin(), f.end());
+            out.form_offset.push_back(out.form.size());
+        }
+    }
     out.offset.push_back(0);
     for (const auto& entries : per_cell) {
         for (const auto& [s, w] : entries) {

@@ -122,7 +122,7 @@ bool PhotonTracer::step(Photon& p, const PhotonSampler::Block& u, TallyBuffer& o
     const Vec3 ng(t.normal);
     const bool front = glm::dot(p.direction, ng) < 0.0;
     p.tally.arrive(layout_, layout_.side_index(hit.triangle, front ? 0 : 1), p.direct, out);
-    if (!gather_.empty()) gather(p, front);
+    if (!gather_.empty()) gather(p, front, out);
 
     const Scattered s = scatter(surfaces_.model(t.material, p.band), p.direction, ng, PhiloxSampler::uniform(u[0]),
                                 PhiloxSampler::uniform(u[1]), PhiloxSampler::uniform(u[2]));

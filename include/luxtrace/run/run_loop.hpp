@@ -121,6 +121,9 @@ private:
     // points at them) and returns the grid's dark rates on every rank; then rank 0 gathers
     // the parts into `out`. A failed step is skipped after (PartAttempt), not thrown.
     struct PartAttempt;
+    // Rank 0: the gathered grids' own rays' errors (DirectCoefficients::gather_rel_var) from
+    // the tallies so far, e0 the flux per photon.
+    void update_gather_errors(double e0);
     AnnualDarkRates share_annual_inputs(std::size_t det, const std::vector<AnnualCellRange>& ranges, const Traced& t,
                                         DirectCoefficients& own_direct, const DirectCoefficients*& direct,
                                         PartAttempt& attempt);

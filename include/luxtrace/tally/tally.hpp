@@ -36,6 +36,10 @@ struct TallyDims {
     // "gather", tracer/gather_table.hpp), and its n and q then count no registration that
     // came after a diffuse reflection.
     std::vector<std::uint8_t> gathered;
+    // With gathered detectors: the gather's sites (GatherTable::sites), whose arrivals of
+    // every group are counted (the surfaces' irradiance at the patches' scale, for the
+    // gather's own error).
+    std::size_t gather_sites = 0;
 };
 
 // Where one photon's scores go besides the site, fixed when it starts: a column is a
@@ -72,7 +76,7 @@ public:
     // One light group: the layout of a scene without groups.
     TallyLayout(std::size_t triangles, std::size_t bands, const std::vector<int>& detector_cells,
                 std::size_t replicates = 0)
-        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates, false, {}, {}}, detector_cells) {}
+        : TallyLayout(triangles, TallyDims{bands, 1, 1, replicates, false, {}, {}, 0}, detector_cells) {}
 
     std::size_t size() const { return size_; }
     std::size_t triangles() const { return triangles_; }
@@ -183,11 +187,14 @@ public:
         return gather_offset_[det] + (detector_columns() * det_cells_[det] + column) * 2;
     }
     static constexpr int kGatherSquareShift = 24;
+    // The arrivals on gather site i, all photons (TallyDims::gather_sites).
+    std::size_t gather_site(std::size_t i) const { return gather_sites_begin_ + i; }
+    std::size_t gather_sites() const { return dims_.gather_sites; }
     // Photons traced of replicate r (the last R slots).
     std::size_t replicate_photons(std::size_t r) const { return size_ - dims_.replicates + r; }
 
 private:
-    std::size_t triangles_ = 0, size_ = kCounters;
+    std::size_t triangles_ = 0, size_ = kCounters, gather_sites_begin_ = 0;
     TallyDims dims_;
     std::vector<std::size_t> det_offset_, rep_offset_, direct_offset_, gather_offset_;
     std::vector<std::size_t> det_cells_;

@@ -17,6 +17,7 @@
 // of the scene, its seed and the options: every rank builds the same.
 #include "luxtrace/tally/photon_tally.hpp"
 #include "luxtrace/tracer/gather_patches.hpp"
+#include "luxtrace/tracer/sensor_gather.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -51,12 +52,14 @@ public:
     // lx per lm of one unit: 1 / W.
     double unit_lx_per_lm() const { return unit_lx_per_lm_; }
     // Detector det's cells' relative variance of their gathered light from the rays'
-    // sampling (SensorGather::rel_var: as if every surface had the same irradiance), the
-    // same for every light group and hour.
-    std::vector<double> rel_var(std::size_t det, std::size_t cells) const {
-        return {rel_var_.begin() + static_cast<std::ptrdiff_t>(first_cell_[det]),
-                rel_var_.begin() + static_cast<std::ptrdiff_t>(first_cell_[det] + cells)};
-    }
+    // sampling (SensorGather::form), given each site's irradiance `site_lx` from its
+    // `site_arrivals` (sites as site(): the run's arrivals per site, TallyLayout::gather_site;
+    // a square's Poisson noise taken out) and each cell's gathered light `gathered_lx` with
+    // those irradiances; one figure for all of a cell's light groups and hours.
+    std::vector<double> rays_rel_var(std::size_t det, std::size_t cells, std::span<const double> site_lx,
+                                     std::span<const double> site_arrivals, std::span<const double> gathered_lx) const;
+    std::size_t sites() const { return 2 * patches_.count(); }
+    double site_area_m2(std::size_t site) const { return patches_.area_m2(site % patches_.count()); }
 
 private:
     GatherPatches patches_;
@@ -66,7 +69,11 @@ private:
     std::size_t cells_ = 0;
     double unit_lx_per_lm_ = 0.0;
     std::vector<std::size_t> first_cell_;  // per detector, its first gathered cell
-    std::vector<double> rel_var_;          // per gathered cell
+    // Per gathered cell, the rays' variance form (SensorGather::form), terms
+    // [form_offset_[c], form_offset_[c + 1]).
+    std::vector<std::size_t> form_offset_;
+    std::vector<FormTerm> form_;
+    std::vector<double> site_rho_pi_;  // per patch, rho / pi: a site's luminance per lx
 };
 
 }  // namespace luxtrace

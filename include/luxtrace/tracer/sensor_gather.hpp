@@ -27,9 +27,14 @@ struct SensorGatherOptions {
     int rays = 4096;  // per cell, the square of an even number (AnnualOptions::valid_direct_rays)
     std::uint64_t seed = 1;
     const GatherPatches* patches = nullptr;  // null: whole triangles
-    // Per site, a luminance to estimate the gather's own error with (SensorGather::rel_var),
-    // or null.
-    const std::vector<double>* site_luminance = nullptr;
+    // Also the rays' own variance as a form in the sites' luminances (SensorGather::form).
+    bool rays_form = false;
+};
+
+// c L_a L_b, a <= b sites.
+struct FormTerm {
+    std::uint32_t a = 0, b = 0;
+    double coef = 0.0;
 };
 
 struct SensorGather {
@@ -40,10 +45,12 @@ struct SensorGather {
     // triangles + triangle, TallyLayout's side index).
     std::vector<std::uint32_t> site;
     std::vector<double> weight_sr;
-    // With SensorGatherOptions::site_luminance: per cell, the relative variance of
-    // sum K L over the sites from the rays' sampling (collapsed strata: pairs of
-    // neighbouring strata in azimuth).
-    std::vector<double> rel_var;
+    // With SensorGatherOptions::rays_form: per cell (terms [form_offset[c], form_offset[c +
+    // 1])), the variance of sum over sites of K L from the rays' sampling, given the sites'
+    // luminances L, as sum of coef L_a L_b (collapsed strata: pairs of neighbouring strata
+    // in azimuth).
+    std::vector<std::size_t> form_offset;
+    std::vector<FormTerm> form;
 };
 
 // Cells [first, last) of Scene::detectors[det] (a sensor grid), on every core.

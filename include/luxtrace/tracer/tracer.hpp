@@ -101,8 +101,12 @@ private:
     void end(Photon& p, TallyLayout::Counter fate, TallyBuffer& out) { p.tally.end(layout_, fate, out); }
     // The arrival's light gathered to the sensors that see its site (gather_table.hpp); and
     // after event `e` (on a pane or not), whether the photon's light is the gather's.
-    void gather(Photon& p, bool front) {
-        p.tally.gather(gather_.entries(gather_.site(p.hit.triangle, front ? 0 : 1, p.hit.u, p.hit.v)), gather_.slots());
+    // (Each arrival also counts at its site: the surfaces' irradiance for the gather's own
+    // error, GatherTable::rays_rel_var.)
+    void gather(Photon& p, bool front, TallyBuffer& out) {
+        const std::size_t site = gather_.site(p.hit.triangle, front ? 0 : 1, p.hit.u, p.hit.v);
+        p.tally.gather(gather_.entries(site), gather_.slots());
+        out.add(layout_.gather_site(site), 1);
     }
     static void follow_event(Photon& p, ScatterEvent e, bool pane);
 

@@ -95,7 +95,7 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
     const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}, 0}, {4, 6});
     EXPECT_TRUE(L.gathered(0));
     EXPECT_FALSE(L.gathered(1));
-    EXPECT_EQ(L.size(), plain.size() + (4 + 1) * groups * 2);  // two words per cell and column, and the grid's
+    EXPECT_EQ(L.size(), plain.size() + (4 * 3 + 2) * groups);  // three words per cell and column, two the grid's
     std::set<std::size_t> seen;
     for (std::size_t d = 0; d < 2; ++d)
         for (std::size_t c = 0; c < (d == 0 ? 4u : 6u); ++c)
@@ -104,6 +104,7 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
                 if (d == 0) {
                     EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g)).second);
                     EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 1).second);
+                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 2).second);
                     if (c == 0) {
                         EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g)).second);
                         EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g) + 1).second);
@@ -111,7 +112,7 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
                     }
                     EXPECT_LT(L.detector_gathered(d, c, g) + 1, L.size());
                     // A column's cells lie together.
-                    EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + 2 * c);
+                    EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + 3 * c);
                     if (g + 1 < groups) {
                         EXPECT_EQ(L.detector_gathered(d, c, g) + L.gathered_column_stride(d),
                                   L.detector_gathered(d, c, g + 1));
@@ -152,6 +153,9 @@ TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseRefl
     EXPECT_EQ(store[L.detector_gathered(0, 0, 1)], 2u * 8u);  // two photons, 3 + 5 each
     EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 1], 2u * ((64u + (1u << (s - 1))) >> s));
     EXPECT_EQ(store[L.detector_gathered(0, 2, 1)], 14u);
+    // Y T: cell 0's 8 and cell 2's 7 against the photon's total 15.
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 2], 2u * ((120u + (1u << (s - 1))) >> s));
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 2], square(big));
     EXPECT_EQ(store[L.detector_gathered(0, 1, 1)], 0u);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0)], big);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 1], square(big));

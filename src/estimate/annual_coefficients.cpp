@@ -59,6 +59,12 @@ struct AnnualCoefficients::Counts {
                                      TallyLayout::kGatherSquareShift)
                         : 0.0;
     }
+    // Sum of Y T (units^2), T the photon's sum over the grid.
+    double gather_x(std::size_t cell, std::size_t group) const {
+        return gathered ? std::ldexp(static_cast<double>(data[layout.detector_gathered(det, first + cell, group) + 2]),
+                                     TallyLayout::kGatherSquareShift)
+                        : 0.0;
+    }
     // The grid's total per photon, as one cell (TallyLayout::detector_gathered_total).
     double gather_total_y(std::size_t group) const {
         return static_cast<double>(data[layout.detector_gathered_total(det, group)]);
@@ -149,14 +155,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
         if (!d->gather_rel_var.empty()) columns(d->gather_rel_var, 1, gather_rel_var_);
     }
     const Counts counts(grid, first);
-    if (counts.gathered) {
-        // The grid's loadings (dark_rates) per sky entry and sun.
-        auto loading = [&](std::size_t group) {
-            return group < dark.gather_loading.size() ? dark.gather_loading[group] : 0.0;
-        };
-        for (std::size_t e = 0; e < sky.sky_entries(); ++e) sky_loading_.push_back(loading(counts.sky_group(e)));
-        for (std::size_t s = 0; s < sky.suns().size(); ++s) sun_loading_.push_back(loading(counts.sun_group(s)));
-    }
+    if (counts.gathered) gather_loadings(counts, dark);
     sky_coefficients(counts);
     SunPools pools(counts);
     pool_ = std::move(pools.pool);
@@ -164,6 +163,26 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
     neighbour_share_ = std::move(pools.neighbour_share);
     sun_priors(counts);
     sun_coefficients(counts);
+}
+
+// Each cell's loading on its group's common draw: its noise's correlation with the grid's
+// total's, a = (X_c - Y_c Y_T / N) / (sd_c sd_T), so that the replicates' draws,
+// sigma_c (a_c Z_g + sqrt(1 - a_c^2) Z_c), move with the grid as the cell's light does
+// (one photon lights many sensors; the cells nearer each other more alike).
+void AnnualCoefficients::gather_loadings(const Counts& c, const AnnualDarkRates& dark) {
+    const AnnualSky& sky = *annual_.sky;
+    auto loadings = [&](std::size_t group, std::vector<double>& out) {
+        const double yt = 2 * group + 1 < dark.gather_total.size() ? dark.gather_total[2 * group] : 0.0;
+        const double sdt = 2 * group + 1 < dark.gather_total.size() ? dark.gather_total[2 * group + 1] : 0.0;
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            const double y = c.gather_y(cell, group);
+            const double sd = std::sqrt(std::max(0.0, c.gather_q(cell, group) - y * y * inv_photons_));
+            const double cov = c.gather_x(cell, group) - y * yt * inv_photons_;
+            out.push_back(sd > 0.0 && sdt > 0.0 ? std::clamp(cov / (sd * sdt), -1.0, 1.0) : 0.0);
+        }
+    };
+    for (std::size_t e = 0; e < sky.sky_entries(); ++e) loadings(c.sky_group(e), sky_loading_);
+    for (std::size_t s = 0; s < sky.suns().size(); ++s) loadings(c.sun_group(s), sun_loading_);
 }
 
 // In an hour's error, a cell that no photon of an emitting group reached is not exact: its
@@ -243,29 +262,22 @@ AnnualDarkRates AnnualCoefficients::dark_rates(const AnnualGridCounts& grid) {
     AnnualDarkRates r;
     r.total = dark_share > 0.0 ? dark_n / dark_share : 0.5;
     r.direct = dark_share_d > 0.0 ? dark_d / dark_share_d : 0.5;
-    if (c.gathered) r.gather_loading = gather_loadings(grid, c);
+    if (c.gathered) r.gather_total = gather_totals(grid, c);
     return r;
 }
 
-// Per light group, from the grid's total and its cells' variances (sigma_c): the variance of
-// the sum is sum sigma_c^2 + the covariances, so the mean correlation is rho = (V_total -
-// S2) / (S1^2 - S2), S1 = sum sigma_c, S2 = sum sigma_c^2; drawing each cell's noise as
-// sigma_c (sqrt(rho) Z_g + sqrt(1 - rho) Z_c) gives the sum exactly V_total.
-std::vector<double> AnnualCoefficients::gather_loadings(const AnnualGridCounts& grid, const Counts& c) {
-    const double kg2 = grid.gather_per_unit * grid.gather_per_unit;
+// Per light group, the grid's total per photon T: its sum (units) and the standard deviation
+// of its sum (units), sqrt(Q_T - Y_T^2 / N), from which each cell's covariance with it
+// follows (the constructor).
+std::vector<double> AnnualCoefficients::gather_totals(const AnnualGridCounts& grid, const Counts& c) {
     const double inv_n = grid.photons > 0 ? 1.0 / static_cast<double>(grid.photons) : 0.0;
-    std::vector<double> loading(grid.layout.groups(), 0.0);
-    for (std::size_t g = 0; g < loading.size(); ++g) {
-        double s1 = 0.0, s2 = 0.0;
-        for (std::size_t cell = 0; cell < grid.cells; ++cell) {
-            const double y = c.gather_y(cell, g), v = std::max(0.0, kg2 * (c.gather_q(cell, g) - y * y * inv_n));
-            s1 += std::sqrt(v);
-            s2 += v;
-        }
-        const double y = c.gather_total_y(g), total = std::max(0.0, kg2 * (c.gather_total_q(g) - y * y * inv_n));
-        if (s1 * s1 - s2 > 0.0) loading[g] = std::sqrt(std::clamp((total - s2) / (s1 * s1 - s2), 0.0, 1.0));
+    std::vector<double> totals(2 * grid.layout.groups(), 0.0);
+    for (std::size_t g = 0; g < grid.layout.groups(); ++g) {
+        const double y = c.gather_total_y(g);
+        totals[2 * g] = y;
+        totals[2 * g + 1] = std::sqrt(std::max(0.0, c.gather_total_q(g) - y * y * inv_n));
     }
-    return loading;
+    return totals;
 }
 
 // The replicates' centre for a sun's interreflected count (empirical Bayes): light too rare
@@ -633,8 +645,8 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     std::vector<double> common_sky, common_sun;
     if (!sun_gather_.empty()) {
         PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
-        for (const double a : sky_loading_) common_sky.push_back(a * standard_normal(bits));
-        for (const double a : sun_loading_) common_sun.push_back(a * standard_normal(bits));
+        for (std::size_t e = 0; e < sky_entries_total(); ++e) common_sky.push_back(standard_normal(bits));
+        for (std::size_t s = 0; s < suns; ++s) common_sun.push_back(standard_normal(bits));
     }
     for (std::size_t cell = 0; cell < cells_; ++cell) {
         // The cell's own stream: (seed, replicate, its index in the grid).
@@ -653,7 +665,8 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         // own, sqrt(1 - a^2).
         // (By the quantile: thousands of these per cell and replicate.)
         auto gathered_draw = [&](double var, double loading, double common) {
-            return var > 0.0 ? std::sqrt(var) * (common + std::sqrt(1.0 - loading * loading) * standard_normal(bits))
+            return var > 0.0 ? std::sqrt(var) *
+                                   (loading * common + std::sqrt(1.0 - loading * loading) * standard_normal(bits))
                              : 0.0;
         };
         // The gather's rays' error: one relative draw for all the cell's light and hours.
@@ -663,7 +676,7 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             sky[i] += draw(sky_var_[i]);
             if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
             if (!sky_gather_var_.empty())
-                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], sky_loading_[e], common_sky[e]);
+                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], sky_loading_[i], common_sky[e]);
         }
         // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
@@ -673,7 +686,7 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
             if (!sun_gather_.empty())
                 gathered[i] = (1.0 + rays) * sun_gather_[i] +
-                              gathered_draw(sun_gather_var_[i], sun_loading_[s], common_sun[s]);
+                              gathered_draw(sun_gather_var_[i], sun_loading_[i], common_sun[s]);
         }
     }
     draw_sun_indirect(seed, replicate, indirect);

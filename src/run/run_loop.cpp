@@ -423,10 +423,10 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
             const AnnualDarkRates d = annual_dark_rates(scene_, det, layout_, totals_.span(), t.e0, t.photons,
                                                         shadow ? &annual_direct_[det] : nullptr);
             dark = {d.total, d.direct};
-            dark.insert(dark.end(), d.gather_loading.begin(), d.gather_loading.end());
+            dark.insert(dark.end(), d.gather_total.begin(), d.gather_total.end());
         });
-    // A gathered grid's loadings, one per light group, after the two rates.
-    if (layout_.gathered(det)) dark.resize(2 + layout_.groups(), 0.0);
+    // A gathered grid's totals, two per light group, after the two rates.
+    if (layout_.gathered(det)) dark.resize(2 + 2 * layout_.groups(), 0.0);
     comm_.broadcast(dark);
     // Each rank's cells' counts: their n and q, their direct counts and their gathered
     // sums, where rank 0 keeps them in totals_.

@@ -21,25 +21,36 @@ void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, Tall
 }
 
 void PhotonTally::add_gathered(TallyBuffer& out) {
-    // Y and Y^2 / 2^s per cell and per grid (in 128 bits on the way: no overflow).
+    // Per cell Y, Y^2 / 2^s and Y T / 2^s, T the photon's sum over the cell's grid; per grid
+    // T and T^2 / 2^s (in 128 bits on the way: no overflow).
     __extension__ using Wide = unsigned __int128;
     constexpr int s = TallyLayout::kGatherSquareShift;
-    auto add = [&](std::size_t slot, std::uint64_t y) {
-        const Wide y2 = static_cast<Wide>(y) * y;
-        out.add(slot, y);
-        out.add(slot + 1, static_cast<std::uint64_t>((y2 + (Wide{1} << (s - 1))) >> s));
+    auto scaled = [](std::uint64_t a, std::uint64_t b) {
+        return static_cast<std::uint64_t>((static_cast<Wide>(a) * b + (Wide{1} << (s - 1))) >> s);
+    };
+    auto total_of = [&](std::size_t slot) {
+        return std::find_if(totals_.begin(), totals_.end(), [&](const auto& x) { return x.first == slot; });
     };
     totals_.clear();
     for (const std::uint32_t cell : touched_) {
-        const std::uint64_t y = gathered_[cell];
-        const GatherSlot& g = slots_[cell];
-        add(g.first + bin_.detector_column * g.column_stride, y);
-        gathered_[cell] = 0;
-        auto t = std::find_if(totals_.begin(), totals_.end(), [&](const auto& x) { return x.first == g.total; });
-        if (t == totals_.end()) totals_.emplace_back(g.total, y);
-        else t->second += y;
+        const std::size_t slot = slots_[cell].total;
+        const auto t = total_of(slot);
+        if (t == totals_.end()) totals_.emplace_back(slot, gathered_[cell]);
+        else t->second += gathered_[cell];
     }
-    for (const auto& [slot, y] : totals_) add(slot + bin_.detector_column * 2, y);
+    for (const std::uint32_t cell : touched_) {
+        const std::uint64_t y = gathered_[cell], total = total_of(slots_[cell].total)->second;
+        const GatherSlot& g = slots_[cell];
+        const std::size_t slot = g.first + bin_.detector_column * g.column_stride;
+        out.add(slot, y);
+        out.add(slot + 1, scaled(y, y));
+        out.add(slot + 2, scaled(y, total));
+        gathered_[cell] = 0;
+    }
+    for (const auto& [slot, t] : totals_) {
+        out.add(slot + bin_.detector_column * 2, t);
+        out.add(slot + bin_.detector_column * 2 + 1, scaled(t, t));
+    }
     touched_.clear();
 }
 

@@ -24,7 +24,7 @@
 // tally's units) with variance k_G^2 (Q_gc - Y_gc^2 / N) (Q the sum of squares in units^2);
 // a sun's gathered part is pooled over the neighbouring days like its interreflected counts
 // (a sun hour's few photons), and the replicates draw it normal around its value, with the
-// grid's correlation (AnnualDarkRates::gather_loading).
+// grid's correlation (AnnualDarkRates::gather_total).
 #include "luxtrace/annual/annual_sky.hpp"
 #include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/stats/annual_metrics.hpp"
@@ -58,11 +58,11 @@ struct AnnualGridCounts {
 // neighbouring days read nothing: its total and its direct count, over the whole grid.
 struct AnnualDarkRates {
     double total = 0.5, direct = 0.5;
-    // With a gather, per light group: the square root of the mean correlation between the
-    // grid's cells of their gathered light's noise (one photon lights many sensors), from
-    // the grid's total: the replicates draw each cell's noise as a common part of this
-    // weight plus its own, so that a grid figure's error holds the correlation.
-    std::vector<double> gather_loading;
+    // With a gather, per light group (2 g, 2 g + 1): the grid's total's sum Y_T and its
+    // standard deviation sd_T, in units (AnnualCoefficients::gather_totals), from which each
+    // cell's correlation with the grid follows: the replicates draw each cell's noise as a
+    // common part plus its own, so that a grid figure's error holds the correlation.
+    std::vector<double> gather_total;
 };
 
 // The coefficients of a block of the grid's cells, and the hourly series made of them.
@@ -99,7 +99,9 @@ private:
     //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
     struct Counts;
     struct SunPools;
-    static std::vector<double> gather_loadings(const AnnualGridCounts& grid, const Counts& c);
+    static std::vector<double> gather_totals(const AnnualGridCounts& grid, const Counts& c);
+    void gather_loadings(const Counts& c, const AnnualDarkRates& dark);
+    std::size_t sky_entries_total() const { return annual_.sky->sky_entries(); }
     void sky_coefficients(const Counts& counts);
     void sun_priors(const Counts& counts);
     void sun_coefficients(const Counts& counts);
@@ -140,7 +142,8 @@ private:
     // The gathered part (empty without a gather): its variance per [entry][cell], and per
     // [sun][cell] the sun's own (unpooled) value and variance.
     std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
-    std::vector<double> sky_loading_, sun_loading_;  // per entry, per sun (AnnualDarkRates)
+    // Per [entry][cell] and [sun][cell]: the cell's loading on its group's common draw.
+    std::vector<double> sky_loading_, sun_loading_;
     // The gathered value per [entry][cell] and, pooled, per [sun][cell]; per cell the
     // relative variance of the gather's own rays (DirectCoefficients::gather_rel_var), an
     // error common to every hour.

@@ -171,20 +171,23 @@ public:
     }
     // The gathered light of `cell` in a detector column (gathered detectors only): the sum
     // over photons of Y, the photon's gathered value in the table's integer units, then the
-    // sum of Y^2 / 2^kGatherSquareShift (rounded): two words, like n_c and q_c. Column by
-    // column: a photon adds to many cells of its own column, which then lie together.
+    // sum of Y^2 / 2^kGatherSquareShift (rounded), like n_c and q_c, then the sum of Y T /
+    // 2^kGatherSquareShift, T the photon's Y summed over the grid's cells (its covariance
+    // with the grid's total: how the cell's error moves with the others'). Three words,
+    // column by column: a photon adds to many cells of its own column, which then lie
+    // together.
     bool gathered(std::size_t det) const { return det < dims_.gathered.size() && dims_.gathered[det] != 0; }
     bool any_gathered() const { return !dims_.gathered.empty(); }
     std::size_t detector_gathered(std::size_t det, std::size_t cell, std::size_t column) const {
-        return gather_offset_[det] + (column * det_cells_[det] + cell) * 2;
+        return gather_offset_[det] + (column * det_cells_[det] + cell) * kGatherWords;
     }
+    static constexpr std::size_t kGatherWords = 3;
     // From a cell's slot in one column to the next column's.
-    std::size_t gathered_column_stride(std::size_t det) const { return det_cells_[det] * 2; }
-    // The whole grid as one cell: per column, the sum over photons of the photon's Y summed
-    // over the grid's cells, then of its square / 2^kGatherSquareShift: with the cells'
-    // variances it gives their mean correlation (the grid's figures' errors).
+    std::size_t gathered_column_stride(std::size_t det) const { return det_cells_[det] * kGatherWords; }
+    // The whole grid as one cell: per column, the sum over photons of T, then of
+    // T^2 / 2^kGatherSquareShift.
     std::size_t detector_gathered_total(std::size_t det, std::size_t column) const {
-        return gather_offset_[det] + (detector_columns() * det_cells_[det] + column) * 2;
+        return gather_offset_[det] + detector_columns() * det_cells_[det] * kGatherWords + column * 2;
     }
     static constexpr int kGatherSquareShift = 24;
     // The arrivals on gather site i, all photons (TallyDims::gather_sites).

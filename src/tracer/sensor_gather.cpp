@@ -21,8 +21,6 @@ namespace {
 
 // Keeps the gather's random numbers apart from the photons' and the direct pass's.
 constexpr std::uint64_t kGatherKey = 0x6A7E4E5C0FFEE0DDull;
-// Panes a ray's branches may meet (reflected or passed) before what is behind counts no more.
-constexpr int kMaxPanes = 4;
 
 class CellGatherer {
 public:
@@ -111,7 +109,7 @@ private:
             hits_.emplace_back(static_cast<std::uint32_t>(side * sites_per_side_ + patch), weight);
             return;
         }
-        if (panes >= kMaxPanes) return;
+        if (panes >= kGatherPanes) return;
         const double t_on = h.t + std::max(1e-6 * h.t, step_m_);
         if (hole) {
             follow(o, d, t_on, weight, panes + 1);

@@ -23,6 +23,11 @@ class EmbreeScene;
 class GatherPatches;
 struct Scene;
 
+// The panes (glazing, or glass of index 1) a gather ray passes or is reflected by before
+// what lies behind counts no more; the tracer keeps a photon's light the gather's through as
+// many (tracer.hpp).
+inline constexpr int kGatherPanes = 4;
+
 struct SensorGatherOptions {
     int rays = 4096;  // per cell, the square of an even number (AnnualOptions::valid_direct_rays)
     std::uint64_t seed = 1;

@@ -22,6 +22,7 @@
 #include "luxtrace/tracer/detector_filters.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
 #include "luxtrace/tracer/ray_offset.hpp"
+#include "luxtrace/tracer/sensor_gather.hpp"
 #include "luxtrace/tracer/surface_table.hpp"
 
 #include <array>
@@ -53,8 +54,6 @@ public:
     void trace_recording(std::uint64_t first, std::uint64_t last, TallyBuffer& out, std::vector<RecordedRay>& rays);
 
     static constexpr int kInFlight = 8;
-    // The panes a gather ray passes (sensor_gather.cpp's kMaxPanes).
-    static constexpr int kGatherPanes = 4;
 
 private:
     struct Photon {

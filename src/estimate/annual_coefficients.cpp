@@ -421,8 +421,8 @@ void AnnualCoefficients::sun_gathered(const Counts& c) {
             const std::size_t i = s * cells_ + cell, j = h * cells_ + cell;
             double q3 = c.gather_q(cell, c.sun_group(s));
             for (const std::size_t o : pool_[s]) q3 += c.gather_q(cell, c.sun_group(o));
-            const double expected = class_y[j] > 0.0 ? class_q[j] / class_y[j] * class_y[j] / class_flux[h] * flux3
-                                                     : 0.0;
+            // r mu = (Q / Y) (Y / Phi): the class's Q per unit flux.
+            const double expected = class_flux[h] > 0.0 ? class_q[j] / class_flux[h] * flux3 : 0.0;
             sun_[i] += pooled[i];
             sun_q_[i] += share * share * kg2 * std::max(q3, expected);
         }
@@ -645,7 +645,7 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     std::vector<double> common_sky, common_sun;
     if (!sun_gather_.empty()) {
         PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
-        for (std::size_t e = 0; e < sky_entries_total(); ++e) common_sky.push_back(standard_normal(bits));
+        for (std::size_t e = 0; e < annual_.sky->sky_entries(); ++e) common_sky.push_back(standard_normal(bits));
         for (std::size_t s = 0; s < suns; ++s) common_sun.push_back(standard_normal(bits));
     }
     for (std::size_t cell = 0; cell < cells_; ++cell) {

@@ -199,22 +199,19 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx);
         write_metrics(dg, e.metrics, e.value.sensors);
         write_coefficients(dg, annual, layout, tallies, d, e.value.sensors);
-        if (!e.direct_sky_lx_h.empty()) {
-            const std::size_t n = e.direct_sky_lx_h.size();
-            dataset(dg, "shadow_direct_sky_lx_h", {n}, e.direct_sky_lx_h.data());
-            dataset(dg, "shadow_direct_sky_sigma_lx_h", {n}, e.direct_sky_sigma_lx_h.data());
-            dataset(dg, "shadow_direct_sun_lx_h", {n}, e.direct_sun_lx_h.data());
-            dataset(dg, "shadow_direct_sun_sigma_lx_h", {n}, e.direct_sun_sigma_lx_h.data());
-        }
-        if (!e.gather_sky_lx_h.empty()) {
-            const std::size_t n = e.gather_sky_lx_h.size();
-            dataset(dg, "gathered_sky_lx_h", {n}, e.gather_sky_lx_h.data());
-            dataset(dg, "gathered_sky_sigma_lx_h", {n}, e.gather_sky_sigma_lx_h.data());
-            dataset(dg, "gathered_sun_lx_h", {n}, e.gather_sun_lx_h.data());
-            dataset(dg, "gathered_sun_sigma_lx_h", {n}, e.gather_sun_sigma_lx_h.data());
-            if (e.gather_rays_sigma_rel.size() == n)
-                dataset(dg, "gathered_rays_sigma_rel", {n}, e.gather_rays_sigma_rel.data());
-        }
+        // The year's parts per cell, where the run has them: PREFIX_{sky,sun}[_sigma]_lx_h.
+        auto year = [&](const std::string& prefix, const std::vector<double>& sky, const std::vector<double>& sky_sigma,
+                        const std::vector<double>& sun, const std::vector<double>& sun_sigma) {
+            if (sky.empty()) return;
+            dataset(dg, prefix + "_sky_lx_h", {sky.size()}, sky.data());
+            dataset(dg, prefix + "_sky_sigma_lx_h", {sky.size()}, sky_sigma.data());
+            dataset(dg, prefix + "_sun_lx_h", {sun.size()}, sun.data());
+            dataset(dg, prefix + "_sun_sigma_lx_h", {sun.size()}, sun_sigma.data());
+        };
+        year("shadow_direct", e.direct_sky_lx_h, e.direct_sky_sigma_lx_h, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
+        year("gathered", e.gather_sky_lx_h, e.gather_sky_sigma_lx_h, e.gather_sun_lx_h, e.gather_sun_sigma_lx_h);
+        if (!e.gather_rays_sigma_rel.empty())
+            dataset(dg, "gathered_rays_sigma_rel", {e.gather_rays_sigma_rel.size()}, e.gather_rays_sigma_rel.data());
     }
 }
 

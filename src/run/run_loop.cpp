@@ -573,7 +573,10 @@ Decision RunLoop::decide() {
     in.stall_s = stall_s_;
     in.work_s = work_s_;
     in.write_s = write_s_;
-    update_gather_errors(traced().e0);
+    // An annual target's errors need the gather's own (its words over every cell and light
+    // group: not read after each reduction for nothing).
+    if (std::any_of(run_.targets.begin(), run_.targets.end(), [](const Target& t) { return !t.annual_metric.empty(); }))
+        update_gather_errors(traced().e0);
     in.annual_direct = &annual_direct_;
     Decision d;
     try {

@@ -15,16 +15,14 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     const AnnualOptions& o = scene.annual->options;
     patches_ = GatherPatches(scene, o.gather_patch_m);
     const std::size_t sites = 2 * patches_.count();
-    // Per patch (either side), the diffuse reflectance over pi times the area: a unit K's
-    // weight in lx per lm.
-    std::vector<double> site_weight(patches_.count(), 0.0);
+    // Per patch (either side), its diffuse reflectance over pi: its luminance per lx; over
+    // its area too, a unit K's weight in lx per lm.
+    site_rho_pi_.resize(patches_.count());
     for (std::size_t t = 0, p = 0; t < scene.triangle_count(); ++t) {
         const double rho = scatter_model(scene.materials[scene.triangle_material[t]], 0).diffuse_reflection;
         const std::size_t n = static_cast<std::size_t>(patches_.cuts(t)) * patches_.cuts(t);
-        for (std::size_t k = 0; k < n; ++k, ++p) site_weight[p] = rho / (kPi * patches_.area_m2(p));
+        for (std::size_t k = 0; k < n; ++k, ++p) site_rho_pi_[p] = rho / kPi;
     }
-    site_rho_pi_.resize(patches_.count());
-    for (std::size_t p = 0; p < patches_.count(); ++p) site_rho_pi_[p] = site_weight[p] * patches_.area_m2(p);
     // Every gathered grid's K, cell by cell (the cells numbered across the grids).
     struct Kept {
         std::uint32_t site, cell;
@@ -52,7 +50,8 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
             slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det),
                               layout.detector_gathered_total(det, 0)});
             for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
-                const double w = g.weight_sr[i] * site_weight[g.site[i] % patches_.count()];
+                const std::size_t patch = g.site[i] % patches_.count();
+                const double w = g.weight_sr[i] * site_rho_pi_[patch] / patches_.area_m2(patch);
                 if (!(w > 0.0)) continue;
                 kept.push_back({g.site[i], static_cast<std::uint32_t>(cells_ + c), w});
                 largest = std::max(largest, w);
@@ -74,10 +73,6 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     for (const Kept& k : kept)
         entries_[at[k.site]++] = {k.cell, static_cast<std::uint32_t>(std::lround(k.weight * units))};
 }
-
-}  // namespace luxtrace
-
-namespace luxtrace {
 
 std::vector<double> GatherTable::rays_rel_var(std::size_t det, std::size_t cells, std::span<const double> site_lx,
                                               std::span<const double> site_arrivals,

@@ -101,9 +101,7 @@ private:
         const Material& m = scene_.materials[scene_.triangle_material[h.triangle]];
         const Vec3& n = scene_.triangle_normal[h.triangle];
         const double along = glm::dot(d, n);
-        const bool glazing = m.type == MaterialType::glazing && m.glazing;
-        const bool hole = m.type == MaterialType::glass && m.ior == 1.0;
-        if (!glazing && !hole) {
+        if (!gather_pane(m)) {
             const std::size_t side = along < 0.0 ? 0 : 1;  // the side the ray arrives on
             const std::size_t patch = patches_ != nullptr ? patches_->patch(h.triangle, h.u, h.v) : h.triangle;
             hits_.emplace_back(static_cast<std::uint32_t>(side * sites_per_side_ + patch), weight);
@@ -111,7 +109,7 @@ private:
         }
         if (panes >= kGatherPanes) return;
         const double t_on = h.t + std::max(1e-6 * h.t, step_m_);
-        if (hole) {
+        if (m.type == MaterialType::glass) {  // a hole
             follow(o, d, t_on, weight, panes + 1);
             return;
         }
@@ -136,6 +134,10 @@ private:
 };
 
 }  // namespace
+
+bool gather_pane(const Material& m) {
+    return (m.type == MaterialType::glazing && m.glazing) || (m.type == MaterialType::glass && m.ior == 1.0);
+}
 
 SensorGather sensor_gather(const Scene& scene, const EmbreeScene& embree, std::size_t det,
                            const SensorGatherOptions& options, std::size_t first, std::size_t last) {

@@ -3,6 +3,7 @@
 #include "luxtrace/core/parallel.hpp"
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/embree_scene.hpp"
+#include "luxtrace/tracer/sensor_gather.hpp"
 
 #include <algorithm>
 
@@ -26,9 +27,7 @@ SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree)
     for_each_index(scene.triangle_count(), 16384, [&](std::size_t t) { fill(scene, embree, t); });
     for (const Material& m : scene.materials)
         for (int b = 0; b < bands_; ++b) models_.push_back(scatter_model(m, b));
-    for (const Material& m : scene.materials)
-        panes_.push_back(
-            (m.type == MaterialType::glazing && m.glazing) || (m.type == MaterialType::glass && m.ior == 1.0) ? 1 : 0);
+    for (const Material& m : scene.materials) panes_.push_back(gather_pane(m) ? 1 : 0);
     if (scene.annual && scene.annual->options.gathers()) gather_ = GatherTable(scene, embree, tally_layout(scene));
 }
 

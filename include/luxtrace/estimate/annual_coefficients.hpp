@@ -101,7 +101,6 @@ private:
     struct SunPools;
     static std::vector<double> gather_totals(const AnnualGridCounts& grid, const Counts& c);
     void gather_loadings(const Counts& c, const AnnualDarkRates& dark);
-    std::size_t sky_entries_total() const { return annual_.sky->sky_entries(); }
     void sky_coefficients(const Counts& counts);
     void sun_priors(const Counts& counts);
     void sun_coefficients(const Counts& counts);

@@ -21,12 +21,15 @@ namespace luxtrace {
 
 class EmbreeScene;
 class GatherPatches;
+struct Material;
 struct Scene;
 
 // The panes (glazing, or glass of index 1) a gather ray passes or is reflected by before
 // what lies behind counts no more; the tracer keeps a photon's light the gather's through as
 // many (tracer.hpp).
 inline constexpr int kGatherPanes = 4;
+// Such a pane: glazing with its curves, or glass of index 1 (an open hole).
+bool gather_pane(const Material& m);
 
 struct SensorGatherOptions {
     int rays = 4096;  // per cell, the square of an even number (AnnualOptions::valid_direct_rays)

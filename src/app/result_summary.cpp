@@ -219,9 +219,17 @@ void print_grid_metrics(const ResultReader& r, const std::string& g, std::ostrea
 
 void print_detector(const ResultReader& r, const std::string& name, std::ostream& out) {
     const std::string g = "/detectors/" + name;
+    // An annual grid's photons carry every hour's sky and sun at once: their plain mean and
+    // grid metrics are no illuminance (with the direct light by shadow rays or the gather,
+    // only a part of one); its year is what it says.
+    if (r.has("/annual/detectors/" + name)) {
+        out << "detector " << std::left << std::setw(14) << name << std::right << " " << r.attr_str(g, "type")
+            << ", an annual grid:\n";
+        print_annual_grid(r, name, out);
+        return;
+    }
     print_detector_means(r, name, g, out);
     print_grid_metrics(r, g, out);
-    print_annual_grid(r, name, out);
 }
 
 // Each observer's UGR with its background luminance, and the maintained UGR.

@@ -95,46 +95,57 @@ TEST(TallyLayout, GatheredSlotsAreTheirOwnAndColumnByColumn) {
     const TallyLayout plain(3, TallyDims{1, groups, 1, 0, true, {1, 1}, {}, 0}, {4, 6});
     EXPECT_TRUE(L.gathered(0));
     EXPECT_FALSE(L.gathered(1));
-    EXPECT_EQ(L.size(), plain.size() + (4 * 3 + 2) * groups);  // three words per cell and column, two the grid's
+    constexpr std::size_t W = TallyLayout::kGatherWords, T = TallyLayout::kGatherTotalWords;
+    EXPECT_EQ(W, 2 + TallyLayout::kGatherRegions);  // Y, Y^2 and Y T_r per region
+    EXPECT_EQ(L.size(), plain.size() + (4 * W + T) * groups);
     std::set<std::size_t> seen;
     for (std::size_t d = 0; d < 2; ++d)
         for (std::size_t c = 0; c < (d == 0 ? 4u : 6u); ++c)
             for (std::size_t g = 0; g < groups; ++g) {
                 seen.insert({L.detector_n(d, c, 0, g), L.detector_q(d, c, 0, g), L.detector_direct(d, c, g)});
                 if (d == 0) {
-                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g)).second);
-                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 1).second);
-                    EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + 2).second);
+                    for (std::size_t w = 0; w < W; ++w)
+                        EXPECT_TRUE(seen.insert(L.detector_gathered(d, c, g) + w).second);
                     if (c == 0) {
-                        EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g)).second);
-                        EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g) + 1).second);
-                        EXPECT_LT(L.detector_gathered_total(d, g) + 1, L.size());
+                        for (std::size_t w = 0; w < T; ++w)
+                            EXPECT_TRUE(seen.insert(L.detector_gathered_total(d, g) + w).second);
+                        EXPECT_LT(L.detector_gathered_total(d, g) + T - 1, L.size());
                     }
-                    EXPECT_LT(L.detector_gathered(d, c, g) + 1, L.size());
+                    EXPECT_LT(L.detector_gathered(d, c, g) + W - 1, L.size());
                     // A column's cells lie together.
-                    EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + 3 * c);
+                    EXPECT_EQ(L.detector_gathered(d, c, g), L.detector_gathered(d, 0, g) + W * c);
                     if (g + 1 < groups) {
                         EXPECT_EQ(L.detector_gathered(d, c, g) + L.gathered_column_stride(d),
                                   L.detector_gathered(d, c, g + 1));
                     }
                 }
             }
+    // The regions' pairs fill the upper triangle once each, row by row.
+    std::set<std::size_t> pairs;
+    for (std::size_t r = 0; r < TallyLayout::kGatherRegions; ++r)
+        for (std::size_t q = r; q < TallyLayout::kGatherRegions; ++q) {
+            EXPECT_TRUE(pairs.insert(TallyLayout::gather_pair(r, q)).second);
+            EXPECT_LT(TallyLayout::gather_pair(r, q), TallyLayout::kGatherPairs);
+        }
+    EXPECT_EQ(pairs.size(), TallyLayout::kGatherPairs);
 }
 
 TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseReflection) {
     const TallyLayout L(3, TallyDims{1, 2, 1, 0, true, {1}, {1}, 0}, {3});
     TallyStore store(L);
     const std::size_t total = L.detector_gathered_total(0, 0);
-    const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0), total},
-                                 {L.detector_gathered(0, 1, 0), L.gathered_column_stride(0), total},
-                                 {L.detector_gathered(0, 2, 0), L.gathered_column_stride(0), total}};
+    // Cells 0, 1 and 2 in regions 0, 3 and 1.
+    const GatherSlot slots[3] = {{L.detector_gathered(0, 0, 0), L.gathered_column_stride(0), total, 0},
+                                 {L.detector_gathered(0, 1, 0), L.gathered_column_stride(0), total, 3},
+                                 {L.detector_gathered(0, 2, 0), L.gathered_column_stride(0), total, 1}};
     const std::uint64_t big = std::uint64_t{3} << 30;  // Y^2 beyond 64 bits before the shift
+    constexpr std::uint32_t u = 1u << 12;              // u^2 = 2^24: the scaled products exact
     {
         TallyBuffer out(store);
         PhotonTally t;
         for (int photon = 0; photon < 2; ++photon) {
             t.begin(L.bin(0, 1, 0, photon == 1));
-            const GatherEntry first[2] = {{0, 3}, {2, 7}}, second[1] = {{0, 5}};
+            const GatherEntry first[2] = {{0, 3 * u}, {2, 7 * u}}, second[1] = {{0, 5 * u}};
             t.gather(first, slots);
             t.gather(second, slots);
             t.registrations().push_back({0, 1, false, true});   // after a diffuse reflection: the gather's
@@ -150,19 +161,30 @@ TEST(PhotonTally, GatheredSumsAndSquaresPerPhotonAndNoDiscCountAfterADiffuseRefl
     auto square = [&](std::uint64_t y) {
         return static_cast<std::uint64_t>((static_cast<long double>(y) * y) / (1 << s) + 0.5L);
     };
-    EXPECT_EQ(store[L.detector_gathered(0, 0, 1)], 2u * 8u);  // two photons, 3 + 5 each
-    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 1], 2u * ((64u + (1u << (s - 1))) >> s));
-    EXPECT_EQ(store[L.detector_gathered(0, 2, 1)], 14u);
-    // Y T: cell 0's 8 and cell 2's 7 against the photon's total 15.
-    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 2], 2u * ((120u + (1u << (s - 1))) >> s));
-    EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 2], square(big));
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1)], 2u * 8u * u);  // two photons, 3 + 5 each
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 1], 2u * 64u);
+    EXPECT_EQ(store[L.detector_gathered(0, 2, 1)], 14u * u);
+    // Y T_r: cell 0's 8 (region 0) and cell 2's 7 (region 1) against each region's total.
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 2], 2u * 64u);
+    EXPECT_EQ(store[L.detector_gathered(0, 0, 1) + 3], 2u * 56u);
+    EXPECT_EQ(store[L.detector_gathered(0, 2, 1) + 2], 2u * 56u);
+    EXPECT_EQ(store[L.detector_gathered(0, 2, 1) + 3], 2u * 49u);
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 2 + 3], square(big));  // its own region's
+    EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 2], 0u);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 1)], 0u);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0)], big);
     EXPECT_EQ(store[L.detector_gathered(0, 1, 0) + 1], square(big));
-    // The grid's total per photon: 3 + 7 + 5 = 15 for each of the two, the huge one alone.
-    EXPECT_EQ(store[L.detector_gathered_total(0, 1)], 30u);
-    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + 1], 2u * ((225u + (1u << (s - 1))) >> s));
-    EXPECT_EQ(store[L.detector_gathered_total(0, 0)], big);
+    // The regions' totals per photon: 8 and 7 for each of the two, the huge one alone in 3.
+    const std::size_t R = TallyLayout::kGatherRegions;
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1)], 16u * u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + 1], 14u * u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + 3], 0u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + R + TallyLayout::gather_pair(0, 0)], 2u * 64u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + R + TallyLayout::gather_pair(0, 1)], 2u * 56u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 1) + R + TallyLayout::gather_pair(1, 1)], 2u * 49u);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 0) + 3], big);
+    EXPECT_EQ(store[L.detector_gathered_total(0, 0) + R + TallyLayout::gather_pair(3, 3)], square(big));
+    EXPECT_EQ(store[L.detector_gathered_total(0, 0) + R + TallyLayout::gather_pair(0, 3)], 0u);
     EXPECT_EQ(store[L.detector_n(0, 1, 0, 1)], 2u);  // the mirror's registrations only
     EXPECT_EQ(store[L.detector_q(0, 1, 0, 1)], 2u);
 }

@@ -1,11 +1,13 @@
 #include "luxtrace/estimate/annual_coefficients.hpp"
 
+#include "luxtrace/estimate/gather_factors.hpp"
 #include "luxtrace/sampler/normal_quantile.hpp"
 #include "luxtrace/sampler/philox_bits.hpp"
 
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -59,18 +61,21 @@ struct AnnualCoefficients::Counts {
                                      TallyLayout::kGatherSquareShift)
                         : 0.0;
     }
-    // Sum of Y T (units^2), T the photon's sum over the grid.
-    double gather_x(std::size_t cell, std::size_t group) const {
-        return gathered ? std::ldexp(static_cast<double>(data[layout.detector_gathered(det, first + cell, group) + 2]),
-                                     TallyLayout::kGatherSquareShift)
-                        : 0.0;
+    // Sum of Y T_r (units^2), T_r the photon's sum over region r of the grid.
+    double gather_x(std::size_t cell, std::size_t group, std::size_t r) const {
+        return gathered
+                   ? std::ldexp(static_cast<double>(data[layout.detector_gathered(det, first + cell, group) + 2 + r]),
+                                TallyLayout::kGatherSquareShift)
+                   : 0.0;
     }
-    // The grid's total per photon, as one cell (TallyLayout::detector_gathered_total).
-    double gather_total_y(std::size_t group) const {
-        return static_cast<double>(data[layout.detector_gathered_total(det, group)]);
+    // The regions' totals per photon, as cells (TallyLayout::detector_gathered_total): the
+    // sum of T_r (units) and of T_r T_s (units^2).
+    double gather_total_y(std::size_t group, std::size_t r) const {
+        return static_cast<double>(data[layout.detector_gathered_total(det, group) + r]);
     }
-    double gather_total_q(std::size_t group) const {
-        return std::ldexp(static_cast<double>(data[layout.detector_gathered_total(det, group) + 1]),
+    double gather_total_q(std::size_t group, std::size_t r, std::size_t s) const {
+        return std::ldexp(static_cast<double>(data[layout.detector_gathered_total(det, group) +
+                                                   TallyLayout::kGatherRegions + TallyLayout::gather_pair(r, s)]),
                           TallyLayout::kGatherSquareShift);
     }
     double direct(std::size_t cell, std::size_t group) const {
@@ -165,20 +170,27 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
     sun_coefficients(counts);
 }
 
-// Each cell's loading on its group's common draw: its noise's correlation with the grid's
-// total's, a = (X_c - Y_c Y_T / N) / (sd_c sd_T), so that the replicates' draws,
-// sigma_c (a_c Z_g + sqrt(1 - a_c^2) Z_c), move with the grid as the cell's light does
-// (one photon lights many sensors; the cells nearer each other more alike).
+// Each cell's loadings on its group's common draws (estimate/gather_factors.hpp), so that
+// the replicates' draws move with the grid's regions as the cell's light does (one photon
+// lights many sensors; the cells nearer each other more alike).
 void AnnualCoefficients::gather_loadings(const Counts& c, const AnnualDarkRates& dark) {
     const AnnualSky& sky = *annual_.sky;
-    auto loadings = [&](std::size_t group, std::vector<double>& out) {
-        const double yt = 2 * group + 1 < dark.gather_total.size() ? dark.gather_total[2 * group] : 0.0;
-        const double sdt = 2 * group + 1 < dark.gather_total.size() ? dark.gather_total[2 * group + 1] : 0.0;
+    const double photons = inv_photons_ > 0.0 ? 1.0 / inv_photons_ : 0.0;
+    auto loadings = [&](std::size_t group, std::vector<float>& out) {
+        const std::size_t at = group * kGatherFactorWords;
+        if (at + kGatherFactorWords > dark.gather_total.size()) {
+            out.resize(out.size() + cells_ * kGatherRegions, 0.0F);
+            return;
+        }
+        const std::span<const double> factor(dark.gather_total.data() + at, kGatherFactorWords);
+        std::array<double, kGatherRegions> x{};
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             const double y = c.gather_y(cell, group);
             const double sd = std::sqrt(std::max(0.0, c.gather_q(cell, group) - y * y * inv_photons_));
-            const double cov = c.gather_x(cell, group) - y * yt * inv_photons_;
-            out.push_back(sd > 0.0 && sdt > 0.0 ? std::clamp(cov / (sd * sdt), -1.0, 1.0) : 0.0);
+            for (std::size_t r = 0; r < kGatherRegions; ++r) x[r] = c.gather_x(cell, group, r);
+            out.resize(out.size() + kGatherRegions);
+            gather_cell_loadings(factor, y, sd, x, photons,
+                                 std::span<float>(out.data() + out.size() - kGatherRegions, kGatherRegions));
         }
     };
     for (std::size_t e = 0; e < sky.sky_entries(); ++e) loadings(c.sky_group(e), sky_loading_);
@@ -266,18 +278,22 @@ AnnualDarkRates AnnualCoefficients::dark_rates(const AnnualGridCounts& grid) {
     return r;
 }
 
-// Per light group, the grid's total per photon T: its sum (units) and the standard deviation
-// of its sum (units), sqrt(Q_T - Y_T^2 / N), from which each cell's covariance with it
-// follows (the constructor).
+// Per light group, its factor (estimate/gather_factors.hpp) from the regions' totals per
+// photon, from which each cell's loadings follow (the constructor).
 std::vector<double> AnnualCoefficients::gather_totals(const AnnualGridCounts& grid, const Counts& c) {
-    const double inv_n = grid.photons > 0 ? 1.0 / static_cast<double>(grid.photons) : 0.0;
-    std::vector<double> totals(2 * grid.layout.groups(), 0.0);
+    std::vector<double> factors(kGatherFactorWords * grid.layout.groups(), 0.0);
+    std::array<double, kGatherRegions> sums{};
+    std::array<double, TallyLayout::kGatherPairs> products{};
     for (std::size_t g = 0; g < grid.layout.groups(); ++g) {
-        const double y = c.gather_total_y(g);
-        totals[2 * g] = y;
-        totals[2 * g + 1] = std::sqrt(std::max(0.0, c.gather_total_q(g) - y * y * inv_n));
+        for (std::size_t r = 0; r < kGatherRegions; ++r) {
+            sums[r] = c.gather_total_y(g, r);
+            for (std::size_t q = r; q < kGatherRegions; ++q)
+                products[TallyLayout::gather_pair(r, q)] = c.gather_total_q(g, r, q);
+        }
+        gather_group_factor(sums, products, static_cast<double>(grid.photons),
+                            std::span<double>(factors.data() + g * kGatherFactorWords, kGatherFactorWords));
     }
-    return totals;
+    return factors;
 }
 
 // The replicates' centre for a sun's interreflected count (empirical Bayes): light too rare
@@ -645,8 +661,9 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     std::vector<double> common_sky, common_sun;
     if (!sun_gather_.empty()) {
         PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
-        for (std::size_t e = 0; e < annual_.sky->sky_entries(); ++e) common_sky.push_back(standard_normal(bits));
-        for (std::size_t s = 0; s < suns; ++s) common_sun.push_back(standard_normal(bits));
+        for (std::size_t e = 0; e < annual_.sky->sky_entries() * kGatherRegions; ++e)
+            common_sky.push_back(standard_normal(bits));
+        for (std::size_t s = 0; s < suns * kGatherRegions; ++s) common_sun.push_back(standard_normal(bits));
     }
     for (std::size_t cell = 0; cell < cells_; ++cell) {
         // The cell's own stream: (seed, replicate, its index in the grid).
@@ -661,13 +678,17 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
         // The shadow rays' direct light and the gathered light: normal around their values
         // with their own variances.
         auto normal_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
-        // The gathered light's: its part common to the grid (loading a, draw common) and its
-        // own, sqrt(1 - a^2).
+        // The gathered light's: its part common to the grid (loadings a, draws z) and its
+        // own, sqrt(1 - |a|^2).
         // (By the quantile: thousands of these per cell and replicate.)
-        auto gathered_draw = [&](double var, double loading, double common) {
-            return var > 0.0 ? std::sqrt(var) *
-                                   (loading * common + std::sqrt(1.0 - loading * loading) * standard_normal(bits))
-                             : 0.0;
+        auto gathered_draw = [&](double var, const float* a, const double* z) {
+            if (!(var > 0.0)) return 0.0;
+            double common = 0.0, a2 = 0.0;
+            for (std::size_t r = 0; r < kGatherRegions; ++r) {
+                common += a[r] * z[r];
+                a2 += static_cast<double>(a[r]) * a[r];
+            }
+            return std::sqrt(var) * (common + std::sqrt(std::max(0.0, 1.0 - a2)) * standard_normal(bits));
         };
         // The gather's rays' error: one relative draw for all the cell's light and hours.
         const double rays = gather_rel_var_.empty() ? 0.0 : std::sqrt(gather_rel_var_[cell]) * standard_normal(bits);
@@ -676,7 +697,8 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             sky[i] += draw(sky_var_[i]);
             if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
             if (!sky_gather_var_.empty())
-                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], sky_loading_[i], common_sky[e]);
+                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], &sky_loading_[i * kGatherRegions],
+                                                                &common_sky[e * kGatherRegions]);
         }
         // A sun: its direct count around its pooled mean (its indirect count: below).
         for (std::size_t s = 0; s < suns; ++s) {
@@ -685,8 +707,9 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(shadow_sun_var_[i]);
             else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
             if (!sun_gather_.empty())
-                gathered[i] = (1.0 + rays) * sun_gather_[i] +
-                              gathered_draw(sun_gather_var_[i], sun_loading_[i], common_sun[s]);
+                gathered[i] = (1.0 + rays) * sun_gather_[i] + gathered_draw(sun_gather_var_[i],
+                                                                            &sun_loading_[i * kGatherRegions],
+                                                                            &common_sun[s * kGatherRegions]);
         }
     }
     draw_sun_indirect(seed, replicate, indirect);

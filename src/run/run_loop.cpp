@@ -3,6 +3,7 @@
 #include "luxtrace/annual/annual_grid.hpp"
 
 #include "luxtrace/core/error.hpp"
+#include "luxtrace/estimate/gather_factors.hpp"
 #include "luxtrace/estimate/result_estimates.hpp"
 #include "luxtrace/io/annual_ladybug.hpp"
 #include "luxtrace/io/atomic_file.hpp"
@@ -425,8 +426,8 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
             dark = {d.total, d.direct};
             dark.insert(dark.end(), d.gather_total.begin(), d.gather_total.end());
         });
-    // A gathered grid's totals, two per light group, after the two rates.
-    if (layout_.gathered(det)) dark.resize(2 + 2 * layout_.groups(), 0.0);
+    // A gathered grid's factors, per light group, after the two rates.
+    if (layout_.gathered(det)) dark.resize(2 + kGatherFactorWords * layout_.groups(), 0.0);
     comm_.broadcast(dark);
     // Each rank's cells' counts: their n and q, their direct counts and their gathered
     // sums, where rank 0 keeps them in totals_.

@@ -21,35 +21,43 @@ void PhotonTally::end(const TallyLayout& layout, TallyLayout::Counter fate, Tall
 }
 
 void PhotonTally::add_gathered(TallyBuffer& out) {
-    // Per cell Y, Y^2 / 2^s and Y T / 2^s, T the photon's sum over the cell's grid; per grid
-    // T and T^2 / 2^s (in 128 bits on the way: no overflow).
+    // Per cell Y, Y^2 / 2^s and Y T_r / 2^s, T_r the photon's sum over region r of the cell's
+    // grid; per grid T_r and T_r T_q / 2^s (in 128 bits on the way: no overflow).
     __extension__ using Wide = unsigned __int128;
     constexpr int s = TallyLayout::kGatherSquareShift;
+    constexpr std::size_t R = TallyLayout::kGatherRegions;
     auto scaled = [](std::uint64_t a, std::uint64_t b) {
         return static_cast<std::uint64_t>((static_cast<Wide>(a) * b + (Wide{1} << (s - 1))) >> s);
     };
-    auto total_of = [&](std::size_t slot) {
+    auto totals_of = [&](std::size_t slot) {
         return std::find_if(totals_.begin(), totals_.end(), [&](const auto& x) { return x.first == slot; });
     };
     totals_.clear();
     for (const std::uint32_t cell : touched_) {
-        const std::size_t slot = slots_[cell].total;
-        const auto t = total_of(slot);
-        if (t == totals_.end()) totals_.emplace_back(slot, gathered_[cell]);
-        else t->second += gathered_[cell];
+        const GatherSlot& g = slots_[cell];
+        auto t = totals_of(g.total);
+        if (t == totals_.end()) t = totals_.insert(t, {g.total, {}});
+        t->second[g.region] += gathered_[cell];
     }
     for (const std::uint32_t cell : touched_) {
-        const std::uint64_t y = gathered_[cell], total = total_of(slots_[cell].total)->second;
+        const std::uint64_t y = gathered_[cell];
         const GatherSlot& g = slots_[cell];
+        const auto& total = totals_of(g.total)->second;
         const std::size_t slot = g.first + bin_.detector_column * g.column_stride;
-        out.add(slot, y);
-        out.add(slot + 1, scaled(y, y));
-        out.add(slot + 2, scaled(y, total));
+        out.add_through(slot, y);
+        out.add_through(slot + 1, scaled(y, y));
+        for (std::size_t r = 0; r < R; ++r)
+            if (total[r] != 0) out.add_through(slot + 2 + r, scaled(y, total[r]));
         gathered_[cell] = 0;
     }
-    for (const auto& [slot, t] : totals_) {
-        out.add(slot + bin_.detector_column * 2, t);
-        out.add(slot + bin_.detector_column * 2 + 1, scaled(t, t));
+    for (const auto& [first, t] : totals_) {
+        const std::size_t slot = first + bin_.detector_column * TallyLayout::kGatherTotalWords;
+        for (std::size_t r = 0; r < R; ++r) {
+            if (t[r] == 0) continue;
+            out.add(slot + r, t[r]);
+            for (std::size_t q = r; q < R; ++q)
+                if (t[q] != 0) out.add(slot + R + TallyLayout::gather_pair(r, q), scaled(t[r], t[q]));
+        }
     }
     touched_.clear();
 }

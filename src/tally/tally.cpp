@@ -26,7 +26,7 @@ TallyLayout::TallyLayout(std::size_t triangles, const TallyDims& dims, const std
     }
     for (std::size_t d = 0; d < det_cells_.size(); ++d) {
         gather_offset_.push_back(size_);
-        if (gathered(d)) size_ += (det_cells_[d] * kGatherWords + 2) * detector_columns();
+        if (gathered(d)) size_ += (det_cells_[d] * kGatherWords + kGatherTotalWords) * detector_columns();
     }
     gather_sites_begin_ = size_;
     size_ += dims_.gather_sites;

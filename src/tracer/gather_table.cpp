@@ -2,13 +2,48 @@
 
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tally/tally.hpp"
+#include "luxtrace/tracer/cell_geometry.hpp"
 #include "luxtrace/tracer/sensor_gather.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace luxtrace {
+
+std::vector<std::size_t> gather_regions(const Detector& d, std::size_t regions) {
+    const CellGeometry geometry{d};
+    const std::size_t cells = static_cast<std::size_t>(d.cells());
+    std::vector<Vec3> centre(cells);
+    for (std::size_t c = 0; c < cells; ++c) centre[c] = geometry.position(c, 0.5, 0.5);
+    std::vector<std::size_t> order(cells), region(cells, 0);
+    for (std::size_t c = 0; c < cells; ++c) order[c] = c;
+    // Split [first, last) of `order` into `parts` regions from `base`.
+    auto split = [&](auto&& self, std::size_t first, std::size_t last, std::size_t base, std::size_t parts) -> void {
+        if (parts <= 1 || last - first < 2) {
+            for (std::size_t i = first; i < last; ++i) region[order[i]] = base;
+            return;
+        }
+        Vec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+        for (std::size_t i = first; i < last; ++i) {
+            lo = glm::min(lo, centre[order[i]]);
+            hi = glm::max(hi, centre[order[i]]);
+        }
+        const Vec3 extent = hi - lo;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        // Ties by index: the same regions on every rank and compiler.
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(first), order.begin() + static_cast<std::ptrdiff_t>(last),
+                  [&](std::size_t a, std::size_t b) {
+                      return centre[a][axis] != centre[b][axis] ? centre[a][axis] < centre[b][axis] : a < b;
+                  });
+        const std::size_t mid = first + (last - first) / 2;
+        self(self, first, mid, base, parts / 2);
+        self(self, mid, last, base + parts / 2, parts / 2);
+    };
+    split(split, 0, cells, 0, regions);
+    return region;
+}
 
 GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout) {
     if (!layout.any_gathered() || !scene.annual) return;
@@ -41,6 +76,7 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
         const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
         first_cell_[det] = cells_;
+        const std::vector<std::size_t> region = gather_regions(scene.detectors[det], TallyLayout::kGatherRegions);
         for (std::size_t c = 0; c < cells; ++c) {
             form_offset_.push_back(form_.size());
             form_.insert(form_.end(), g.form.begin() + static_cast<std::ptrdiff_t>(g.form_offset[c]),
@@ -48,7 +84,7 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         }
         for (std::size_t c = 0; c < cells; ++c) {
             slots_.push_back({layout.detector_gathered(det, c, 0), layout.gathered_column_stride(det),
-                              layout.detector_gathered_total(det, 0)});
+                              layout.detector_gathered_total(det, 0), region[c]});
             for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
                 const std::size_t patch = g.site[i] % patches_.count();
                 const double w = g.weight_sr[i] * site_rho_pi_[patch] / patches_.area_m2(patch);

@@ -58,10 +58,10 @@ struct AnnualGridCounts {
 // neighbouring days read nothing: its total and its direct count, over the whole grid.
 struct AnnualDarkRates {
     double total = 0.5, direct = 0.5;
-    // With a gather, per light group (2 g, 2 g + 1): the grid's total's sum Y_T and its
-    // standard deviation sd_T, in units (AnnualCoefficients::gather_totals), from which each
-    // cell's correlation with the grid follows: the replicates draw each cell's noise as a
-    // common part plus its own, so that a grid figure's error holds the correlation.
+    // With a gather, per light group (kGatherFactorWords from g kGatherFactorWords): its
+    // factor (estimate/gather_factors.hpp, AnnualCoefficients::gather_totals), from which
+    // each cell's loadings follow: the replicates draw each cell's noise as a common part
+    // plus its own, so that a grid figure's error holds the cells' correlation.
     std::vector<double> gather_total;
 };
 
@@ -141,8 +141,9 @@ private:
     // The gathered part (empty without a gather): its variance per [entry][cell], and per
     // [sun][cell] the sun's own (unpooled) value and variance.
     std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
-    // Per [entry][cell] and [sun][cell]: the cell's loading on its group's common draw.
-    std::vector<double> sky_loading_, sun_loading_;
+    // Per [entry][cell] and [sun][cell], kGatherRegions each: the cell's loadings on its
+    // group's common draws.
+    std::vector<float> sky_loading_, sun_loading_;
     // The gathered value per [entry][cell] and, pooled, per [sun][cell]; per cell the
     // relative variance of the gather's own rays (DirectCoefficients::gather_rel_var), an
     // error common to every hour.

@@ -8,6 +8,7 @@
 // squared (eq. 6's q_c, a side's repeats) is kept until the photon ends.
 #include "luxtrace/tally/tally.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -22,9 +23,11 @@ struct GatherEntry {
 };
 
 // A gathered cell's slot in column 0 (TallyLayout::detector_gathered), the step from one
-// column to the next, and its grid's total slot in column 0 (detector_gathered_total).
+// column to the next, its grid's totals' slot in column 0 (detector_gathered_total), and
+// the grid's region it lies in (< TallyLayout::kGatherRegions).
 struct GatherSlot {
     std::size_t first = 0, column_stride = 0, total = 0;
+    std::size_t region = 0;
 };
 
 // A detector cell the photon registered in.
@@ -85,7 +88,8 @@ private:
     std::span<const GatherSlot> slots_;
     std::vector<std::uint64_t> gathered_;
     std::vector<std::uint32_t> touched_;
-    std::vector<std::pair<std::size_t, std::uint64_t>> totals_;  // scratch: per grid total slot, Y
+    // Scratch: per grid (its totals' slot), the photon's Y summed over each region.
+    std::vector<std::pair<std::size_t, std::array<std::uint64_t, TallyLayout::kGatherRegions>>> totals_;
 };
 
 }  // namespace luxtrace

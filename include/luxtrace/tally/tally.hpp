@@ -171,23 +171,31 @@ public:
     }
     // The gathered light of `cell` in a detector column (gathered detectors only): the sum
     // over photons of Y, the photon's gathered value in the table's integer units, then the
-    // sum of Y^2 / 2^kGatherSquareShift (rounded), like n_c and q_c, then the sum of Y T /
-    // 2^kGatherSquareShift, T the photon's Y summed over the grid's cells (its covariance
-    // with the grid's total: how the cell's error moves with the others'). Three words,
-    // column by column: a photon adds to many cells of its own column, which then lie
-    // together.
+    // sum of Y^2 / 2^kGatherSquareShift (rounded), like n_c and q_c, then for each of the
+    // grid's kGatherRegions regions r the sum of Y T_r / 2^kGatherSquareShift, T_r the
+    // photon's Y summed over the region's cells (GatherSlot::region): its covariance with
+    // each part of the grid, how the cell's error moves with the others'
+    // (estimate/gather_factors.hpp). kGatherWords words, column by column: a photon adds
+    // to many cells of its own column, which then lie together.
     bool gathered(std::size_t det) const { return det < dims_.gathered.size() && dims_.gathered[det] != 0; }
     bool any_gathered() const { return !dims_.gathered.empty(); }
     std::size_t detector_gathered(std::size_t det, std::size_t cell, std::size_t column) const {
         return gather_offset_[det] + (column * det_cells_[det] + cell) * kGatherWords;
     }
-    static constexpr std::size_t kGatherWords = 3;
+    static constexpr std::size_t kGatherRegions = 4;
+    static constexpr std::size_t kGatherWords = 2 + kGatherRegions;
     // From a cell's slot in one column to the next column's.
     std::size_t gathered_column_stride(std::size_t det) const { return det_cells_[det] * kGatherWords; }
-    // The whole grid as one cell: per column, the sum over photons of T, then of
-    // T^2 / 2^kGatherSquareShift.
+    // The regions' totals: per column, the sums over photons of T_r (kGatherRegions words),
+    // then of T_r T_s / 2^kGatherSquareShift for r <= s, row by row (gather_pair(r, s)).
     std::size_t detector_gathered_total(std::size_t det, std::size_t column) const {
-        return gather_offset_[det] + detector_columns() * det_cells_[det] * kGatherWords + column * 2;
+        return gather_offset_[det] + detector_columns() * det_cells_[det] * kGatherWords + column * kGatherTotalWords;
+    }
+    static constexpr std::size_t kGatherPairs = kGatherRegions * (kGatherRegions + 1) / 2;
+    static constexpr std::size_t kGatherTotalWords = kGatherRegions + kGatherPairs;
+    // Where T_r T_s (r <= s) lies after the kGatherRegions sums: row r of the upper triangle.
+    static constexpr std::size_t gather_pair(std::size_t r, std::size_t s) {
+        return r * kGatherRegions - r * (r - 1) / 2 + (s - r);
     }
     static constexpr int kGatherSquareShift = 24;
     // The arrivals on gather site i, all photons (TallyDims::gather_sites).
@@ -273,6 +281,10 @@ public:
             h = (h + 1) & (kCapacity - 1);
         }
     }
+    // Straight to the store, past the buffer: words a photon adds once and the next
+    // photons seldom (a gathered cell's, TallyLayout::detector_gathered), which the buffer
+    // could only hash and hand on.
+    void add_through(std::size_t index, std::uint64_t value) { store_.add(index, value); }
     void flush();
 
 private:

@@ -28,7 +28,15 @@ namespace luxtrace {
 
 class EmbreeScene;
 class TallyLayout;
+struct Detector;
 struct Scene;
+
+// Each cell's region of a gathered grid (GatherSlot::region), `regions` a power of two:
+// the cells' centres halved at the median along the longest side of their bounds, each
+// half again, until `regions` parts of equal counts (to one cell), near cells together.
+// The regions' totals are what the replicates' common draws keep apart
+// (estimate/gather_factors.hpp): the back of a room moves with the back, not with the window.
+std::vector<std::size_t> gather_regions(const Detector& d, std::size_t regions);
 
 class GatherTable {
 public:

@@ -2,8 +2,9 @@
 # Error against CPU time of the annual example's sky and ground, with the direct light by
 # photons and by shadow rays (issue 37 §2; docs/PERFORMANCE.md "Annual daylight with the
 # direct light by shadow rays"). The example (examples/annual/annual_office.toml) is copied
-# to a temporary directory twice, as it is and with [annual] direct = "shadow_rays" (its
-# two file paths made absolute), and run on 1 rank x 2 threads:
+# to a temporary directory twice, without its `direct` and `indirect` keys (all photons) and
+# with [annual] direct = "shadow_rays" alone (its two file paths made absolute), and run on
+# 1 rank x 2 threads:
 #   - once long (REFERENCE photons, seed 99) each way: the reference;
 #   - at each of BUDGETS photons with SEEDS seeds each way, timed by /usr/bin/time (user +
 #     system CPU seconds of the whole command: loading, the shadow rays, tracing and the
@@ -30,7 +31,7 @@ work=$(mktemp -d /tmp/annual_direct_speed.XXXXXX)
 
 absolute() {
     sed -e "s|\"\\.\\./\\.\\./tests/|\"$repo/tests/|" -e "s|^points = \"work_plane.pts\"|points = \"$repo/examples/annual/work_plane.pts\"|" \
-        "$repo/examples/annual/annual_office.toml"
+        -e '/^direct = /d' -e '/^indirect = /d' "$repo/examples/annual/annual_office.toml"
 }
 absolute > "$work/photons.toml"
 absolute | sed 's|^\[annual\]|[annual]\ndirect = "shadow_rays"|' > "$work/shadow.toml"

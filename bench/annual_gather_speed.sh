@@ -35,6 +35,7 @@ repo, work = sys.argv[1], sys.argv[2]
 s = open(f"{repo}/examples/annual/annual_office.toml").read()
 s = s.replace('"../../tests/', f'"{repo}/tests/').replace('points = "work_plane.pts"', f'points = "{repo}/examples/annual/work_plane.pts"')
 s = re.sub(r'\[\[detector\]\]\nname = "work_plane".*?(?=\[\[detector\]\])', "", s, flags=re.S)
+s = re.sub(r'^(direct|indirect) = .*\n', "", s, flags=re.M)  # the example's own, put back below
 s = s.replace("[annual]\n", '[annual]\ndirect = "shadow_rays"\nindirect = "gather"\n', 1)
 open(f"{work}/gather.toml", "w").write(s)
 open(f"{work}/reference.toml", "w").write(

@@ -59,6 +59,16 @@ void print_annual_lights(const Scene& s, std::ostream& out) {
         << (s.annual->options.sky == "cie" ? "CIE type " + std::to_string(s.annual->options.cie_type)
                                            : std::string("Perez"))
         << " skies, ground reflectance " << s.annual->options.ground_reflectance << '\n';
+    const AnnualOptions& o = s.annual->options;
+    if (!o.shadow_rays()) {
+        out << "  the grids' light: the photons over each sensor's disc\n";
+        return;
+    }
+    out << "  the grids' direct light by shadow rays from each sensor, the light after a diffuse reflection ";
+    if (o.gathers())
+        out << "gathered from the photons' arrivals (" << o.gather_rays << " rays a sensor, patches up to "
+            << o.gather_patch_m << " m)\n";
+    else out << "by the photons over each sensor's disc\n";
 }
 
 }  // namespace

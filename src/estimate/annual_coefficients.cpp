@@ -665,53 +665,65 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             common_sky.push_back(standard_normal(bits));
         for (std::size_t s = 0; s < suns * kGatherRegions; ++s) common_sun.push_back(standard_normal(bits));
     }
-    for (std::size_t cell = 0; cell < cells_; ++cell) {
-        // The cell's own stream: (seed, replicate, its index in the grid).
-        PhiloxBits bits(seed, (replicate << 40) | (first_ + cell));
+    // Each cell's own stream: (seed, replicate, its index in the grid), drawn in the same
+    // order whatever the loops' (the rays, the sky entries, then the suns); the loops run
+    // over the cells innermost, along the [entry][cell] and [sun][cell] rows in memory.
+    struct Stream {
+        PhiloxBits bits;
         std::normal_distribution<double> normal;
-        auto draw = [&](double var) {  // zero-mean noise of variance var
-            if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
-            const double mu = var / k2;
-            if (mu > 1000.0) return k * std::sqrt(mu) * normal(bits);
-            return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(bits)) - mu);
-        };
-        // The shadow rays' direct light and the gathered light: normal around their values
-        // with their own variances.
-        auto normal_draw = [&](double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; };
-        // The gathered light's: its part common to the grid (loadings a, draws z) and its
-        // own, sqrt(1 - |a|^2).
-        // (By the quantile: thousands of these per cell and replicate.)
-        auto gathered_draw = [&](double var, const float* a, const double* z) {
-            if (!(var > 0.0)) return 0.0;
-            double common = 0.0, a2 = 0.0;
-            for (std::size_t r = 0; r < kGatherRegions; ++r) {
-                common += a[r] * z[r];
-                a2 += static_cast<double>(a[r]) * a[r];
-            }
-            return std::sqrt(var) * (common + std::sqrt(std::max(0.0, 1.0 - a2)) * standard_normal(bits));
-        };
-        // The gather's rays' error: one relative draw for all the cell's light and hours.
-        const double rays = gather_rel_var_.empty() ? 0.0 : std::sqrt(gather_rel_var_[cell]) * standard_normal(bits);
-        for (const std::size_t e : entries_) {
-            const std::size_t i = e * cells_ + cell;
-            sky[i] += draw(sky_var_[i]);
-            if (shadow_) sky[i] += normal_draw(shadow_sky_var_[i]);
-            if (!sky_gather_var_.empty())
-                sky[i] += rays * sky_gather_[i] + gathered_draw(sky_gather_var_[i], &sky_loading_[i * kGatherRegions],
-                                                                &common_sky[e * kGatherRegions]);
+        double rays = 0.0;  // the gather's rays' relative error, for all the cell's light and hours
+    };
+    std::vector<Stream> streams;
+    streams.reserve(cells_);
+    for (std::size_t cell = 0; cell < cells_; ++cell) {
+        streams.push_back({PhiloxBits(seed, (replicate << 40) | (first_ + cell)), {}, 0.0});
+        if (!gather_rel_var_.empty())
+            streams.back().rays = std::sqrt(gather_rel_var_[cell]) * standard_normal(streams.back().bits);
+    }
+    auto draw = [&](Stream& c, double var) {  // zero-mean noise of variance var
+        if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
+        const double mu = var / k2;
+        if (mu > 1000.0) return k * std::sqrt(mu) * c.normal(c.bits);
+        return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(c.bits)) - mu);
+    };
+    // The shadow rays' direct light and the gathered light: normal around their values
+    // with their own variances.
+    auto normal_draw = [&](Stream& c, double var) { return var > 0.0 ? std::sqrt(var) * c.normal(c.bits) : 0.0; };
+    // The gathered light's: its part common to the grid (loadings a, draws z) and its own,
+    // sqrt(1 - |a|^2). (By the quantile: thousands of these per cell and replicate.)
+    auto gathered_draw = [&](Stream& c, double var, const float* a, const double* z) {
+        if (!(var > 0.0)) return 0.0;
+        double common = 0.0, a2 = 0.0;
+        for (std::size_t r = 0; r < kGatherRegions; ++r) {
+            common += a[r] * z[r];
+            a2 += static_cast<double>(a[r]) * a[r];
         }
-        // A sun: its direct count around its pooled mean (its indirect count: below).
-        for (std::size_t s = 0; s < suns; ++s) {
+        return std::sqrt(var) * (common + std::sqrt(std::max(0.0, 1.0 - a2)) * standard_normal(c.bits));
+    };
+    for (const std::size_t e : entries_)
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            Stream& c = streams[cell];
+            const std::size_t i = e * cells_ + cell;
+            sky[i] += draw(c, sky_var_[i]);
+            if (shadow_) sky[i] += normal_draw(c, shadow_sky_var_[i]);
+            if (!sky_gather_var_.empty())
+                sky[i] += c.rays * sky_gather_[i] + gathered_draw(c, sky_gather_var_[i],
+                                                                  &sky_loading_[i * kGatherRegions],
+                                                                  &common_sky[e * kGatherRegions]);
+        }
+    // A sun: its direct count around its pooled mean (its indirect count: below).
+    for (std::size_t s = 0; s < suns; ++s)
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            Stream& c = streams[cell];
             const std::size_t i = s * cells_ + cell;
             const double mu_d = rep_direct_mu_[i];
-            if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(shadow_sun_var_[i]);
-            else if (mu_d > 0.0) direct[i] = k * mu_d + draw(k2 * mu_d);
+            if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(c, shadow_sun_var_[i]);
+            else if (mu_d > 0.0) direct[i] = k * mu_d + draw(c, k2 * mu_d);
             if (!sun_gather_.empty())
-                gathered[i] = (1.0 + rays) * sun_gather_[i] + gathered_draw(sun_gather_var_[i],
-                                                                            &sun_loading_[i * kGatherRegions],
-                                                                            &common_sun[s * kGatherRegions]);
+                gathered[i] = (1.0 + c.rays) * sun_gather_[i] + gathered_draw(c, sun_gather_var_[i],
+                                                                              &sun_loading_[i * kGatherRegions],
+                                                                              &common_sun[s * kGatherRegions]);
         }
-    }
     draw_sun_indirect(seed, replicate, indirect);
     pool(indirect, direct, sun);
     if (!gathered.empty()) pool_gathered(gathered, sun);

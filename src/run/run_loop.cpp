@@ -83,6 +83,17 @@ std::string indirect_tag(const Scene& scene) {
     return annual_indirect_tag(o.indirect, o.gather_rays, o.gather_patch_m);
 }
 
+// The ranks share casting the gather's rays (GatherShare), as they share the year's skies.
+GatherShare gather_share(const Communicator& comm) {
+    GatherShare share;
+    share.part = comm.rank();
+    share.parts = comm.size();
+    share.gather = [&comm](std::vector<double>& values, const std::vector<std::size_t>& offsets) {
+        comm.allgather_parts(values, offsets);
+    };
+    return share;
+}
+
 }  // namespace
 
 RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions& opt, std::ostream& out)
@@ -92,7 +103,8 @@ RunLoop::RunLoop(const Scene& scene, const Communicator& comm, const RunOptions&
                     ? RestartState{}
                     : restore_checkpoint(opt.restart, run_, layout_, scene.light_groups, indirect_tag(scene))),
       plan_(restored_.done, run_.photons, item_block(run_.photons, ranks_), ranks_), work_(plan_, comm.rank()),
-      embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)), surfaces_(scene, embree_),
+      embree_(opt.embree != nullptr ? *opt.embree : own_embree_.emplace(scene)),
+      surfaces_(scene, embree_, gather_share(comm)),
       checkpoint_path_(run_.checkpoint.empty() ? run_.output + ".checkpoint.h5" : run_.checkpoint),
       show_(comm.is_root() && !opt.quiet),
       tty_(show_ && ::isatty(STDOUT_FILENO) != 0 && std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr),
@@ -140,6 +152,11 @@ void RunLoop::check_writable() {
 
 void RunLoop::trace() {
     // Once the output is known to be writable, and before the tracing's clock starts.
+    if (show_ && !surfaces_.gather().empty())
+        out_ << "the gather's rays at the annual grids: " << std::fixed << std::setprecision(2)
+             << surfaces_.gather().build_s() << " s (" << surfaces_.gather().cells() << " sensors, shared by " << ranks_
+             << " rank(s))\n"
+             << std::defaultfloat << std::flush;
     if (scene_.annual && scene_.annual->options.shadow_rays()) {
         const double d0 = comm_.wtime();
         annual_direct_ = annual_direct_pass(scene_, embree_, comm_);

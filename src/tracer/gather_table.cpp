@@ -6,6 +6,7 @@
 #include "luxtrace/tracer/sensor_gather.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -45,8 +46,75 @@ std::vector<std::size_t> gather_regions(const Detector& d, std::size_t regions) 
     return region;
 }
 
-GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout) {
+namespace {
+
+// One part of a grid's gather (cells [first, last)) as doubles, cell by cell: its entries'
+// count, then (site, weight) pairs, its form's count, then (a, b, coef) triples.
+void pack_gather(const SensorGather& g, std::vector<double>& out) {
+    for (std::size_t c = 0; c < g.cells; ++c) {
+        out.push_back(static_cast<double>(g.offset[c + 1] - g.offset[c]));
+        for (std::size_t i = g.offset[c]; i < g.offset[c + 1]; ++i) {
+            out.push_back(static_cast<double>(g.site[i]));
+            out.push_back(g.weight_sr[i]);
+        }
+        out.push_back(static_cast<double>(g.form_offset[c + 1] - g.form_offset[c]));
+        for (std::size_t i = g.form_offset[c]; i < g.form_offset[c + 1]; ++i) {
+            out.push_back(static_cast<double>(g.form[i].a));
+            out.push_back(static_cast<double>(g.form[i].b));
+            out.push_back(g.form[i].coef);
+        }
+    }
+}
+
+// The cells packed in [at, end) appended to g.
+void unpack_gather(const std::vector<double>& in, std::size_t at, std::size_t end, SensorGather& g) {
+    auto word = [&](std::size_t i) { return static_cast<std::uint32_t>(in[i]); };
+    while (at < end) {
+        const std::size_t entries = static_cast<std::size_t>(in[at++]);
+        for (std::size_t i = 0; i < entries; ++i, at += 2) {
+            g.site.push_back(word(at));
+            g.weight_sr.push_back(in[at + 1]);
+        }
+        g.offset.push_back(g.site.size());
+        const std::size_t terms = static_cast<std::size_t>(in[at++]);
+        for (std::size_t i = 0; i < terms; ++i, at += 3) g.form.push_back({word(at), word(at + 1), in[at + 2]});
+        g.form_offset.push_back(g.form.size());
+        ++g.cells;
+    }
+}
+
+// Grid det's gather, its cells' rays cast in parts by the ranks (GatherShare): the same as
+// one rank casting them all, since each cell's rays are its own stream.
+SensorGather shared_sensor_gather(const Scene& scene, const EmbreeScene& embree, std::size_t det,
+                                  const SensorGatherOptions& go, std::size_t cells, const GatherShare& share) {
+    if (share.parts <= 1 || !share.gather) return sensor_gather(scene, embree, det, go, 0, cells);
+    const std::size_t parts = static_cast<std::size_t>(share.parts), part = static_cast<std::size_t>(share.part);
+    std::vector<double> mine;
+    pack_gather(sensor_gather(scene, embree, det, go, cells * part / parts, cells * (part + 1) / parts), mine);
+    // Each part's length, then the parts.
+    std::vector<double> sizes(parts, 0.0);
+    std::vector<std::size_t> offsets(parts + 1);
+    for (std::size_t r = 0; r <= parts; ++r) offsets[r] = r;
+    sizes[part] = static_cast<double>(mine.size());
+    share.gather(sizes, offsets);
+    for (std::size_t r = 0; r < parts; ++r) offsets[r + 1] = offsets[r] + static_cast<std::size_t>(sizes[r]);
+    std::vector<double> all(offsets[parts], 0.0);
+    std::copy(mine.begin(), mine.end(), all.begin() + static_cast<std::ptrdiff_t>(offsets[part]));
+    share.gather(all, offsets);
+    SensorGather g;
+    g.offset.push_back(0);
+    g.form_offset.push_back(0);
+    unpack_gather(all, 0, all.size(), g);
+    if (g.cells != cells) throw std::logic_error("gather: the ranks' parts do not make the grid");
+    return g;
+}
+
+}  // namespace
+
+GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout,
+                         const GatherShare& share) {
     if (!layout.any_gathered() || !scene.annual) return;
+    const auto t0 = std::chrono::steady_clock::now();
     const AnnualOptions& o = scene.annual->options;
     patches_ = GatherPatches(scene, o.gather_patch_m);
     const std::size_t sites = 2 * patches_.count();
@@ -74,7 +142,7 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
         go.patches = &patches_;
         go.rays_form = true;
         const std::size_t cells = static_cast<std::size_t>(scene.detectors[det].cells());
-        const SensorGather g = sensor_gather(scene, embree, det, go, 0, cells);
+        const SensorGather g = shared_sensor_gather(scene, embree, det, go, cells, share);
         first_cell_[det] = cells_;
         const std::vector<std::size_t> region = gather_regions(scene.detectors[det], TallyLayout::kGatherRegions);
         for (std::size_t c = 0; c < cells; ++c) {
@@ -108,6 +176,7 @@ GatherTable::GatherTable(const Scene& scene, const EmbreeScene& embree, const Ta
     std::vector<std::size_t> at(offset_.begin(), offset_.end() - 1);
     for (const Kept& k : kept)
         entries_[at[k.site]++] = {k.cell, static_cast<std::uint32_t>(std::lround(k.weight * units))};
+    build_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 std::vector<double> GatherTable::rays_rel_var(std::size_t det, std::size_t cells, std::span<const double> site_lx,

@@ -22,13 +22,14 @@ void SurfaceTable::fill(const Scene& scene, const EmbreeScene& embree, std::size
     r.min_height = longest > 0.0f ? glm::length(glm::cross(r.p1 - r.p0, r.p2 - r.p0)) / longest : 0.0f;
 }
 
-SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree)
+SurfaceTable::SurfaceTable(const Scene& scene, const EmbreeScene& embree, const GatherShare& share)
     : triangles_(new TriangleRecord[scene.triangle_count()]), bands_(scene.band_count()) {
     for_each_index(scene.triangle_count(), 16384, [&](std::size_t t) { fill(scene, embree, t); });
     for (const Material& m : scene.materials)
         for (int b = 0; b < bands_; ++b) models_.push_back(scatter_model(m, b));
     for (const Material& m : scene.materials) panes_.push_back(gather_pane(m) ? 1 : 0);
-    if (scene.annual && scene.annual->options.gathers()) gather_ = GatherTable(scene, embree, tally_layout(scene));
+    if (scene.annual && scene.annual->options.gathers())
+        gather_ = GatherTable(scene, embree, tally_layout(scene), share);
 }
 
 }  // namespace luxtrace

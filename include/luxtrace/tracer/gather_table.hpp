@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -30,6 +31,16 @@ class EmbreeScene;
 class TallyLayout;
 struct Detector;
 struct Scene;
+
+// How the ranks share casting the gather's rays, as AnnualSkyShare shares the year's skies:
+// this rank casts the rays of part `part` of `parts` of every grid's cells, and `gather`
+// (an all-gather in place: each rank holds its part [offsets[part], offsets[part + 1]) of
+// `values`) gives every rank every part; every rank then builds the same table. Without
+// `gather`, one rank casts them all.
+struct GatherShare {
+    int part = 0, parts = 1;
+    std::function<void(std::vector<double>& values, const std::vector<std::size_t>& offsets)> gather;
+};
 
 // Each cell's region of a gathered grid (GatherSlot::region), `regions` a power of two:
 // the cells' centres halved at the median along the longest side of their bounds, each
@@ -43,7 +54,8 @@ public:
     static constexpr int kWeightBits = 24;
     GatherTable() = default;  // gathers nothing
     // The grids `layout` keeps gathered (TallyDims::gathered), their cells on every core.
-    GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout);
+    GatherTable(const Scene& scene, const EmbreeScene& embree, const TallyLayout& layout,
+                const GatherShare& share = {});
 
     bool empty() const { return cells_ == 0; }
     const GatherPatches& patches() const { return patches_; }
@@ -68,6 +80,8 @@ public:
                                      std::span<const double> site_arrivals, std::span<const double> gathered_lx) const;
     std::size_t sites() const { return 2 * patches_.count(); }
     double site_area_m2(std::size_t site) const { return patches_.area_m2(site % patches_.count()); }
+    // Wall seconds this rank spent on the table (its share of the rays, the all-gather).
+    double build_s() const { return build_s_; }
 
 private:
     GatherPatches patches_;
@@ -82,6 +96,7 @@ private:
     std::vector<std::size_t> form_offset_;
     std::vector<FormTerm> form_;
     std::vector<double> site_rho_pi_;  // per patch, rho / pi: a site's luminance per lx
+    double build_s_ = 0.0;
 };
 
 }  // namespace luxtrace

@@ -30,7 +30,7 @@ static_assert(sizeof(TriangleRecord) == 64, "one cache line per triangle");
 class SurfaceTable {
 public:
     // With the scene's gather table (empty unless its annual grids gather).
-    SurfaceTable(const Scene& scene, const EmbreeScene& embree);
+    SurfaceTable(const Scene& scene, const EmbreeScene& embree, const GatherShare& share = {});
     const TriangleRecord& triangle(std::size_t t) const { return triangles_[t]; }
     const ScatterModel& model(std::uint32_t material, int band) const {
         return models_[material * static_cast<std::size_t>(bands_) + static_cast<std::size_t>(band)];

@@ -348,6 +348,46 @@ TEST_F(DirectDaylight, AShadowsEdgeThroughGlassIsNeverReadAsExact) {
     }
 }
 
+// Where a shadow's edge cuts the sun's disc (or a cell's area), the reported sigma is the
+// size of the scatter over the rays' seeds: r = sqrt(mean z^2 K / (K - 1)) over the cut
+// (sun, cell) pairs and 16 seeds, z = (x_k - mean) / sigma_k, lies within [0.8, 1.25]
+// (the plain sample variance of the 16 stratified rays read r about 0.65).
+TEST_F(DirectDaylight, ACutDiscsSigmaIsItsScatterOverTheRaysSeeds) {
+    const Scene scene = load(closed_box(false, false));
+    constexpr std::uint64_t K = 16;
+    for (std::size_t det = 0; det < 2; ++det) {
+        std::vector<DirectCoefficients> runs;
+        for (std::uint64_t seed = 1; seed <= K; ++seed) {
+            DirectDaylightOptions o;
+            o.seed = 100 + seed;
+            runs.push_back(compute(scene, det, o));
+        }
+        double z2 = 0.0;
+        std::size_t terms = 0;
+        for (std::size_t i = 0; i < runs[0].sun_lx.size(); ++i) {
+            double mean = 0.0, lo = runs[0].sun_lx[i], hi = lo;
+            for (const DirectCoefficients& r : runs) {
+                mean += r.sun_lx[i] / K;
+                lo = std::min(lo, r.sun_lx[i]);
+                hi = std::max(hi, r.sun_lx[i]);
+            }
+            if (!(hi - lo > 1e-3 * hi)) continue;  // exact, or dark, in every seed
+            for (const DirectCoefficients& r : runs) {
+                const double sigma = std::sqrt(r.sun_var[i]);
+                ASSERT_GT(sigma, 0.0);
+                z2 += (r.sun_lx[i] - mean) * (r.sun_lx[i] - mean) / (sigma * sigma);
+                ++terms;
+            }
+        }
+        ASSERT_GT(terms, 10 * K) << "detector " << det;
+        const double ratio = std::sqrt(z2 / static_cast<double>(terms) * K / (K - 1));
+        std::cout << "[direct] detector " << det << ": cut discs' scatter / sigma " << ratio << " over " << terms / K
+                  << " (sun, cell) pairs x " << K << " seeds\n";
+        EXPECT_GT(ratio, 0.8) << "detector " << det;
+        EXPECT_LT(ratio, 1.25) << "detector " << det;
+    }
+}
+
 TEST_F(DirectDaylight, ValuesDoNotDependOnWhichCellsAreComputedTogether) {
     const Scene scene = load(roof("pane"));
     const EmbreeScene embree(scene);

@@ -302,7 +302,9 @@ private:
     // passed by: a sensor lying on a floor does not shade itself, and one in the air is not
     // moved (moving it up by the epsilon would enlarge what it sees through an opening).
     double through(std::size_t c, const PhiloxSampler::Block& w, const Vec3& d) {
-        const Vec3 p = geometry_.position(c, PhiloxSampler::uniform(w[2]), PhiloxSampler::uniform(w[3]));
+        return through_from(geometry_.position(c, PhiloxSampler::uniform(w[2]), PhiloxSampler::uniform(w[3])), d);
+    }
+    double through_from(const Vec3& p, const Vec3& d) {
         double share[16];
         return shadow_.passes(p, d, std::numeric_limits<double>::infinity(), share, eps_) ? share[0] : 0.0;
     }
@@ -367,28 +369,40 @@ private:
             }
             cut = true;
         }
-        // side x side strata of the cone; the plain variance of the mean of their terms.
+        // side x side strata: of the cone for a point; of the cell's area for a cell, where
+        // a shadow's edge (its penumbra a few cm wide) is what cuts the light, each ray then
+        // towards a point of the whole disc.
         StrataSum sum;
         const int side = targets_.sun_side;
         const double rays = side * side;
         terms_.clear();
         const std::uint64_t k = key(c);
+        const bool point = geometry_.point();
         for (int a = 0; a < side; ++a)
             for (int b = 0; b < side; ++b) {
                 const auto w = sampler_.block(k, first + static_cast<std::uint32_t>(a * side + b));
+                const double s0 = PhiloxSampler::uniform(w[0]), s1 = PhiloxSampler::uniform(w[1]);
+                const double s2 = PhiloxSampler::uniform(w[2]), s3 = PhiloxSampler::uniform(w[3]);
                 const Vec3 d = sun.frame.to_world(sample_uniform_cone(targets_.cos_half_sun,
-                                                                      (a + PhiloxSampler::uniform(w[0])) / side,
-                                                                      (b + PhiloxSampler::uniform(w[1])) / side));
+                                                                      point ? (a + s0) / side : s0,
+                                                                      point ? (b + s1) / side : s1));
                 const double weight = in_front ? mean_cos : std::max(0.0, glm::dot(d, n));
-                terms_.push_back(weight > 0.0 ? weight * through(c, w, d) : 0.0);
+                const Vec3 p = geometry_.position(c, point ? s2 : (a + s2) / side, point ? s3 : (b + s3) / side);
+                terms_.push_back(weight > 0.0 ? weight * through_from(p, d) : 0.0);
             }
         if (std::all_of(terms_.begin(), terms_.end(), [&](double t) { return t == terms_.front(); })) {
             sum.value = terms_.front();  // all alike: no rounding to call noise
         } else {
             for (const double t : terms_) sum.value += t;
             sum.value /= rays;
-            for (const double t : terms_) sum.variance += (t - sum.value) * (t - sum.value);
-            sum.variance /= rays * (rays - 1.0);
+            if (std::all_of(terms_.begin(), terms_.end(), [](double t) { return t > 0.0; })) {
+                // All passed, each ray's glass a little different (its T(theta)): the plain
+                // variance of the mean of what the rays' directions drew.
+                for (const double t : terms_) sum.variance += (t - sum.value) * (t - sum.value);
+                sum.variance /= rays * (rays - 1.0);
+            } else {
+                sum.variance = crossed_strata_variance(side, point) / (rays * rays);
+            }
         }
         // Rays that all passed (or were all blocked) say nothing of the part of a cut disc
         // they missed, however their glass's T differs between them: a points sensor's disc
@@ -404,6 +418,34 @@ private:
                 sum.variance = std::max(sum.variance, mean_cos * mean_cos * p * (1.0 - p) / rays);
             }
         }
+        return sum;
+    }
+
+    // The variance of the strata's sum where a shadow's edge crosses them: a stratum the
+    // edge crosses, a share q of it lit, adds w^2 q (1 - q), 0 for the others. A stratum
+    // whose ray differs from a neighbour's lies by the edge ("flagged"); over straight edges
+    // across 4 x 4 strata the true sum averages 0.098 w^2 per flagged stratum
+    // (bench/direct_sun_strata.py), so each adds its largest squared difference from a
+    // neighbour times that. A disc's strata are neighbours along the radius and around it
+    // (`wrap`); a cell's, along its two sides. (The plain sample variance, which counts every
+    // stratum's difference from the mean, read the hours' scatter 1.5 times too large:
+    // docs/VALIDATION.md §9.2.)
+    static constexpr double kFlaggedStratumVariance = 0.098;
+    double crossed_strata_variance(int side, bool wrap) const {
+        double sum = 0.0;
+        auto term = [&](int a, int b) { return terms_[static_cast<std::size_t>(a * side + b)]; };
+        for (int a = 0; a < side; ++a)
+            for (int b = 0; b < side; ++b) {
+                const double t = term(a, b);
+                double worst = 0.0;
+                auto compare = [&](int a2, int b2) {
+                    if (wrap) b2 = (b2 + side) % side;
+                    if (a2 >= 0 && a2 < side && b2 >= 0 && b2 < side)
+                        worst = std::max(worst, (t - term(a2, b2)) * (t - term(a2, b2)));
+                };
+                compare(a - 1, b), compare(a + 1, b), compare(a, b - 1), compare(a, b + 1);
+                sum += worst * kFlaggedStratumVariance;
+            }
         return sum;
     }
 

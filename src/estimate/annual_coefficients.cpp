@@ -26,6 +26,41 @@ constexpr std::uint64_t kGatherFactorKey = 0x9A7E5C0FFEE11A7Dull;
 constexpr std::uint64_t kSunDrawStream = std::uint64_t{1} << 39;
 // Above this mean count over a block a sun's cells are drawn one by one.
 constexpr double kSharedSunDrawMean = 16.0;
+
+// A cell's own stream of a replicate year (AnnualCoefficients::replicate): (seed,
+// replicate, its index in the grid), drawn in the same order whatever the loops' (the rays,
+// the sky entries, then the suns), so the loops can run along the coefficients' rows.
+struct ReplicateStream {
+    PhiloxBits bits;
+    std::normal_distribution<double> normal;
+    double k = 0.0;     // lx of a count
+    double rays = 0.0;  // the gather's rays' relative error, for all the cell's light and hours
+
+    ReplicateStream(std::uint64_t seed, std::uint64_t stream, double per_count) : bits(seed, stream), k(per_count) {}
+    double unit() { return standard_normal(bits); }  // by the quantile: thousands per cell
+    // A count's zero-mean noise of variance var: Poisson of mean var / k^2, counts, not a
+    // small normal wobble that crosses a threshold every time; normal above 1,000 counts.
+    double count(double var) {
+        const double k2 = k * k;
+        if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
+        const double mu = var / k2;
+        if (mu > 1000.0) return k * std::sqrt(mu) * normal(bits);
+        return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(bits)) - mu);
+    }
+    // The shadow rays' direct light: normal around its value with its own variance.
+    double normal_noise(double var) { return var > 0.0 ? std::sqrt(var) * normal(bits) : 0.0; }
+    // The gathered light's: its part common to the grid (loadings a, draws z) and its own,
+    // sqrt(1 - |a|^2).
+    double gathered(double var, const float* a, const double* z) {
+        if (!(var > 0.0)) return 0.0;
+        double common = 0.0, a2 = 0.0;
+        for (std::size_t r = 0; r < kGatherRegions; ++r) {
+            common += a[r] * z[r];
+            a2 += static_cast<double>(a[r]) * a[r];
+        }
+        return std::sqrt(var) * (common + std::sqrt(std::max(0.0, 1.0 - a2)) * unit());
+    }
+};
 }  // namespace
 
 // The detector's counts per light group, as the constructor's steps read them.
@@ -665,64 +700,34 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
             common_sky.push_back(standard_normal(bits));
         for (std::size_t s = 0; s < suns * kGatherRegions; ++s) common_sun.push_back(standard_normal(bits));
     }
-    // Each cell's own stream: (seed, replicate, its index in the grid), drawn in the same
-    // order whatever the loops' (the rays, the sky entries, then the suns); the loops run
-    // over the cells innermost, along the [entry][cell] and [sun][cell] rows in memory.
-    struct Stream {
-        PhiloxBits bits;
-        std::normal_distribution<double> normal;
-        double rays = 0.0;  // the gather's rays' relative error, for all the cell's light and hours
-    };
-    std::vector<Stream> streams;
+    std::vector<ReplicateStream> streams;
     streams.reserve(cells_);
     for (std::size_t cell = 0; cell < cells_; ++cell) {
-        streams.push_back({PhiloxBits(seed, (replicate << 40) | (first_ + cell)), {}, 0.0});
-        if (!gather_rel_var_.empty())
-            streams.back().rays = std::sqrt(gather_rel_var_[cell]) * standard_normal(streams.back().bits);
+        streams.emplace_back(seed, (replicate << 40) | (first_ + cell), k);
+        if (!gather_rel_var_.empty()) streams.back().rays = std::sqrt(gather_rel_var_[cell]) * streams.back().unit();
     }
-    auto draw = [&](Stream& c, double var) {  // zero-mean noise of variance var
-        if (!(var > 0.0) || !(k2 > 0.0)) return 0.0;
-        const double mu = var / k2;
-        if (mu > 1000.0) return k * std::sqrt(mu) * c.normal(c.bits);
-        return k * (static_cast<double>(std::poisson_distribution<std::int64_t>(mu)(c.bits)) - mu);
-    };
-    // The shadow rays' direct light and the gathered light: normal around their values
-    // with their own variances.
-    auto normal_draw = [&](Stream& c, double var) { return var > 0.0 ? std::sqrt(var) * c.normal(c.bits) : 0.0; };
-    // The gathered light's: its part common to the grid (loadings a, draws z) and its own,
-    // sqrt(1 - |a|^2). (By the quantile: thousands of these per cell and replicate.)
-    auto gathered_draw = [&](Stream& c, double var, const float* a, const double* z) {
-        if (!(var > 0.0)) return 0.0;
-        double common = 0.0, a2 = 0.0;
-        for (std::size_t r = 0; r < kGatherRegions; ++r) {
-            common += a[r] * z[r];
-            a2 += static_cast<double>(a[r]) * a[r];
-        }
-        return std::sqrt(var) * (common + std::sqrt(std::max(0.0, 1.0 - a2)) * standard_normal(c.bits));
-    };
     for (const std::size_t e : entries_)
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            Stream& c = streams[cell];
+            ReplicateStream& c = streams[cell];
             const std::size_t i = e * cells_ + cell;
-            sky[i] += draw(c, sky_var_[i]);
-            if (shadow_) sky[i] += normal_draw(c, shadow_sky_var_[i]);
+            sky[i] += c.count(sky_var_[i]);
+            if (shadow_) sky[i] += c.normal_noise(shadow_sky_var_[i]);
             if (!sky_gather_var_.empty())
-                sky[i] += c.rays * sky_gather_[i] + gathered_draw(c, sky_gather_var_[i],
-                                                                  &sky_loading_[i * kGatherRegions],
-                                                                  &common_sky[e * kGatherRegions]);
+                sky[i] += c.rays * sky_gather_[i] + c.gathered(sky_gather_var_[i], &sky_loading_[i * kGatherRegions],
+                                                               &common_sky[e * kGatherRegions]);
         }
     // A sun: its direct count around its pooled mean (its indirect count: below).
     for (std::size_t s = 0; s < suns; ++s)
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            Stream& c = streams[cell];
+            ReplicateStream& c = streams[cell];
             const std::size_t i = s * cells_ + cell;
             const double mu_d = rep_direct_mu_[i];
-            if (shadow_) direct[i] = shadow_sun_lx_[i] + normal_draw(c, shadow_sun_var_[i]);
-            else if (mu_d > 0.0) direct[i] = k * mu_d + draw(c, k2 * mu_d);
+            if (shadow_) direct[i] = shadow_sun_lx_[i] + c.normal_noise(shadow_sun_var_[i]);
+            else if (mu_d > 0.0) direct[i] = k * mu_d + c.count(k2 * mu_d);
             if (!sun_gather_.empty())
-                gathered[i] = (1.0 + c.rays) * sun_gather_[i] + gathered_draw(c, sun_gather_var_[i],
-                                                                              &sun_loading_[i * kGatherRegions],
-                                                                              &common_sun[s * kGatherRegions]);
+                gathered[i] = (1.0 + c.rays) * sun_gather_[i] + c.gathered(sun_gather_var_[i],
+                                                                           &sun_loading_[i * kGatherRegions],
+                                                                           &common_sun[s * kGatherRegions]);
         }
     draw_sun_indirect(seed, replicate, indirect);
     pool(indirect, direct, sun);

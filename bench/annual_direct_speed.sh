@@ -29,12 +29,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d /tmp/annual_direct_speed.XXXXXX)
 [[ ${KEEP:-0} == 1 ]] || trap 'rm -rf "$work"' EXIT
 
-absolute() {
-    sed -e "s|\"\\.\\./\\.\\./tests/|\"$repo/tests/|" -e "s|^points = \"work_plane.pts\"|points = \"$repo/examples/annual/work_plane.pts\"|" \
-        -e '/^direct = /d' -e '/^indirect = /d' "$repo/examples/annual/annual_office.toml"
-}
-absolute > "$work/photons.toml"
-absolute | sed 's|^\[annual\]|[annual]\ndirect = "shadow_rays"|' > "$work/shadow.toml"
+"$repo/bench/annual_example_scene.sh" --all-photons > "$work/photons.toml"
+sed 's|^\[annual\]|[annual]\ndirect = "shadow_rays"|' "$work/photons.toml" > "$work/shadow.toml"
 
 run() {  # way photons seed out
     /usr/bin/time -f "%U %S" -o "$4.time" "$luxtrace" run "$work/$1.toml" --photons "$2" --seed "$3" --threads 2 \

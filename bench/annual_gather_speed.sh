@@ -29,13 +29,12 @@ reference=${REFERENCE:-40M}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d /tmp/annual_gather_speed.XXXXXX)
 [[ ${KEEP:-0} == 1 ]] || trap 'rm -rf "$work"' EXIT
-/usr/bin/python3 - "$repo" "$work" <<'PY'
+"$repo/bench/annual_example_scene.sh" --all-photons >"$work/example.toml"
+/usr/bin/python3 - "$work" <<'PY'
 import re, sys
-repo, work = sys.argv[1], sys.argv[2]
-s = open(f"{repo}/examples/annual/annual_office.toml").read()
-s = s.replace('"../../tests/', f'"{repo}/tests/').replace('points = "work_plane.pts"', f'points = "{repo}/examples/annual/work_plane.pts"')
+work = sys.argv[1]
+s = open(f"{work}/example.toml").read()
 s = re.sub(r'\[\[detector\]\]\nname = "work_plane".*?(?=\[\[detector\]\])', "", s, flags=re.S)
-s = re.sub(r'^(direct|indirect) = .*\n', "", s, flags=re.M)  # the example's own, put back below
 s = s.replace("[annual]\n", '[annual]\ndirect = "shadow_rays"\nindirect = "gather"\n', 1)
 open(f"{work}/gather.toml", "w").write(s)
 open(f"{work}/reference.toml", "w").write(

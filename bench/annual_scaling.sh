@@ -19,9 +19,7 @@ passes=${PASSES:-2}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 work=$(mktemp -d /tmp/annual_scaling.XXXXXX)
 [[ ${KEEP:-0} == 1 ]] || trap 'rm -rf "$work"' EXIT
-sed -e "s|\"\\.\\./\\.\\./tests/|\"$repo/tests/|" \
-    -e "s|^points = \"work_plane.pts\"|points = \"$repo/examples/annual/work_plane.pts\"|" \
-    "$repo/examples/annual/annual_office.toml" >"$work/scene.toml"
+"$repo/bench/annual_example_scene.sh" >"$work/scene.toml"
 
 run() {  # ranks pass
     local out="$work/r$1_p$2"

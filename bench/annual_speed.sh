@@ -17,7 +17,6 @@ set -euo pipefail
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 luxtrace="$repo/build/src/luxtrace"
-example="$repo/examples/annual"
 python=/usr/bin/python3
 photons=${PHOTONS:-10M}
 report_every=${REPORT_EVERY:-5M}
@@ -33,11 +32,8 @@ work=$(mktemp -d /tmp/annual_speed.XXXXXX)
 scene() {
     local nx=$1 ny=$2 mf=$3 extra=${4:-}
     local file="$work/office_${nx}x${ny}_mf${mf}${extra:+_target}.toml"
-    sed -e "s|^cells = \[16, 20\]|cells = [$nx, $ny]|" \
-        -e "s|^sky_mf = 1 |sky_mf = $mf |" \
-        -e "s|\"\.\./\.\./tests/data/weather/|\"$repo/tests/data/weather/|" \
-        -e "s|^points = \"work_plane.pts\"|points = \"$example/work_plane.pts\"|" \
-        -e '/^direct = /d' -e '/^indirect = /d' "$example/annual_office.toml" >"$file"
+    "$repo/bench/annual_example_scene.sh" --all-photons |
+        sed -e "s|^cells = \[16, 20\]|cells = [$nx, $ny]|" -e "s|^sky_mf = 1 |sky_mf = $mf |" >"$file"
     if ! grep -q "^cells = \[$nx, $ny\]" "$file" || ! grep -q "^sky_mf = $mf " "$file"; then
         echo "annual_speed.sh: the example's cells or sky_mf line changed" >&2
         exit 2

@@ -66,10 +66,10 @@ void pack_gather(const SensorGather& g, std::vector<double>& out) {
     }
 }
 
-// The cells packed in [at, end) appended to g.
-void unpack_gather(const std::vector<double>& in, std::size_t at, std::size_t end, SensorGather& g) {
+// The cells pack_gather packed (every part's, in order) appended to g.
+void unpack_gather(const std::vector<double>& in, SensorGather& g) {
     auto word = [&](std::size_t i) { return static_cast<std::uint32_t>(in[i]); };
-    while (at < end) {
+    for (std::size_t at = 0; at < in.size();) {
         const std::size_t entries = static_cast<std::size_t>(in[at++]);
         for (std::size_t i = 0; i < entries; ++i, at += 2) {
             g.site.push_back(word(at));
@@ -104,7 +104,7 @@ SensorGather shared_sensor_gather(const Scene& scene, const EmbreeScene& embree,
     SensorGather g;
     g.offset.push_back(0);
     g.form_offset.push_back(0);
-    unpack_gather(all, 0, all.size(), g);
+    unpack_gather(all, g);
     if (g.cells != cells) throw std::logic_error("gather: the ranks' parts do not make the grid");
     return g;
 }

@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 
 const std::string kWeather = std::string(LUXTRACE_TEST_DATA_DIR) + "/weather/chicago.epw";
 
-std::string room(const std::string& direct, int seed, const std::string& indirect = "photons") {
+std::string room(const std::string& direct, int seed, const std::string& indirect = "photons",
+                 const std::string& more = "") {
     auto rect = [](const std::string& center, const std::string& normal, const std::string& size,
                    const std::string& material) {
         return "[[shape]]\ntype = \"rectangle\"\ncenter = " + center + "\nnormal = " + normal + "\nsize = " + size +
@@ -32,8 +33,7 @@ std::string room(const std::string& direct, int seed, const std::string& indirec
     };
     return "[site]\nlatitude_deg = 41.98\nlongitude_deg = -87.92\nutc_offset_h = -6\nnorth = [0, 1, 0]\n"
            "[annual]\nweather = \"" +
-           kWeather + "\"\ndirect = \"" + direct + "\"\nindirect = \"" + indirect +
-           "\"\n"
+           kWeather + "\"\ndirect = \"" + direct + "\"\nindirect = \"" + indirect + "\"\n" + more +
            "[[material]]\nname = \"wall\"\nreflectance = 0.5\n"
            "[[material]]\nname = \"glossy\"\ntype = \"general\"\ndiffuse_reflectance = 0.2\n"
            "specular_reflectance = 0.3\nroughness = 0.05\n"
@@ -99,6 +99,42 @@ void expect_same_year(const Year& a, const Year& b, const std::string& what) {
     EXPECT_LT(std::abs(sum_z / std::sqrt(cells)), 3.5) << what;
 }
 
+// Two runs' hourly illuminances over the hours with a sun: the mean of z (their difference
+// over its error) and of z^2; the errors are conservative here (two runs of one kind read
+// about 0.55), so a bias shows as a mean square above another pair's.
+struct HourlyZ {
+    double mean = 0.0, mean_square = 0.0;
+};
+HourlyZ hourly_z(const ResultReader& a, const ResultReader& b, const std::string& what) {
+    const std::string g = "/annual/detectors/desk/";
+    const std::vector<double> ea = a.f64(g + "illuminance_lx"), sa = a.f64(g + "illuminance_sigma_lx");
+    const std::vector<double> eb = b.f64(g + "illuminance_lx"), sb = b.f64(g + "illuminance_sigma_lx");
+    const std::vector<double> sun = a.f64(g + "direct_sun_lx");
+    EXPECT_EQ(ea.size(), eb.size());
+    const std::size_t cells = 36;
+    double n = 0.0, z1 = 0.0, z2 = 0.0;
+    for (std::size_t h = 0; h * cells < ea.size(); ++h) {
+        bool sunny = false;
+        for (std::size_t c = 0; c < cells; ++c) sunny = sunny || sun[h * cells + c] > 0.0;
+        if (!sunny) continue;
+        for (std::size_t c = 0; c < cells; ++c) {
+            const std::size_t i = h * cells + c;
+            const double var = sa[i] * sa[i] + sb[i] * sb[i];
+            if (!(var > 0.0)) continue;
+            const double z = (eb[i] - ea[i]) / std::sqrt(var);
+            z1 += z;
+            z2 += z * z;
+            n += 1.0;
+        }
+    }
+    std::cout << "[annual direct] " << what << ": " << n << " sunny (hour, cell) pairs: mean z " << z1 / n
+              << ", mean z^2 " << z2 / n << "\n";
+    EXPECT_GT(n, 10000.0) << what;
+    EXPECT_LT(z2 / n, 1.4) << what;
+    EXPECT_LT(std::abs(z1 / n), 0.1) << what;
+    return {z1 / n, z2 / n};
+}
+
 TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     test_support::ScratchDir dir("annual_direct");
     test_support::CommandOutcome o;
@@ -119,6 +155,16 @@ TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     expect_same_year(by_photons, year_of(s), "shadow rays against photons");
     expect_same_year(by_photons, year_of(g), "shadow rays and the gather against photons");
     expect_same_year(year_of(g), year_of(g2), "the gather against itself");
+    const HourlyZ same = hourly_z(g, g2, "the gather against itself");
+    // The suns of a week's clock hour in one light group (sun_group_days): the same year,
+    // and every sunny hour's illuminance the same within the two runs' hourly errors.
+    const fs::path week = test_support::run_scene_text(dir, "week",
+                                                       room("shadow_rays", 15, "gather", "sun_group_days = 7\n"), &o);
+    ASSERT_EQ(o.code, 0) << o.out;
+    const ResultReader w(week);
+    expect_same_year(year_of(g), year_of(w), "the suns' groups by weeks against each its own");
+    const HourlyZ weeks = hourly_z(g, w, "the suns' groups by weeks against each its own");
+    EXPECT_LT(weeks.mean_square, 1.25 * same.mean_square);
 
     // Each hour's direct sun (LM-83's ASE) per cell: the photons' direct count against the
     // shadow rays'. Over the sunny hours, the z scores' mean and spread.

@@ -10,7 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -188,6 +191,8 @@ TEST_F(Loader, AnnualBadInputNamesItsKey) {
     expect_bad(kAnnual + shadow + "indirect = \"gather\"\ngather_patch_m = 0\n" + kMat + kFloor, "gather_patch_m",
                {"(0, 1000]"});
     expect_bad(kAnnual + shadow + "gather_patch_m = 0.3\n" + kMat + kFloor, "gather_patch_m", {"gather"});
+    expect_bad(kAnnual + "sun_group_days = 7\n" + kMat + kFloor, "sun_group_days", {"shadow_rays"});
+    expect_bad(kAnnual + shadow + "sun_group_days = 0\n" + kMat + kFloor, "sun_group_days", {"1 to 366"});
     // A [site] that contradicts the weather file.
     expect_bad("[site]\nlatitude_deg = 52.5\nlongitude_deg = 13.4\nutc_offset_h = 1\n" + kAnnual + kMat + kFloor,
                "weather", {"latitude_deg", "41.98"});
@@ -217,6 +222,42 @@ TEST_F(Loader, AnnualDirectByShadowRaysKeepsTheGridsDirectApart) {
     EXPECT_EQ(gather.annual->options.gather_patch_m, 0.25);
     EXPECT_TRUE(tally_layout(gather).gathered(0));
     EXPECT_GT(tally_layout(gather).size(), tally_layout(shadow).size());
+}
+
+// sun_group_days: the suns of one clock hour on a block of days share a light group (in the
+// order of their first sun), each sun light keeping its own index; the tallies shrink.
+TEST_F(Loader, AnnualSunsOfAWeeksClockHourShareALightGroup) {
+    const std::string shadow = "direct = \"shadow_rays\"\n";
+    const Scene own = load(kAnnual + shadow + kMat + kFloor + kGrid);
+    const Scene week = load(kAnnual + shadow + "sun_group_days = 7\n" + kMat + kFloor + kGrid);
+    const AnnualSetup& a = *week.annual;
+    const AnnualSky& sky = *a.sky;
+    EXPECT_EQ(own.annual->sun_rows(), sky.suns().size());
+    const std::size_t rows = a.sun_rows();
+    EXPECT_EQ(week.light_groups.size(), 146u + rows);
+    // About a seventh of the suns' groups: a clock hour's suns of a week, fewer at dawn and dusk.
+    EXPECT_LT(rows, sky.suns().size() / 5);
+    EXPECT_GT(rows, sky.suns().size() / 8);
+    std::vector<std::size_t> suns_seen(sky.suns().size(), 0);
+    for (const Light& l : week.lights.lights()) {
+        if (!l.is<SunLight>()) continue;
+        ASSERT_GE(l.annual_sun, 0);
+        const std::size_t s = static_cast<std::size_t>(l.annual_sun), h = sky.suns()[s];
+        ++suns_seen[s];
+        EXPECT_EQ(l.group, a.first_sun_group + a.sun_row(s));
+        // Its group's name: the first day of its block and its clock hour.
+        char name[32];
+        std::snprintf(name, sizeof name, "suns_%03zu_%02zu", h / 24 / 7 * 7 + 1, h % 24);
+        const std::string& group = week.light_groups[l.group];
+        EXPECT_EQ(group.substr(group.size() - 2), std::string(name).substr(std::strlen(name) - 2)) << group;
+        // Every sun of a group shares its clock hour and its week.
+        const std::size_t first = sky.suns()[std::find(a.shared_sun_row.begin(), a.shared_sun_row.end(), a.sun_row(s)) -
+                                             a.shared_sun_row.begin()];
+        EXPECT_EQ(first % 24, h % 24);
+        EXPECT_EQ(first / 24 / 7, h / 24 / 7);
+    }
+    for (const std::size_t n : suns_seen) EXPECT_EQ(n, 1u);
+    EXPECT_LT(tally_layout(week).size(), tally_layout(own).size() / 3);
 }
 
 TEST_F(Loader, AnnualTruncatedWeatherFileNamesItsLine) {

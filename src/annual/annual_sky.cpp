@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -206,6 +207,24 @@ double AnnualSky::sum_direct_normal_lx_h() const {
     double s = 0.0;
     for (std::size_t i : suns_) s += hours_[i].direct_normal_lx;
     return s;
+}
+
+std::size_t AnnualSetup::sun_rows() const {
+    if (shared_sun_row.empty()) return sky ? sky->suns().size() : 0;
+    return *std::max_element(shared_sun_row.begin(), shared_sun_row.end()) + 1;
+}
+
+std::vector<std::size_t> sun_rows_of_days(const AnnualSky& sky, int days) {
+    std::vector<std::size_t> rows;
+    if (days <= 1) return rows;
+    // Key (block of days, clock hour) -> row, in the order of the suns (by hour).
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> row_of;
+    for (const std::size_t h : sky.suns()) {
+        const auto key = std::make_pair(h / 24 / static_cast<std::size_t>(days), h % 24);
+        const auto [it, added] = row_of.try_emplace(key, row_of.size());
+        rows.push_back(it->second);
+    }
+    return rows;
 }
 
 }  // namespace luxtrace

@@ -69,6 +69,9 @@ void print_annual_lights(const Scene& s, std::ostream& out) {
         out << "gathered from the photons' arrivals (" << o.gather_rays << " rays a sensor, patches up to "
             << o.gather_patch_m << " m)\n";
     else out << "by the photons over each sensor's disc\n";
+    if (o.sun_group_days > 1)
+        out << "  the suns' photons in " << s.annual->sun_rows() << " light groups, a clock hour's suns of "
+            << o.sun_group_days << " days each (sun_group_days)\n";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <stdexcept>
 
@@ -69,7 +70,7 @@ struct AnnualCoefficients::Counts {
     const TallyLayout& layout;
     std::span<const std::uint64_t> data;
     std::size_t det = 0;
-    std::span<const double> group_flux_lm;
+    std::span<const double> group_flux_lm, sun_flux_lm;
     // The photons' n and q hold no direct registration (shadow rays give the direct light):
     // for the estimate their direct count is then 0.
     bool direct_apart = false;
@@ -78,7 +79,8 @@ struct AnnualCoefficients::Counts {
 
     Counts(const AnnualGridCounts& g, std::size_t first_cell)
         : annual(g.annual), layout(g.layout), data(g.data), det(g.det), group_flux_lm(g.group_flux_lm),
-          direct_apart(g.layout.direct_apart(g.det)), gathered(g.layout.gathered(g.det)), first(first_cell) {}
+          sun_flux_lm(g.sun_flux_lm), direct_apart(g.layout.direct_apart(g.det)), gathered(g.layout.gathered(g.det)),
+          first(first_cell) {}
 
     double flux(std::size_t group) const { return group < group_flux_lm.size() ? group_flux_lm[group] : 0.0; }
     double n(std::size_t cell, std::size_t group) const {
@@ -123,52 +125,127 @@ struct AnnualCoefficients::Counts {
     std::size_t sky_group(std::size_t e) const {
         return e == annual.sky->ground_entry() ? annual.ground_group : annual.first_patch_group + e;
     }
-    std::size_t sun_group(std::size_t s) const { return annual.first_sun_group + s; }
-    bool sun_emits(std::size_t s) const { return flux(sun_group(s)) > 0.0; }
-    // Per (sun, cell): the direct count d, the other (interreflected) registrations
+    // Sun row r's group (AnnualSetup::sun_row), and sun s's own flux.
+    std::size_t row_group(std::size_t r) const { return annual.first_sun_group + r; }
+    bool row_emits(std::size_t r) const { return flux(row_group(r)) > 0.0; }
+    double sun_flux(std::size_t s) const {
+        return s < sun_flux_lm.size() ? sun_flux_lm[s] : flux(annual.sun_group(static_cast<int>(s)));
+    }
+    bool sun_emits(std::size_t s) const { return sun_flux(s) > 0.0; }
+    // Per (row, cell): the direct count d, the other (interreflected) registrations
     // i = n - d and their second moment v = q - d (a photon's direct count in a cell is 0 or
     // 1, its square itself, tally.hpp; a photon registering a cell both directly and after a
     // reflection is taken as rare).
-    double sun_direct(std::size_t s, std::size_t cell) const { return direct(cell, sun_group(s)); }
-    double sun_indirect(std::size_t s, std::size_t cell) const {
-        return n(cell, sun_group(s)) - direct(cell, sun_group(s));
+    double row_direct(std::size_t r, std::size_t cell) const { return direct(cell, row_group(r)); }
+    double row_indirect(std::size_t r, std::size_t cell) const {
+        return n(cell, row_group(r)) - direct(cell, row_group(r));
     }
-    double sun_indirect_moment(std::size_t s, std::size_t cell) const {
-        return q(cell, sun_group(s)) - direct(cell, sun_group(s));
+    double row_indirect_moment(std::size_t r, std::size_t cell) const {
+        return q(cell, row_group(r)) - direct(cell, row_group(r));
     }
 };
 
-// Per sun: the emitting suns of the same hour on the day before and after (their positions
-// within half a degree: the same shadows and nearly the same reflections), and this sun's
-// share of the photons of the three, pool_share = Phi_s / (Phi_s + sum Phi_o) (the groups'
-// fluxes decide their photons); neighbour_share: of the neighbours' photons alone.
-struct AnnualCoefficients::SunPools {
-    std::vector<std::vector<std::size_t>> pool;
-    std::vector<double> pool_share, neighbour_share;
+// What each sun reads of the photons' sun groups (rows). With a row per sun, a sun reads
+// its own and the emitting suns' of the same hour on the day before and after (their
+// positions within half a degree: the same shadows and nearly the same reflections), its
+// share of the three being pool_share = Phi_s / (Phi_s + sum Phi_o) (the groups' fluxes
+// decide their photons). With shared rows (sun_group_days) a sun reads its row in its
+// share of the row's direct normal illuminance, Y_s / sum Y (the row's count is the sum of
+// its suns' Y_s g_s, g the cell's response per unit Y, alike over the row's days), the
+// suns that emit nothing (behind every portal) left out. Per row: its neighbours (the
+// emitting rows of the same clock hour on the days next to it), for the dark rates.
+struct AnnualCoefficients::SunRows {
+    std::vector<std::vector<std::size_t>> pool, evidence, neighbours;
+    std::vector<double> pool_share, pool_flux, dark_scale;  // per sun
+    std::vector<double> evidence_flux, neighbour_share;     // per row
+    std::vector<std::size_t> clock;                         // per row
 
-    explicit SunPools(const Counts& c) {
-        const AnnualSky& sky = *c.annual.sky;
-        const std::size_t suns = sky.suns().size();
-        std::vector<int> sun_at_hour(sky.hours().size(), -1);
-        for (std::size_t s = 0; s < suns; ++s) sun_at_hour[sky.suns()[s]] = static_cast<int>(s);
+    explicit SunRows(const Counts& c) {
+        const AnnualSetup& a = c.annual;
+        const std::size_t suns = a.sky->suns().size(), rows = a.sun_rows();
+        clock.assign(rows, 0);
+        for (std::size_t s = 0; s < suns; ++s) clock[a.sun_row(s)] = a.sky->suns()[s] % kClockHours;
+        find_neighbours(c);
         pool.assign(suns, {});
         pool_share.assign(suns, 1.0);
-        neighbour_share.assign(suns, 0.0);
-        for (std::size_t s = 0; s < suns; ++s) {
-            if (!c.sun_emits(s)) continue;
-            const std::size_t h = sky.suns()[s];
+        pool_flux.assign(suns, 0.0);
+        dark_scale.assign(suns, 1.0);
+        if (a.shared_sun_row.empty()) {
+            own_rows(c);
+        } else {
+            shared_rows(c);
+        }
+    }
+
+    // Rows of the same clock hour in consecutive blocks of days (a day each without shared
+    // rows: hours h - 24 and h + 24).
+    void find_neighbours(const Counts& c) {
+        const AnnualSetup& a = c.annual;
+        const std::size_t rows = clock.size(), days = static_cast<std::size_t>(std::max(1, a.options.sun_group_days));
+        std::vector<std::size_t> block(rows, 0);
+        std::map<std::pair<std::size_t, std::size_t>, std::size_t> row_at;
+        for (std::size_t s = 0; s < a.sky->suns().size(); ++s) {
+            const std::size_t h = a.sky->suns()[s], r = a.sun_row(s);
+            block[r] = h / 24 / days;
+            row_at.try_emplace({block[r], clock[r]}, r);
+        }
+        neighbours.assign(rows, {});
+        neighbour_share.assign(rows, 0.0);
+        for (std::size_t r = 0; r < rows; ++r) {
+            if (!c.row_emits(r)) continue;
             double near_flux = 0.0;
-            for (const std::size_t other : {h - 24, h + 24})  // h - 24 wraps past the end when h < 24
-                if (other < sun_at_hour.size() && sun_at_hour[other] >= 0) {
-                    const std::size_t o = static_cast<std::size_t>(sun_at_hour[other]);
-                    if (c.sun_emits(o)) {
-                        pool[s].push_back(o);
-                        near_flux += c.flux(c.sun_group(o));
-                    }
-                }
-            const double flux = c.flux(c.sun_group(s));
-            neighbour_share[s] = near_flux > 0.0 ? flux / near_flux : 0.0;
+            for (const std::size_t b : {block[r] - 1, block[r] + 1}) {  // block 0 - 1 wraps: none
+                const auto it = row_at.find({b, clock[r]});
+                if (it == row_at.end() || !c.row_emits(it->second)) continue;
+                neighbours[r].push_back(it->second);
+                near_flux += c.flux(c.row_group(it->second));
+            }
+            neighbour_share[r] = near_flux > 0.0 ? c.flux(c.row_group(r)) / near_flux : 0.0;
+        }
+    }
+    double neighbour_scale(std::size_t r) const {
+        return neighbours[r].empty() ? 1.0 : static_cast<double>(neighbours[r].size()) * neighbour_share[r];
+    }
+
+    void own_rows(const Counts& c) {
+        for (std::size_t s = 0; s < pool.size(); ++s) {
+            pool[s] = {s};
+            if (!c.sun_emits(s)) continue;
+            double near_flux = 0.0;
+            for (const std::size_t o : neighbours[s]) {
+                pool[s].push_back(o);
+                near_flux += c.flux(c.row_group(o));
+            }
+            const double flux = c.sun_flux(s);
             pool_share[s] = flux / (flux + near_flux);
+            pool_flux[s] = flux / pool_share[s];
+            dark_scale[s] = neighbour_scale(s);
+        }
+        evidence = pool;
+        evidence_flux = pool_flux;
+    }
+
+    void shared_rows(const Counts& c) {
+        const AnnualSetup& a = c.annual;
+        const std::size_t rows = clock.size();
+        std::vector<double> row_y(rows, 0.0);
+        auto y = [&](std::size_t s) {
+            return c.sun_emits(s) ? a.sky->hours()[a.sky->suns()[s]].direct_normal_lx : 0.0;
+        };
+        for (std::size_t s = 0; s < pool.size(); ++s) row_y[a.sun_row(s)] += y(s);
+        for (std::size_t s = 0; s < pool.size(); ++s) {
+            const std::size_t r = a.sun_row(s);
+            pool[s] = {r};
+            pool_flux[s] = c.flux(c.row_group(r));
+            pool_share[s] = row_y[r] > 0.0 ? y(s) / row_y[r] : 0.0;
+            // The pooled count's expected variance where the row is dark: share^2 E[n_row].
+            dark_scale[s] = pool_share[s] * pool_share[s] * neighbour_scale(r);
+        }
+        evidence.assign(rows, {});
+        evidence_flux.assign(rows, 0.0);
+        for (std::size_t r = 0; r < rows; ++r) {
+            evidence[r] = {r};
+            evidence_flux[r] = c.flux(c.row_group(r));
         }
     }
 };
@@ -197,10 +274,14 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
     const Counts counts(grid, first);
     if (counts.gathered) gather_loadings(counts, dark);
     sky_coefficients(counts);
-    SunPools pools(counts);
-    pool_ = std::move(pools.pool);
-    pool_share_ = std::move(pools.pool_share);
-    neighbour_share_ = std::move(pools.neighbour_share);
+    SunRows rows(counts);
+    pool_ = std::move(rows.pool);
+    pool_share_ = std::move(rows.pool_share);
+    pool_flux_ = std::move(rows.pool_flux);
+    dark_scale_ = std::move(rows.dark_scale);
+    evidence_ = std::move(rows.evidence);
+    evidence_flux_ = std::move(rows.evidence_flux);
+    row_clock_ = std::move(rows.clock);
     sun_priors(counts);
     sun_coefficients(counts);
 }
@@ -229,7 +310,7 @@ void AnnualCoefficients::gather_loadings(const Counts& c, const AnnualDarkRates&
         }
     };
     for (std::size_t e = 0; e < sky.sky_entries(); ++e) loadings(c.sky_group(e), sky_loading_);
-    for (std::size_t s = 0; s < sky.suns().size(); ++s) loadings(c.sun_group(s), sun_loading_);
+    for (std::size_t r = 0; r < annual_.sun_rows(); ++r) loadings(c.row_group(r), sun_loading_);
 }
 
 // In an hour's error, a cell that no photon of an emitting group reached is not exact: its
@@ -284,23 +365,23 @@ void AnnualCoefficients::sky_coefficients(const Counts& c) {
 // mean of ratios would weigh a weak sun's rare count by its tiny share).
 AnnualDarkRates AnnualCoefficients::dark_rates(const AnnualGridCounts& grid) {
     const Counts c(grid, 0);
-    const SunPools p(c);
-    auto near_sum = [&](std::size_t s, std::size_t cell, bool direct) {
+    const SunRows p(c);
+    auto near_sum = [&](std::size_t r, std::size_t cell, bool direct) {
         double m = 0.0;
-        for (const std::size_t o : p.pool[s]) m += direct ? c.sun_direct(o, cell) : c.n(cell, c.sun_group(o));
+        for (const std::size_t o : p.neighbours[r]) m += direct ? c.row_direct(o, cell) : c.n(cell, c.row_group(o));
         return m;
     };
     double dark_n = 0.5, dark_d = 0.5, dark_share = 0.0, dark_share_d = 0.0;
-    for (std::size_t s = 0; s < p.pool.size(); ++s) {
-        if (!c.sun_emits(s) || p.pool[s].empty()) continue;
-        const double weight = p.neighbour_share[s] * static_cast<double>(p.pool[s].size());
+    for (std::size_t r = 0; r < p.neighbours.size(); ++r) {
+        if (!c.row_emits(r) || p.neighbours[r].empty()) continue;
+        const double weight = p.neighbour_scale(r);
         for (std::size_t cell = 0; cell < grid.cells; ++cell) {
-            if (near_sum(s, cell, false) == 0.0) {
-                dark_n += c.n(cell, c.sun_group(s));
+            if (near_sum(r, cell, false) == 0.0) {
+                dark_n += c.n(cell, c.row_group(r));
                 dark_share += weight;
             }
-            if (near_sum(s, cell, true) == 0.0) {
-                dark_d += c.sun_direct(s, cell);
+            if (near_sum(r, cell, true) == 0.0) {
+                dark_d += c.row_direct(r, cell);
                 dark_share_d += weight;
             }
         }
@@ -340,25 +421,25 @@ std::vector<double> AnnualCoefficients::gather_totals(const AnnualGridCounts& gr
 // mu = Phi rho). Each sun's centre is its posterior mean given the three days' counts N3
 // over their flux E3: Phi (N3 + alpha) / (E3 + alpha / rho) (sun_coefficients).
 void AnnualCoefficients::sun_priors(const Counts& c) {
-    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
+    const std::size_t rows = row_clock_.size();
     eb_rho_.assign(kClockHours * cells_, 0.0);
     eb_alpha_.assign(kClockHours * cells_, 0.0);
     std::vector<double> class_flux(kClockHours, 0.0), sum_mu2(kClockHours * cells_, 0.0),
         excess(kClockHours * cells_, 0.0);
-    auto clock = [&](std::size_t s) { return sun_hours[s] % kClockHours; };
-    for (std::size_t s = 0; s < sun_hours.size(); ++s) {
-        if (!c.sun_emits(s)) continue;
-        class_flux[clock(s)] += c.flux(c.sun_group(s));
-        for (std::size_t cell = 0; cell < cells_; ++cell) eb_rho_[clock(s) * cells_ + cell] += c.sun_indirect(s, cell);
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (!c.row_emits(r)) continue;
+        class_flux[row_clock_[r]] += c.flux(c.row_group(r));
+        for (std::size_t cell = 0; cell < cells_; ++cell)
+            eb_rho_[row_clock_[r] * cells_ + cell] += c.row_indirect(r, cell);
     }
     for (std::size_t h = 0; h < kClockHours; ++h)
         for (std::size_t cell = 0; cell < cells_; ++cell)
             eb_rho_[h * cells_ + cell] = class_flux[h] > 0.0 ? eb_rho_[h * cells_ + cell] / class_flux[h] : 0.0;
-    for (std::size_t s = 0; s < sun_hours.size(); ++s) {
-        if (!c.sun_emits(s)) continue;
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (!c.row_emits(r)) continue;
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            const std::size_t j = clock(s) * cells_ + cell;
-            const double mu = c.flux(c.sun_group(s)) * eb_rho_[j], n = c.sun_indirect(s, cell);
+            const std::size_t j = row_clock_[r] * cells_ + cell;
+            const double mu = c.flux(c.row_group(r)) * eb_rho_[j], n = c.row_indirect(r, cell);
             sum_mu2[j] += mu * mu;
             excess[j] += (n - mu) * (n - mu) - n;
         }
@@ -368,31 +449,30 @@ void AnnualCoefficients::sun_priors(const Counts& c) {
         eb_alpha_[j] = excess[j] > 0.0 ? sum_mu2[j] / excess[j] : std::numeric_limits<double>::infinity();
 }
 
-// Per (sun, cell): the estimate, its hourly errors and a fresh run's draw (replicate()).
+// Per (sun, cell): the estimate and its hourly errors; per (row, cell) a fresh run's
+// draw of its interreflected count (replicate()).
 void AnnualCoefficients::sun_coefficients(const Counts& c) {
-    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
-    const std::size_t suns = sun_hours.size();
+    const AnnualSky& sky = *annual_.sky;
+    const std::size_t suns = sky.suns().size();
     const double k2 = per_count_ * per_count_;
     sun_.assign(suns * cells_, 0.0);
     sun_q_ = direct_ = direct_var_ = sun_;
     rep_direct_mu_.assign(suns * cells_, 0.0f);
-    rep_indirect_mu_ = rep_indirect_var_ = rep_direct_mu_;
     for (std::size_t s = 0; s < suns; ++s) {
         if (!c.sun_emits(s)) continue;
-        const double flux = c.flux(c.sun_group(s));
-        const double dark_scale = pool_[s].empty() ? 1.0 : static_cast<double>(pool_[s].size()) * neighbour_share_[s];
         const double share = pool_share_[s];
+        const std::size_t own = annual_.sun_row(s);
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            // Pooled over the three days per unit of flux (a ratio of sums: a weak
+            // Pooled over the rows it reads per unit of flux (a ratio of sums: a weak
             // neighbour's few photons count for little), for this sun's photons.
-            double d_sum = c.sun_direct(s, cell), i_sum = c.sun_indirect(s, cell),
-                   v_sum = c.sun_indirect_moment(s, cell);
-            for (const std::size_t o : pool_[s]) {
-                d_sum += c.sun_direct(o, cell);
-                i_sum += c.sun_indirect(o, cell);
-                v_sum += c.sun_indirect_moment(o, cell);
+            double d_sum = 0.0, i_sum = 0.0, v_sum = 0.0;
+            for (const std::size_t r : pool_[s]) {
+                d_sum += c.row_direct(r, cell);
+                i_sum += c.row_indirect(r, cell);
+                v_sum += c.row_indirect_moment(r, cell);
             }
-            const double d = c.sun_direct(s, cell);
+            // Its own direct count (0 with shared rows: their direct light is the shadow rays').
+            const double d = c.row_direct(own, cell);
             const double m_d = share * d_sum, m_i = share * i_sum, m_v = share * v_sum;  // pooled means
             const std::size_t i = s * cells_ + cell;
             // The estimate: the hour's own direct sun (a shadow's edge moves between days:
@@ -411,52 +491,68 @@ void AnnualCoefficients::sun_coefficients(const Counts& c) {
             // plus the pooled indirect's exact variance c^2 sum v. Where the cell and its
             // neighbours all read nothing, the detector's dark mean (never a variance of 0 for
             // a count that might have been 1).
-            direct_var_[i] = shadow_ ? shadow_sun_var_[i] : k2 * (m_d > 0.0 ? m_d : dark_.direct * dark_scale);
+            direct_var_[i] = shadow_ ? shadow_sun_var_[i] : k2 * (m_d > 0.0 ? m_d : dark_.direct * dark_scale_[s]);
             const double total_var = m_d + share * m_v;
-            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_.total * dark_scale);
-            // A fresh run (replicate()): the direct count Poisson of mean m_d; the indirect
-            // count around its empirical-Bayes centre (sun_priors), pooled like the estimate.
-            // No dark floor here: over many hours the plain counts are an unbiased variance,
-            // and a floor on every unreached (group, cell) would add a variance the counts
-            // already hold (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma
-            // twice, continuous DA's 16 times the scatter); the posterior mean adds none on
-            // average over the class.
-            const std::size_t j = (sun_hours[s] % kClockHours) * cells_ + cell;
+            sun_q_[i] = k2 * (total_var > 0.0 ? total_var : dark_.total * dark_scale_[s]);
+            rep_direct_mu_[i] = static_cast<float>(m_d);
+        }
+    }
+    row_centres(c);
+    if (c.gathered) sun_gathered(c);
+}
+
+// A fresh run (replicate()): a sun's direct count Poisson of its pooled mean (above); a
+// row's indirect count around its empirical-Bayes centre (sun_priors), then pooled like the
+// estimate. No dark floor here: over many hours the plain counts are an unbiased variance,
+// and a floor on every unreached (group, cell) would add a variance the counts already hold
+// (docs/VALIDATION.md "Annual daylight": the floor made DA's sigma twice, continuous DA's 16
+// times the scatter); the posterior mean adds none on average over the class.
+void AnnualCoefficients::row_centres(const Counts& c) {
+    const std::size_t rows = row_clock_.size();
+    rep_indirect_mu_.assign(rows * cells_, 0.0f);
+    rep_indirect_var_ = rep_indirect_mu_;
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (!c.row_emits(r)) continue;
+        const double flux = c.flux(c.row_group(r));
+        for (std::size_t cell = 0; cell < cells_; ++cell) {
+            double i_sum = 0.0, v_sum = 0.0;
+            for (const std::size_t o : evidence_[r]) {
+                i_sum += c.row_indirect(o, cell);
+                v_sum += c.row_indirect_moment(o, cell);
+            }
+            const std::size_t i = r * cells_ + cell, j = row_clock_[r] * cells_ + cell;
             const double rho = eb_rho_[j], alpha = eb_alpha_[j];
-            const double e3 = flux / share;  // the three days' flux
+            const double e3 = evidence_flux_[r];  // the flux of the counts it reads
             const double centre_i = !(rho > 0.0)        ? 0.0
                                     : std::isinf(alpha) ? flux * rho
                                                         : flux * (i_sum + alpha) / (e3 + alpha / rho);
-            rep_direct_mu_[i] = static_cast<float>(m_d);
             rep_indirect_mu_[i] = static_cast<float>(centre_i);
             // Its variance in the pooled counts' proportion of second moment to count (a
             // photon may register a cell more than once).
             rep_indirect_var_[i] = static_cast<float>(centre_i * (i_sum > 0.0 ? std::max(1.0, v_sum / i_sum) : 1.0));
         }
     }
-    if (c.gathered) sun_gathered(c);
 }
 
-// A sun's gathered light, pooled over the neighbouring days as its interreflected counts
-// are: X = share (Y_s + sum Y_o), variance share^2 sum Q. Where the three days gathered
-// less than their clock hour's suns do per unit flux (few photons, or none), the variance
-// is at least the class's: share^2 r mu Phi_3, mu the class's Y per unit flux and r its Q
-// per unit Y (a sun hour seen as nothing is not exact).
+// A sun's gathered light, pooled over the rows it reads as its interreflected counts
+// are: X = share sum Y_r, variance share^2 sum Q. Where they gathered less than their
+// clock hour's rows do per unit flux (few photons, or none), the variance is at least the
+// class's: share^2 r mu Phi_3, mu the class's Y per unit flux and r its Q per unit Y (a
+// sun hour seen as nothing is not exact).
 void AnnualCoefficients::sun_gathered(const Counts& c) {
-    const std::vector<std::size_t>& sun_hours = annual_.sky->suns();
-    const std::size_t suns = sun_hours.size();
+    const std::size_t suns = annual_.sky->suns().size(), rows = row_clock_.size();
     const double kg = gather_per_unit_, kg2 = kg * kg;
-    sun_gather_.assign(suns * cells_, 0.0);
+    sun_gather_.assign(rows * cells_, 0.0);
     sun_gather_var_ = sun_gather_;
     std::vector<double> class_flux(kClockHours, 0.0), class_y(kClockHours * cells_, 0.0), class_q(class_y);
-    for (std::size_t s = 0; s < suns; ++s) {
-        if (!c.sun_emits(s)) continue;
-        const std::size_t h = sun_hours[s] % kClockHours;
-        class_flux[h] += c.flux(c.sun_group(s));
+    for (std::size_t r = 0; r < rows; ++r) {
+        if (!c.row_emits(r)) continue;
+        const std::size_t h = row_clock_[r];
+        class_flux[h] += c.flux(c.row_group(r));
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            const double y = c.gather_y(cell, c.sun_group(s)), q = c.gather_q(cell, c.sun_group(s));
-            sun_gather_[s * cells_ + cell] = kg * y;
-            sun_gather_var_[s * cells_ + cell] = std::max(0.0, kg2 * (q - y * y * inv_photons_));
+            const double y = c.gather_y(cell, c.row_group(r)), q = c.gather_q(cell, c.row_group(r));
+            sun_gather_[r * cells_ + cell] = kg * y;
+            sun_gather_var_[r * cells_ + cell] = std::max(0.0, kg2 * (q - y * y * inv_photons_));
             class_y[h * cells_ + cell] += y;
             class_q[h * cells_ + cell] += q;
         }
@@ -466,12 +562,12 @@ void AnnualCoefficients::sun_gathered(const Counts& c) {
     pool_gathered(sun_gather_, pooled);
     for (std::size_t s = 0; s < suns; ++s) {
         if (!c.sun_emits(s)) continue;
-        const std::size_t h = sun_hours[s] % kClockHours;
-        const double share = pool_share_[s], flux3 = c.flux(c.sun_group(s)) / share;
+        const std::size_t h = row_clock_[annual_.sun_row(s)];
+        const double share = pool_share_[s], flux3 = pool_flux_[s];
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             const std::size_t i = s * cells_ + cell, j = h * cells_ + cell;
-            double q3 = c.gather_q(cell, c.sun_group(s));
-            for (const std::size_t o : pool_[s]) q3 += c.gather_q(cell, c.sun_group(o));
+            double q3 = 0.0;
+            for (const std::size_t r : pool_[s]) q3 += c.gather_q(cell, c.row_group(r));
             // r mu = (Q / Y) (Y / Phi): the class's Q per unit flux.
             const double expected = class_flux[h] > 0.0 ? class_q[j] / class_flux[h] * flux3 : 0.0;
             sun_[i] += pooled[i];
@@ -484,8 +580,8 @@ void AnnualCoefficients::pool_gathered(const std::vector<double>& own, std::vect
     for (std::size_t s = 0; s < pool_.size(); ++s) {
         const double share = pool_share_[s];
         for (std::size_t cell = 0; cell < cells_; ++cell) {
-            double x = own[s * cells_ + cell];
-            for (const std::size_t o : pool_[s]) x += own[o * cells_ + cell];
+            double x = 0.0;
+            for (const std::size_t r : pool_[s]) x += own[r * cells_ + cell];
             sun[s * cells_ + cell] += share * x;
         }
     }
@@ -498,10 +594,8 @@ void AnnualCoefficients::pool(const std::vector<double>& indirect, const std::ve
     for (std::size_t s = 0; s < suns; ++s) {
         const double c = pool_share_[s];
         double* out = &sun[s * cells_];
-        const double* own = &indirect[s * cells_];
-        for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] = own[cell];
-        for (const std::size_t o : pool_[s]) {
-            const double* x = &indirect[o * cells_];
+        for (const std::size_t r : pool_[s]) {
+            const double* x = &indirect[r * cells_];
             for (std::size_t cell = 0; cell < cells_; ++cell) out[cell] += x[cell];
         }
         const double* d = &direct[s * cells_];
@@ -670,13 +764,12 @@ void AnnualCoefficients::estimate(AnnualSeries& out) const {
 }
 
 void AnnualCoefficients::centre(AnnualSeries& out) const {
-    // The sky and ground at their counts; a sun's direct and indirect counts at their pooled
-    // means, the indirect pooled again as the estimate pools it.
-    std::vector<double> indirect(sun_.size()), direct(direct_.size()), sun;
-    for (std::size_t i = 0; i < sun_.size(); ++i) {
-        indirect[i] = per_count_ * rep_indirect_mu_[i];
+    // The sky and ground at their counts; a sun's direct count at its pooled mean and its
+    // rows' indirect counts at their centres, pooled as the estimate pools them.
+    std::vector<double> indirect(rep_indirect_mu_.size()), direct(direct_.size()), sun;
+    for (std::size_t i = 0; i < indirect.size(); ++i) indirect[i] = per_count_ * rep_indirect_mu_[i];
+    for (std::size_t i = 0; i < direct.size(); ++i)
         direct[i] = shadow_ ? shadow_sun_lx_[i] : per_count_ * rep_direct_mu_[i];
-    }
     pool(indirect, direct, sun);
     if (!sun_gather_.empty()) pool_gathered(sun_gather_, sun);
     combine(sky_, sun, direct, out);
@@ -688,17 +781,17 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
     // then a whole count, as a run's noise is, not a small normal wobble that crosses a
     // threshold every time. Large counts are drawn as normal (the same to 1/sqrt(mu)).
     const double k = per_count_, k2 = k * k;
-    std::vector<double> sky(sky_), indirect(sun_.size(), 0.0), direct(direct_.size(), 0.0), sun;
+    std::vector<double> sky(sky_), indirect(rep_indirect_mu_.size(), 0.0), direct(direct_.size(), 0.0), sun;
     std::vector<double> gathered(sun_gather_.size(), 0.0);
-    const std::size_t suns = pool_.size();
-    // The gathered light's common draws, per sky entry and sun: one stream per replicate,
-    // the same for every block.
+    const std::size_t suns = pool_.size(), rows = row_clock_.size();
+    // The gathered light's common draws, per sky entry and sun row: one stream per
+    // replicate, the same for every block.
     std::vector<double> common_sky, common_sun;
     if (!sun_gather_.empty()) {
         PhiloxBits bits(seed ^ kGatherFactorKey, replicate);
         for (std::size_t e = 0; e < annual_.sky->sky_entries() * kGatherRegions; ++e)
             common_sky.push_back(standard_normal(bits));
-        for (std::size_t s = 0; s < suns * kGatherRegions; ++s) common_sun.push_back(standard_normal(bits));
+        for (std::size_t r = 0; r < rows * kGatherRegions; ++r) common_sun.push_back(standard_normal(bits));
     }
     std::vector<ReplicateStream> streams;
     streams.reserve(cells_);
@@ -716,15 +809,18 @@ void AnnualCoefficients::replicate(std::uint64_t seed, std::uint64_t replicate, 
                 sky[i] += c.rays * sky_gather_[i] + c.gathered(sky_gather_var_[i], &sky_loading_[i * kGatherRegions],
                                                                &common_sky[e * kGatherRegions]);
         }
-    // A sun: its direct count around its pooled mean (its indirect count: below).
-    for (std::size_t s = 0; s < suns; ++s)
+    // Sun s: its direct count around its pooled mean; row s: its gathered light (its
+    // indirect counts: below). A cell draws them in this order whatever the rows.
+    for (std::size_t s = 0; s < std::max(suns, rows); ++s)
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             ReplicateStream& c = streams[cell];
             const std::size_t i = s * cells_ + cell;
-            const double mu_d = rep_direct_mu_[i];
-            if (shadow_) direct[i] = shadow_sun_lx_[i] + c.normal_noise(shadow_sun_var_[i]);
-            else if (mu_d > 0.0) direct[i] = k * mu_d + c.count(k2 * mu_d);
-            if (!sun_gather_.empty())
+            if (s < suns) {
+                const double mu_d = rep_direct_mu_[i];
+                if (shadow_) direct[i] = shadow_sun_lx_[i] + c.normal_noise(shadow_sun_var_[i]);
+                else if (mu_d > 0.0) direct[i] = k * mu_d + c.count(k2 * mu_d);
+            }
+            if (s < rows && !sun_gather_.empty())
                 gathered[i] = (1.0 + c.rays) * sun_gather_[i] + c.gathered(sun_gather_var_[i],
                                                                            &sun_loading_[i * kGatherRegions],
                                                                            &common_sun[s * kGatherRegions]);
@@ -748,8 +844,8 @@ void AnnualCoefficients::draw_sun_indirect(std::uint64_t seed, std::uint64_t rep
     PhiloxBits bits(seed, (replicate << 40) | kSunDrawStream | first_);
     std::normal_distribution<double> normal;
     std::vector<double> cumulative(cells_);
-    for (std::size_t s = 0; s < pool_.size(); ++s) {
-        const std::size_t row = s * cells_;
+    for (std::size_t r = 0; r < row_clock_.size(); ++r) {
+        const std::size_t row = r * cells_;
         double total = 0.0;
         for (std::size_t cell = 0; cell < cells_; ++cell) {
             const double mu = rep_indirect_mu_[row + cell], var = rep_indirect_var_[row + cell];

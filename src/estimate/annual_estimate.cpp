@@ -42,18 +42,40 @@ AnnualHours annual_hours(const AnnualSetup& annual) {
 
 namespace {
 
+// The lights' flux per light group, and per annual sun (Light::annual_sun).
+struct GridFlux {
+    std::vector<double> group, sun;
+};
+
+GridFlux grid_flux(const Scene& scene) {
+    GridFlux f{light_group_flux_lm(scene), std::vector<double>(scene.annual->sky->suns().size(), 0.0)};
+    for (const Light& l : scene.lights.lights())
+        if (l.annual_sun >= 0 && static_cast<std::size_t>(l.annual_sun) < f.sun.size())
+            f.sun[static_cast<std::size_t>(l.annual_sun)] += l.flux_lm;
+    return f;
+}
+
 // The grid's counts as AnnualCoefficients reads them.
 AnnualGridCounts grid_counts(const Scene& scene, std::size_t det, const TallyLayout& layout,
                              std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                             const std::vector<double>& group_flux, const DirectCoefficients* direct) {
+                             const GridFlux& group_flux, const DirectCoefficients* direct) {
     const Detector& d = scene.detectors[det];
     if (scene.annual->options.shadow_rays() != (direct != nullptr))
         throw std::logic_error("estimate_annual_grid: direct coefficients missing or not asked for");
     if (layout.gathered(det) && !(direct != nullptr && direct->gather_unit_lx_per_lm > 0.0))
         throw std::logic_error("estimate_annual_grid: a gathered grid without its unit");
     const double gather_per_unit = layout.gathered(det) ? e0 * direct->gather_unit_lx_per_lm : 0.0;
-    return {*scene.annual,         layout,          data,    det,        static_cast<std::size_t>(d.cells()),
-            e0 * d.value_per_lm(), gather_per_unit, photons, group_flux, direct};
+    return {*scene.annual,
+            layout,
+            data,
+            det,
+            static_cast<std::size_t>(d.cells()),
+            e0 * d.value_per_lm(),
+            gather_per_unit,
+            photons,
+            group_flux.group,
+            direct,
+            group_flux.sun};
 }
 
 const DirectCoefficients* direct_of(const AnnualDirect& direct, std::size_t det) {
@@ -118,7 +140,7 @@ void size_series(std::size_t hours, std::size_t cells, AnnualSeries& x) {
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                             int replicates, bool series, const AnnualDirect& direct) {
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const GridFlux group_flux = grid_flux(scene);
     const DirectCoefficients* dc = direct_of(direct, det);
     const AnnualGridCounts grid = grid_counts(scene, det, layout, data, e0, photons, group_flux, dc);
     const AnnualHours hours = annual_hours(*scene.annual);
@@ -145,7 +167,7 @@ void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& 
                         std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                         const DirectCoefficients* direct, AnnualDetectorEstimate& e) {
     if (!layout.gathered(det)) return;
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const GridFlux group_flux = grid_flux(scene);
     const AnnualGridCounts g = grid_counts(scene, det, layout, data, e0, photons, group_flux, direct);
     const AnnualSetup& a = *scene.annual;
     const double kg = g.gather_per_unit, inv_n = photons > 0 ? 1.0 / static_cast<double>(photons) : 0.0;
@@ -153,7 +175,7 @@ void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& 
         v->assign(g.cells, 0.0);
     const std::size_t patches = a.sky->sky_entries() - 1;  // the ground is the last entry
     for (std::size_t grp = 0; grp < layout.groups(); ++grp) {
-        const bool sun = grp >= a.first_sun_group && grp < a.first_sun_group + a.sky->suns().size();
+        const bool sun = grp >= a.first_sun_group && grp < a.first_sun_group + a.sun_rows();
         const bool sky = grp == a.ground_group || (grp >= a.first_patch_group && grp < a.first_patch_group + patches);
         if (!sun && !sky) continue;
         std::vector<double>& sum = sun ? e.gather_sun_lx_h : e.gather_sky_lx_h;
@@ -190,7 +212,7 @@ AnnualCellRange annual_part_cells(std::size_t cells, int part, int parts) {
 AnnualDarkRates annual_dark_rates(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                   std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                   const DirectCoefficients* direct) {
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const GridFlux group_flux = grid_flux(scene);
     return AnnualCoefficients::dark_rates(grid_counts(scene, det, layout, data, e0, photons, group_flux, direct));
 }
 
@@ -198,7 +220,7 @@ AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const T
                                     std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
                                     int replicates, AnnualCellRange cells, const AnnualDarkRates& dark,
                                     const DirectCoefficients* direct) {
-    const std::vector<double> group_flux = light_group_flux_lm(scene);
+    const GridFlux group_flux = grid_flux(scene);
     const AnnualGridCounts grid = grid_counts(scene, det, layout, data, e0, photons, group_flux, direct);
     const AnnualHours hours = annual_hours(*scene.annual);
     AnnualGridPart part;

@@ -180,6 +180,7 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         attr(g, "gather_rays", static_cast<std::uint64_t>(annual.options.gather_rays));
         attr(g, "gather_patch_m", annual.options.gather_patch_m);
     }
+    attr(g, "sun_group_days", static_cast<std::uint64_t>(annual.options.sun_group_days));
     attr(g, "occupied_hours", std::vector<double>{annual.options.occupied_from_h, annual.options.occupied_to_h});
     attr(g, "daylit_hours", static_cast<std::uint64_t>(annual.sky->daylit_hours()));
     attr(g, "sun_hours", static_cast<std::uint64_t>(annual.sky->suns().size()));

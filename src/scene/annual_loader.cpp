@@ -86,6 +86,13 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
             if (!gather_key && !o.shadow_rays()) r.fail(k.key, "is for direct = \"shadow_rays\"");
             *k.rays = static_cast<int>(*n);
         }
+    if (const auto days = r.integer("sun_group_days")) {
+        if (*days < 1 || *days > 366)
+            r.fail("sun_group_days", "must lie in 1 to 366 days, got " + std::to_string(*days));
+        if (*days > 1 && !o.shadow_rays())
+            r.fail("sun_group_days", "above 1 needs direct = \"shadow_rays\" (the direct sun stays each hour's own)");
+        o.sun_group_days = static_cast<int>(*days);
+    }
     if (const auto year = r.integer("year")) {
         if (*year < 1900 || *year > 2200) r.fail("year", "must lie in 1900 to 2200");
         o.year = static_cast<int>(*year);
@@ -170,14 +177,21 @@ void add_ground_light(const AnnualSky& sky, const Frame& horizon, AnnualSetup& s
     }
 }
 
-// One sun per daylit hour with the sun up, in its own group.
+// One sun per daylit hour with the sun up, in its own group, or in its row's
+// (sun_group_days): "suns_DDD_HH", its first day and the clock hour.
 void add_sun_lights(const AnnualSky& sky, const Frame& horizon, AnnualSetup& setup, std::vector<Light>& lights,
                     std::vector<std::string>& groups) {
     setup.first_sun_group = groups.size();
+    setup.shared_sun_row = sun_rows_of_days(sky, setup.options.sun_group_days);
     const double cos_half = std::cos(kSunHalfAngleDeg * kPi / 180.0);
     for (std::size_t s = 0; s < sky.suns().size(); ++s) {
         const AnnualHour& h = sky.hours()[sky.suns()[s]];
-        groups.push_back(padded("sun_", sky.suns()[s] + 1, 4));
+        if (setup.shared_sun_row.empty()) {
+            groups.push_back(padded("sun_", sky.suns()[s] + 1, 4));
+        } else if (setup.first_sun_group + setup.sun_row(s) == groups.size()) {
+            const std::size_t hour = sky.suns()[s];
+            groups.push_back(padded("suns_", hour / 24 + 1, 3) + padded("_", hour % 24, 2));
+        }
         SunLight k;
         k.illuminance_lx = h.direct_normal_lx;
         k.sun_altitude_deg = h.sun_altitude_deg;
@@ -188,7 +202,8 @@ void add_sun_lights(const AnnualSky& sky, const Frame& horizon, AnnualSetup& set
         k.frame = Frame::around(k.aim);
         Light l;
         l.label = "sun of hour " + std::to_string(sky.suns()[s] + 1);
-        l.group = groups.size() - 1;
+        l.group = setup.sun_group(static_cast<int>(s));
+        l.annual_sun = static_cast<std::int64_t>(s);
         l.band_share = {1.0};
         l.kind = std::move(k);
         lights.push_back(std::move(l));

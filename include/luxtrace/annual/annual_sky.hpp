@@ -56,6 +56,12 @@ struct AnnualOptions {
     int gather_rays = 4096;       // per sensor, the square of an even number
     double gather_patch_m = 0.5;  // the surfaces' patches' longest edge at most this
     bool gathers() const { return indirect == "gather"; }
+    // The photons' light groups of the suns (issue 37, docs/ANNUAL.md "Suns' groups"): the
+    // suns of one clock hour on this many consecutive days (from 1 January) share one, whose
+    // interreflected and gathered light each sun then reads in its share of their direct
+    // normal illuminance; 1: every sun its own group. Above 1 only with shadow rays (the
+    // direct sun stays every hour's own).
+    int sun_group_days = 1;
     // The rays' rule (but direct_sky_rays' 0): n x n strata, n even, 4 to 4096 rays.
     static bool valid_direct_rays(std::int64_t rays);
 };
@@ -137,14 +143,23 @@ private:
 };
 
 // An annual scene's sky ([annual], docs/ANNUAL.md) and where its light groups are: the
-// sky patches are groups first_patch_group + i, the ground ground_group, the sun of
-// sky->suns()[s] first_sun_group + s.
+// sky patches are groups first_patch_group + i, the ground ground_group, the suns' groups
+// ("sun rows") first_sun_group + r, sun s of sky->suns() in row sun_row(s): its own
+// (r = s) unless options.sun_group_days > 1.
 struct AnnualSetup {
     AnnualOptions options;
     std::shared_ptr<const AnnualSky> sky;
     std::size_t first_patch_group = 0, ground_group = 0, first_sun_group = 0;
-    std::size_t sun_group(int sun) const { return first_sun_group + static_cast<std::size_t>(sun); }
+    // Per sun its row, when the suns share rows (empty: each its own).
+    std::vector<std::size_t> shared_sun_row;
+    std::size_t sun_row(std::size_t sun) const { return shared_sun_row.empty() ? sun : shared_sun_row[sun]; }
+    std::size_t sun_rows() const;
+    std::size_t sun_group(int sun) const { return first_sun_group + sun_row(static_cast<std::size_t>(sun)); }
 };
+
+// Sun rows for suns of `days` consecutive days: per sun (sky.suns() order) its row, rows
+// numbered in the order of their first sun; empty for days <= 1.
+std::vector<std::size_t> sun_rows_of_days(const AnnualSky& sky, int days);
 
 // The hour's middle in local standard time: an EPW hour is the hour ENDING then (hour 1 is
 // 00:00-01:00, its middle 0.5); a .wea's decimal hour is already the middle as written.

@@ -52,6 +52,10 @@ struct AnnualGridCounts {
     std::uint64_t photons = 0;
     std::span<const double> group_flux_lm;
     const DirectCoefficients* direct = nullptr;
+    // Per sun (AnnualSky::suns()), its own flux (the sum of its lights'): a sun of a shared
+    // row (AnnualSetup::sun_row) that emits nothing has zero coefficients. Empty: its
+    // group's.
+    std::span<const double> sun_flux_lm;
 };
 
 // The expected count, per neighbour and unit share, of a (sun, cell) pair whose
@@ -94,24 +98,26 @@ private:
     // The constructor reads the block's counts per light group (Counts) in four steps,
     // each filling the members under its name below (the dark rates come in):
     //   sky_coefficients  the sky patches' and the ground's coefficients and their errors
-    //   pool_suns         per sun, the suns of the same hour on the neighbouring days
+    //   SunRows           per sun, the rows (the photons' sun groups) it reads: its own and
+    //                     those of the same hour on the neighbouring days, or its shared row
     //   sun_priors        per clock hour and cell, the prior of a sun's interreflected count
     //   sun_coefficients  per sun and cell, the coefficients, their errors and a fresh run's draw
     struct Counts;
-    struct SunPools;
+    struct SunRows;
     static std::vector<double> gather_totals(const AnnualGridCounts& grid, const Counts& c);
     void gather_loadings(const Counts& c, const AnnualDarkRates& dark);
     void sky_coefficients(const Counts& counts);
     void sun_priors(const Counts& counts);
     void sun_coefficients(const Counts& counts);
+    void row_centres(const Counts& counts);
     void sun_gathered(const Counts& counts);
 
     // sum over the emitting sky entries of w^power x[entry][cell], w the hour's weight.
     void sky_row(const AnnualHour& hour, const std::vector<double>& x, int power, std::vector<double>& row) const;
     void combine(const std::vector<double>& sky, const std::vector<double>& sun, const std::vector<double>& direct,
                  AnnualSeries& out) const;
-    // [sun][cell]: sun = direct + the indirect pooled over the sun's day and its neighbours
-    // (pool_share_ times their sum).
+    // [sun][cell]: sun = direct + the [row][cell] indirect pooled over the rows the sun
+    // reads (pool_share_ times their sum).
     void pool(const std::vector<double>& indirect, const std::vector<double>& direct, std::vector<double>& sun) const;
 
     // replicate(): a fresh run's interreflected sun of every sun and cell (its counts drawn
@@ -139,31 +145,33 @@ private:
     // where the cell saw nothing) and the plain counts' variances for the replicates.
     std::vector<double> sky_, sky_q_, sky_var_;
     // The gathered part (empty without a gather): its variance per [entry][cell], and per
-    // [sun][cell] the sun's own (unpooled) value and variance.
+    // [row][cell] the row's own (unpooled) value and variance.
     std::vector<double> sky_gather_var_, sun_gather_, sun_gather_var_;
-    // Per [entry][cell] and [sun][cell], kGatherRegions each: the cell's loadings on its
+    // Per [entry][cell] and [row][cell], kGatherRegions each: the cell's loadings on its
     // group's common draws.
     std::vector<float> sky_loading_, sun_loading_;
     // The gathered value per [entry][cell] and, pooled, per [sun][cell]; per cell the
     // relative variance of the gather's own rays (DirectCoefficients::gather_rel_var), an
     // error common to every hour.
     std::vector<double> sky_gather_, sun_gather_pooled_, gather_rel_var_;
-    // sun += pool share x (own + the neighbours' own), per [sun][cell].
+    // sun += pool share x (the sum of the rows it reads), per [sun][cell].
     void pool_gathered(const std::vector<double>& own, std::vector<double>& sun) const;
     std::vector<std::size_t> entries_;  // the sky entries whose groups emit
 
-    // pool_suns, per sun: the suns of the same hour on the neighbouring days, this sun's
-    // share of the three's photons and its share of the neighbours' photons alone.
-    std::vector<std::vector<std::size_t>> pool_;
-    std::vector<double> pool_share_, neighbour_share_;
+    // SunRows, per sun: the rows it reads (its own first), its share of them, their flux
+    // and its dark count's scale (sun_coefficients); per row: the rows its replicates'
+    // centre reads, their flux, and its clock hour.
+    std::vector<std::vector<std::size_t>> pool_, evidence_;
+    std::vector<double> pool_share_, pool_flux_, dark_scale_, evidence_flux_;
+    std::vector<std::size_t> row_clock_;
 
     // sun_priors, [clock hour][cell]: the prior's mean count per unit flux and its shape.
     std::vector<double> eb_rho_, eb_alpha_;
 
     // sun_coefficients, [sun][cell]: the coefficients (lx per unit weight) and the direct
     // sun's; for the hourly errors k^2 q of the pooled estimate (with a dark floor) and the
-    // direct sun's variance; a fresh run's draw, in counts: the direct count's pooled mean,
-    // and the indirect count's empirical-Bayes centre and its variance.
+    // direct sun's variance; a fresh run's draw, in counts: the direct count's pooled mean;
+    // [row][cell]: the indirect count's empirical-Bayes centre and its variance.
     std::vector<double> sun_, direct_, sun_q_, direct_var_;
     std::vector<float> rep_direct_mu_, rep_indirect_mu_, rep_indirect_var_;
 

@@ -32,6 +32,7 @@
 #include "luxtrace/light/spot_light.hpp"
 #include "luxtrace/light/sun_light.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -60,6 +61,9 @@ struct Light {
     // split over several portals keeps it on the first only, so the scene's sum stays
     // that of the sky.
     double unobstructed_horizontal_lx = 0.0;
+    // An annual run's sun (issue 24): its index in AnnualSky::suns() (its flux apart from
+    // the others of its light group, AnnualSetup::sun_row); -1 for any other light.
+    std::int64_t annual_sun = -1;
     LightKind kind;
 
     template <class K>

@@ -142,11 +142,14 @@ TEST(AnnualDirect, ShadowRaysAndPhotonsGiveTheSameYear) {
     ASSERT_EQ(o.code, 0) << o.out;
     const fs::path shadow = test_support::run_scene_text(dir, "shadow", room("shadow_rays", 12), &o);
     ASSERT_EQ(o.code, 0) << o.out;
-    const fs::path gather = test_support::run_scene_text(dir, "gather", room("shadow_rays", 13, "gather"), &o);
+    const std::string own_suns = "sun_group_days = 1\n";
+    const fs::path gather = test_support::run_scene_text(dir, "gather", room("shadow_rays", 13, "gather", own_suns),
+                                                         &o);
     ASSERT_EQ(o.code, 0) << o.out;
     // Another gather: its noise and its rays' (the gather's rays follow the seed) are the
     // first one's size, which this tests.
-    const fs::path gather2 = test_support::run_scene_text(dir, "gather2", room("shadow_rays", 14, "gather"), &o);
+    const fs::path gather2 = test_support::run_scene_text(dir, "gather2", room("shadow_rays", 14, "gather", own_suns),
+                                                          &o);
     ASSERT_EQ(o.code, 0) << o.out;
     const ResultReader p(photons), s(shadow), g(gather), g2(gather2);
     EXPECT_EQ(s.attr_str("/annual", "direct"), "shadow_rays");

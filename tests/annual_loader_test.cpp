@@ -224,12 +224,15 @@ TEST_F(Loader, AnnualDirectByShadowRaysKeepsTheGridsDirectApart) {
     EXPECT_GT(tally_layout(gather).size(), tally_layout(shadow).size());
 }
 
-// sun_group_days: the suns of one clock hour on a block of days share a light group (in the
-// order of their first sun), each sun light keeping its own index; the tallies shrink.
+// sun_group_days (7 by default with shadow rays): the suns of one clock hour on a block of
+// days share a light group (in the order of their first sun), each sun light keeping its own
+// index; the tallies shrink.
 TEST_F(Loader, AnnualSunsOfAWeeksClockHourShareALightGroup) {
     const std::string shadow = "direct = \"shadow_rays\"\n";
-    const Scene own = load(kAnnual + shadow + kMat + kFloor + kGrid);
-    const Scene week = load(kAnnual + shadow + "sun_group_days = 7\n" + kMat + kFloor + kGrid);
+    const Scene own = load(kAnnual + shadow + "sun_group_days = 1\n" + kMat + kFloor + kGrid);
+    const Scene week = load(kAnnual + shadow + kMat + kFloor + kGrid);  // 7 days: the default with shadow rays
+    EXPECT_EQ(week.annual->options.sun_group_days, 7);
+    EXPECT_EQ(load(kAnnual + kMat + kFloor + kGrid).annual->options.sun_group_days, 1);
     const AnnualSetup& a = *week.annual;
     const AnnualSky& sky = *a.sky;
     EXPECT_EQ(own.annual->sun_rows(), sky.suns().size());

@@ -16,7 +16,7 @@ namespace {
 
 // The cells of a block of the post-processing: its coefficients (about 30 doubles per sun
 // and cell) stay in the core's cache while its hours are summed.
-constexpr std::size_t kBlockCells = 32;
+constexpr std::size_t kBlockCells = kAnnualBlockCells;
 
 // A block's series (hours x its cells) into the grid's, from cell `first`.
 void place_block(const AnnualSeries& block, std::size_t first, AnnualSeries& grid) {
@@ -139,7 +139,8 @@ void size_series(std::size_t hours, std::size_t cells, AnnualSeries& x) {
 
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                                            int replicates, bool series, const AnnualDirect& direct) {
+                                            int replicates, bool series, const AnnualDirect& direct,
+                                            const AnnualSeriesSink* sink) {
     const GridFlux group_flux = grid_flux(scene);
     const DirectCoefficients* dc = direct_of(direct, det);
     const AnnualGridCounts grid = grid_counts(scene, det, layout, data, e0, photons, group_flux, dc);
@@ -148,12 +149,16 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     if (dc != nullptr) direct_year(*dc, e);
     annual_gather_year(scene, det, layout, data, e0, photons, dc, e);
     if (series)
-        for (AnnualSeries* x : {&e.value, &e.sigma}) size_series(hours.occupied.size(), grid.cells, *x);
+        for (AnnualSeries* x : {&e.value, &e.sigma}) {
+            if (sink != nullptr) x->hours = hours.occupied.size(), x->sensors = grid.cells;
+            else size_series(hours.occupied.size(), grid.cells, *x);
+        }
     // Block by block on every core: each block's coefficients, its hourly series and its
     // replicates' (annual_metrics.hpp).
     const AnnualDarkRates dark = AnnualCoefficients::dark_rates(grid);
     const std::function<void(std::size_t, const AnnualSeries&, const AnnualSeries&)> place =
         [&](std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma) {
+            if (sink != nullptr) return (*sink)(det, first, value, sigma);
             place_block(value, first, e.value);
             place_block(sigma, first, e.sigma);
         };
@@ -240,18 +245,25 @@ AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const T
 }
 
 AnnualPartsMerge::AnnualPartsMerge(const Scene& scene, std::size_t det, int replicates,
-                                   const DirectCoefficients* direct)
-    : hours_(annual_hours(*scene.annual)), cells_(static_cast<std::size_t>(scene.detectors[det].cells())),
-      sums_(hours_, cells_, {}, replicates) {
+                                   const DirectCoefficients* direct, const AnnualSeriesSink* sink)
+    : hours_(annual_hours(*scene.annual)), det_(det), cells_(static_cast<std::size_t>(scene.detectors[det].cells())),
+      sink_(sink), sums_(hours_, cells_, {}, replicates) {
     if (direct != nullptr) direct_year(*direct, estimate_);
-    for (AnnualSeries* x : {&estimate_.value, &estimate_.sigma}) size_series(hours_.occupied.size(), cells_, *x);
+    for (AnnualSeries* x : {&estimate_.value, &estimate_.sigma}) {
+        if (sink_ != nullptr) x->hours = hours_.occupied.size(), x->sensors = cells_;
+        else size_series(hours_.occupied.size(), cells_, *x);
+    }
 }
 
 void AnnualPartsMerge::add(const AnnualGridPart& p) {
     if (p.cells.last < p.cells.first || p.cells.last > cells_ || p.value.sensors != p.cells.last - p.cells.first)
         throw std::logic_error("AnnualPartsMerge: a part beyond the grid");
-    place_block(p.value, p.cells.first, estimate_.value);
-    place_block(p.sigma, p.cells.first, estimate_.sigma);
+    if (sink_ != nullptr) {
+        if (p.cells.last > p.cells.first) (*sink_)(det_, p.cells.first, p.value, p.sigma);
+    } else {
+        place_block(p.value, p.cells.first, estimate_.value);
+        place_block(p.sigma, p.cells.first, estimate_.sigma);
+    }
     sums_.merge(p.metric_words, p.cells.first, p.cells.last);
 }
 
@@ -263,12 +275,13 @@ AnnualDetectorEstimate AnnualPartsMerge::finish() {
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,
                                                                    std::uint64_t photons, int replicates,
-                                                                   const AnnualDirect& direct) {
+                                                                   const AnnualDirect& direct,
+                                                                   const AnnualSeriesSink* sink) {
     std::vector<std::optional<AnnualDetectorEstimate>> out(scene.annual ? scene.detectors.size() : 0);
     if (!scene.annual || photons == 0) return out;
     for (std::size_t d = 0; d < scene.detectors.size(); ++d)
         if (annual_grid(scene.detectors[d]))
-            out[d] = estimate_annual_grid(scene, d, layout, data, e0, photons, replicates, true, direct);
+            out[d] = estimate_annual_grid(scene, d, layout, data, e0, photons, replicates, true, direct, sink);
     return out;
 }
 

@@ -22,7 +22,8 @@ std::string file_name(const std::string& name) {
 }  // namespace
 
 void write_annual_ladybug(const std::filesystem::path& folder, const Scene& scene,
-                          const std::vector<std::optional<AnnualDetectorEstimate>>& annual) {
+                          const std::vector<std::optional<AnnualDetectorEstimate>>& annual,
+                          const AnnualSeriesSource& source) {
     if (!scene.annual) return;
     const std::vector<AnnualHour>& hours = scene.annual->sky->hours();
     // The hours the reader's 8760-hour year has, and of those the sun-up ones.
@@ -45,6 +46,18 @@ void write_annual_ladybug(const std::filesystem::path& folder, const Scene& scen
         g.name = scene.detectors[d].name;
         g.identifier = file_name(g.name);
         g.sensors = s.sensors;
+        if (s.total_lx.empty() && source) {
+            // A few sensors at a time from where the post-processing put them.
+            g.rows = [&source, &kept, d, hours = s.hours](bool direct, std::size_t first, std::size_t count,
+                                                          std::span<float> out) {
+                std::vector<float> all(count * hours);
+                source.read_cells(d, direct ? 1 : 0, first, count, all);
+                for (std::size_t c = 0; c < count; ++c)
+                    for (std::size_t k = 0; k < kept.size(); ++k) out[c * kept.size() + k] = all[c * hours + kept[k]];
+            };
+            grids.push_back(std::move(g));
+            continue;
+        }
         g.total_lx.resize(s.sensors * kept.size());
         g.direct_lx.resize(s.sensors * kept.size());
         for (std::size_t c = 0; c < s.sensors; ++c)

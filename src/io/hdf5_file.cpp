@@ -51,68 +51,111 @@ namespace {
 
 constexpr int kDeflateLevel = 1;
 
-// Writes the chunks of rows [c * chunk_rows, + chunk_rows) of `data`, each filtered on
-// whichever core is free (chunk_filters.hpp: the bytes HDF5's own pipeline makes) and
-// handed to HDF5 as it is, in chunk order. A large map's compression took most of a
-// ten-million-triangle result's write on one core (issue 26).
+// Writes chunks [first, last) of the dataset (rows [c * chunk_rows, + chunk_rows)) from
+// `bytes`, their rows (the first chunk's first row at bytes[0]), each filtered on whichever
+// core is free (chunk_filters.hpp: the bytes HDF5's own pipeline makes) and handed to HDF5
+// as it is, in chunk order. A large map's compression took most of a ten-million-triangle
+// result's write on one core (issue 26).
+void write_chunk_range(hid_t ds, const std::string& name, const std::vector<hsize_t>& dims, hsize_t chunk_rows,
+                       std::size_t element_size, const unsigned char* bytes, std::size_t first, std::size_t last) {
+    std::size_t row_bytes = element_size;
+    for (std::size_t d = 1; d < dims.size(); ++d) row_bytes *= static_cast<std::size_t>(dims[d]);
+    const std::size_t chunk_bytes = static_cast<std::size_t>(chunk_rows) * row_bytes;
+    const std::size_t data_end = static_cast<std::size_t>(dims[0]) * row_bytes - first * chunk_bytes;
+    std::vector<std::vector<unsigned char>> stored(last - first);
+    tbb::parallel_for(first, last, [&](std::size_t c) {
+        const std::size_t begin = (c - first) * chunk_bytes, end = std::min(data_end, begin + chunk_bytes);
+        if (end - begin == chunk_bytes) {
+            stored[c - first] = filtered_chunk({bytes + begin, chunk_bytes}, element_size, kDeflateLevel);
+            return;
+        }
+        // The last chunk is stored whole, zero (the fill value) past the data's end.
+        std::vector<unsigned char> padded(chunk_bytes, 0);
+        std::copy(bytes + begin, bytes + end, padded.begin());
+        stored[c - first] = filtered_chunk(padded, element_size, kDeflateLevel);
+    });
+    std::vector<hsize_t> offset(dims.size(), 0);
+    for (std::size_t c = first; c < last; ++c) {
+        offset[0] = static_cast<hsize_t>(c) * chunk_rows;
+        const std::vector<unsigned char>& st = stored[c - first];
+        check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), st.size(), st.data()), "write " + name);
+    }
+}
+
+// A batch of chunks at a time, so that memory stays a few chunks per core.
+std::size_t chunk_batch() { return 8 * static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency())); }
+
 void write_chunks(hid_t ds, const std::string& name, const std::vector<hsize_t>& dims, hsize_t chunk_rows,
                   std::size_t element_size, const void* data) {
     std::size_t row_bytes = element_size;
     for (std::size_t d = 1; d < dims.size(); ++d) row_bytes *= static_cast<std::size_t>(dims[d]);
     const std::size_t chunk_bytes = static_cast<std::size_t>(chunk_rows) * row_bytes;
-    const std::size_t data_bytes = static_cast<std::size_t>(dims[0]) * row_bytes;
     const std::size_t chunks = static_cast<std::size_t>((dims[0] + chunk_rows - 1) / chunk_rows);
     const auto* bytes = static_cast<const unsigned char*>(data);
-    // A batch at a time, so that memory stays a few chunks per core.
-    const std::size_t batch = 8 * std::max(1, tbb::this_task_arena::max_concurrency());
-    std::vector<std::vector<unsigned char>> stored(batch);
-    std::vector<hsize_t> offset(dims.size(), 0);
-    for (std::size_t first = 0; first < chunks; first += batch) {
-        const std::size_t last = std::min(chunks, first + batch);
-        tbb::parallel_for(first, last, [&](std::size_t c) {
-            const std::size_t begin = c * chunk_bytes, end = std::min(data_bytes, begin + chunk_bytes);
-            if (end - begin == chunk_bytes) {
-                stored[c - first] = filtered_chunk({bytes + begin, chunk_bytes}, element_size, kDeflateLevel);
-                return;
-            }
-            // The last chunk is stored whole, zero (the fill value) past the data's end.
-            std::vector<unsigned char> padded(chunk_bytes, 0);
-            std::copy(bytes + begin, bytes + end, padded.begin());
-            stored[c - first] = filtered_chunk(padded, element_size, kDeflateLevel);
-        });
-        for (std::size_t c = first; c < last; ++c) {
-            offset[0] = static_cast<hsize_t>(c) * chunk_rows;
-            const std::vector<unsigned char>& s = stored[c - first];
-            check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), s.size(), s.data()), "write " + name);
-        }
+    for (std::size_t first = 0; first < chunks; first += chunk_batch())
+        write_chunk_range(ds, name, dims, chunk_rows, element_size, bytes + first * chunk_bytes, first,
+                          std::min(chunks, first + chunk_batch()));
+}
+
+// The chunk's rows for a dataset of `dims` (0: not chunked): about 64 k elements a chunk.
+hsize_t chunk_rows_for(const std::vector<hsize_t>& dims) {
+    hsize_t total = 1;
+    for (hsize_t d : dims) total *= d;
+    if (total < 4096 || dims.empty()) return 0;
+    return std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, total / dims[0])));
+}
+
+Id create_dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, hid_t file_type,
+                  hsize_t chunk_rows) {
+    Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "dataspace");
+    // Large maps are chunked and compressed: counts compress well.
+    Id plist = untimed(H5P_DATASET_CREATE);
+    if (chunk_rows > 0) {
+        std::vector<hsize_t> chunk = dims;
+        chunk[0] = chunk_rows;
+        check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "chunk");
+        check(H5Pset_shuffle(plist), "shuffle");
+        check(H5Pset_deflate(plist, kDeflateLevel), "deflate");
+        check(H5Pset_fletcher32(plist), "checksum");  // a damaged chunk fails to read
     }
+    return Id(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
+              "create dataset " + name);
 }
 
 }  // namespace
 
 void write_dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, hid_t file_type,
                    hid_t mem_type, const void* data) {
-    Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, "dataspace");
-    // Large maps are chunked and compressed: counts compress well.
-    Id plist = untimed(H5P_DATASET_CREATE);
-    hsize_t total = 1;
-    for (hsize_t d : dims) total *= d;
-    hsize_t chunk_rows = 0;
-    if (total >= 4096 && !dims.empty()) {
-        std::vector<hsize_t> chunk = dims;
-        chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / std::max<hsize_t>(1, total / dims[0])));
-        chunk_rows = chunk[0];
-        check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "chunk");
-        check(H5Pset_shuffle(plist), "shuffle");
-        check(H5Pset_deflate(plist, kDeflateLevel), "deflate");
-        check(H5Pset_fletcher32(plist), "checksum");  // a damaged chunk fails to read
-    }
-    Id ds(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, plist, H5P_DEFAULT), H5Dclose,
-          "create dataset " + name);
+    const hsize_t chunk_rows = chunk_rows_for(dims);
+    const Id ds = create_dataset(parent, name, dims, file_type, chunk_rows);
     // The numbers' bytes are the file's when the types agree (little-endian machines).
     if (chunk_rows > 0 && H5Tequal(file_type, mem_type) > 0)
         write_chunks(ds, name, dims, chunk_rows, H5Tget_size(mem_type), data);
     else check(H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+void write_float_rows(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
+                      const std::function<void(hsize_t first, hsize_t count, std::span<float> out)>& rows) {
+    const hsize_t chunk_rows = chunk_rows_for(dims);
+    const Id ds = create_dataset(parent, name, dims, H5T_IEEE_F32LE, chunk_rows);
+    std::size_t row = 1;
+    for (std::size_t d = 1; d < dims.size(); ++d) row *= static_cast<std::size_t>(dims[d]);
+    if (chunk_rows == 0 || H5Tequal(H5T_IEEE_F32LE, H5T_NATIVE_FLOAT) <= 0) {  // small, or a big-endian machine
+        std::vector<float> all(static_cast<std::size_t>(dims.empty() ? 0 : dims[0]) * row);
+        if (!dims.empty()) rows(0, dims[0], all);
+        check(H5Dwrite(ds, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), "write " + name);
+        return;
+    }
+    const std::size_t chunks = static_cast<std::size_t>((dims[0] + chunk_rows - 1) / chunk_rows);
+    std::vector<float> buf;
+    for (std::size_t first = 0; first < chunks; first += chunk_batch()) {
+        const std::size_t last = std::min(chunks, first + chunk_batch());
+        const hsize_t r0 = first * chunk_rows, r1 = std::min<hsize_t>(dims[0], last * chunk_rows);
+        buf.assign(static_cast<std::size_t>(r1 - r0) * row, 0.0F);
+        rows(r0, r1 - r0, buf);
+        write_chunk_range(ds, name, dims, chunk_rows, sizeof(float), reinterpret_cast<const unsigned char*>(buf.data()),
+                          first, last);
+    }
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -60,6 +61,11 @@ template <class T>
 void dataset(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, const T* data) {
     write_dataset(parent, name, dims, file_type<T>(), native_type<T>(), data);
 }
+// A dataset of 32-bit floats of `dims` whose rows come a slab at a time from `rows` (rows
+// [first, first + count), row-major into `out`): the dataset write_dataset makes of the
+// whole, without the whole in memory.
+void write_float_rows(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
+                      const std::function<void(hsize_t first, hsize_t count, std::span<float> out)>& rows);
 // A one-dimensional dataset of variable-length UTF-8 strings.
 void string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values);
 

@@ -6,6 +6,7 @@
 
 #include <fcntl.h>
 #include <unistd.h>
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cmath>
@@ -64,6 +65,7 @@ void check_arguments(const fs::path& folder, const std::vector<LadybugGrid>& gri
         if (!seen.insert(g.identifier).second) throw InputError(grid + "the identifier is used twice");
         if (g.sensors == 0) throw InputError(grid + "no sensors");
         const std::size_t expected = g.sensors * hours.size();
+        if (g.rows && g.total_lx.empty() && g.direct_lx.empty()) continue;  // checked as written
         for (const auto& [label, values] : {std::pair{"total_lx", &g.total_lx}, std::pair{"direct_lx", &g.direct_lx}}) {
             if (values->size() != expected)
                 throw InputError(grid + label + " holds " + std::to_string(values->size()) +
@@ -221,10 +223,7 @@ void swap_into_place(TemporaryFolder& tmp, const fs::path& folder) {
 
 }  // namespace
 
-std::string npy_float32(std::span<const float> values, std::size_t rows, std::size_t cols) {
-    if (values.size() != rows * cols)
-        throw InputError("npy array: " + std::to_string(values.size()) + " values for a " + std::to_string(rows) +
-                         " x " + std::to_string(cols) + " array");
+std::string npy_float32_header(std::size_t rows, std::size_t cols) {
     std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
                          std::to_string(cols) + "), }";
     // magic (6) + version (2) + header length (2) + header, a multiple of 64, ending in '\n'.
@@ -235,7 +234,11 @@ std::string npy_float32(std::span<const float> values, std::size_t rows, std::si
     std::string out("\x93NUMPY\x01\x00", 8);
     out += static_cast<char>(header.size() & 0xff);
     out += static_cast<char>((header.size() >> 8) & 0xff);
-    out += header;
+    return out + header;
+}
+
+namespace {
+void append_little_endian(std::span<const float> values, std::string& out) {
     out.reserve(out.size() + values.size() * 4);
     for (const float v : values) {
         std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
@@ -244,6 +247,58 @@ std::string npy_float32(std::span<const float> values, std::size_t rows, std::si
             bits >>= 8;
         }
     }
+}
+
+// A grid's array from its rows callback, a block of sensors at a time, into `path` (in the
+// temporary folder: the folder is swapped in whole, so the file need not be atomic itself).
+void write_npy_rows(const fs::path& path, const LadybugGrid& g, bool direct, std::size_t hours) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw IoError(path.string() + ": cannot create the file: " + reason(errno));
+    auto put = [&](const std::string& bytes) {
+        std::size_t done = 0;
+        while (done < bytes.size()) {
+            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                const int err = n < 0 ? errno : ENOSPC;
+                ::close(fd);
+                throw IoError(path.string() + ": cannot write the file: " + reason(err));
+            }
+            done += static_cast<std::size_t>(n);
+        }
+    };
+    put(npy_float32_header(g.sensors, hours));
+    constexpr std::size_t kSensors = 256;
+    std::vector<float> values;
+    std::string bytes;
+    for (std::size_t first = 0; first < g.sensors; first += kSensors) {
+        const std::size_t count = std::min(kSensors, g.sensors - first);
+        values.assign(count * hours, 0.0F);
+        g.rows(direct, first, count, values);
+        for (std::size_t k = 0; k < values.size(); ++k)
+            if (!std::isfinite(values[k])) {
+                ::close(fd);
+                throw InputError("Ladybug results: grid '" + g.identifier +
+                                 "': " + (direct ? "direct_lx" : "total_lx") + " is not finite at sensor " +
+                                 std::to_string(first + k / hours) + ", hour " + std::to_string(k % hours));
+            }
+        bytes.clear();
+        append_little_endian(values, bytes);
+        put(bytes);
+    }
+    const bool synced = ::fsync(fd) == 0;
+    const int err = errno;
+    ::close(fd);
+    if (!synced) throw IoError(path.string() + ": cannot write the file: " + reason(err));
+}
+}  // namespace
+
+std::string npy_float32(std::span<const float> values, std::size_t rows, std::size_t cols) {
+    if (values.size() != rows * cols)
+        throw InputError("npy array: " + std::to_string(values.size()) + " values for a " + std::to_string(rows) +
+                         " x " + std::to_string(cols) + " array");
+    std::string out = npy_float32_header(rows, cols);
+    append_little_endian(values, out);
     return out;
 }
 
@@ -261,7 +316,12 @@ void write_ladybug_results(const fs::path& folder_in, const std::vector<LadybugG
     for (const char* kind : {"total", "direct"}) {
         make_directory(state / kind);
         for (const LadybugGrid& g : grids) {
-            const std::vector<float>& values = std::string(kind) == "total" ? g.total_lx : g.direct_lx;
+            const bool direct = std::string(kind) == "direct";
+            if (g.rows && g.total_lx.empty() && g.direct_lx.empty()) {
+                write_npy_rows(state / kind / (g.identifier + ".npy"), g, direct, hours);
+                continue;
+            }
+            const std::vector<float>& values = direct ? g.direct_lx : g.total_lx;
             const std::string bytes = npy_float32(values, g.sensors, hours);
             write_file_atomically(state / kind / (g.identifier + ".npy"), std::span(bytes.data(), bytes.size()));
         }

@@ -13,9 +13,18 @@ using namespace hdf5;
 
 namespace {
 
-// Hours x cells as 32-bit floats: seven digits, far below any run's error.
-void hourly(hid_t g, const std::string& name, const AnnualSeries& s, const std::vector<double>& values) {
-    write_dataset(g, name, {s.hours, s.sensors}, H5T_IEEE_F32LE, H5T_NATIVE_DOUBLE, values.data());
+// Hours x cells as 32-bit floats: seven digits, far below any run's error. From the
+// estimate, or, where it holds none, from where the post-processing put them (a slab of
+// hours at a time).
+void hourly(hid_t g, const std::string& name, const AnnualSeries& s, const std::vector<double>& values,
+            const AnnualSeriesSource& source, std::size_t det, std::size_t kind) {
+    if (!values.empty() || !source) {
+        write_dataset(g, name, {s.hours, s.sensors}, H5T_IEEE_F32LE, H5T_NATIVE_DOUBLE, values.data());
+        return;
+    }
+    write_float_rows(g, name, {s.hours, s.sensors}, [&](hsize_t first, hsize_t count, std::span<float> out) {
+        source.read_hours(det, kind, first, first + count, out);
+    });
 }
 
 void write_hours(hid_t g, const AnnualSetup& annual, const AnnualHours& counted) {
@@ -194,10 +203,10 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         const AnnualDetectorEstimate& e = *est.annual[d];
         const Detector& det = scene.detectors[d];
         const Id dg = create_group(dets, det.name, "group /annual/detectors/" + det.name);
-        hourly(dg, "illuminance_lx", e.value, e.value.total_lx);
-        hourly(dg, "illuminance_sigma_lx", e.sigma, e.sigma.total_lx);
-        hourly(dg, "direct_sun_lx", e.value, e.value.direct_lx);
-        hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx);
+        hourly(dg, "illuminance_lx", e.value, e.value.total_lx, est.annual_series, d, 0);
+        hourly(dg, "illuminance_sigma_lx", e.sigma, e.sigma.total_lx, est.annual_series, d, 2);
+        hourly(dg, "direct_sun_lx", e.value, e.value.direct_lx, est.annual_series, d, 1);
+        hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx, est.annual_series, d, 3);
         write_metrics(dg, e.metrics, e.value.sensors);
         write_coefficients(dg, annual, layout, tallies, d, e.value.sensors);
         // The year's parts per cell, where the run has them: PREFIX_{sky,sun}[_sigma]_lx_h.

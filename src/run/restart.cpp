@@ -10,6 +10,14 @@
 
 namespace luxtrace {
 
+namespace {
+// A few groups by name; an annual run's thousands as their count, the first and the last.
+std::string group_list(const std::vector<std::string>& groups) {
+    if (groups.size() <= 8) return comma_list(groups);
+    return std::to_string(groups.size()) + " (" + groups[0] + ", " + groups[1] + ", ..., " + groups.back() + ")";
+}
+}  // namespace
+
 RestartState restore_checkpoint(const std::string& path, const RunConfig& run, const TallyLayout& layout,
                                 const std::vector<std::string>& light_groups, const std::string& annual_indirect) {
     CheckpointState ck = read_checkpoint(path);
@@ -21,6 +29,15 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
     if (ck.sampler == run.sampler && ck.replicates != layout.replicates())
         throw InputError(path + ": the checkpoint was made with " + std::to_string(ck.replicates) +
                          " replicates; restart with the same (drop --replicates)");
+    // Annual grids count the photons' direct arrivals or leave them to shadow rays: the
+    // counts of one way do not continue the other's.
+    if (!ck.annual_direct.empty() && (ck.annual_direct == "shadow_rays") != layout.any_direct_apart())
+        throw InputError(path + ": the checkpoint was made with [annual] direct = \"" + ck.annual_direct +
+                         "\"; restart with the same");
+    // A gathered grid's counts hold the weights of one gather table.
+    if (!annual_indirect.empty() && !ck.annual_indirect.empty() && ck.annual_indirect != annual_indirect)
+        throw InputError(path + ": the checkpoint was made with [annual] indirect = " + ck.annual_indirect +
+                         ", this scene asks " + annual_indirect + "; restart with the same");
     // Light groups keep their counts apart: a checkpoint continues only with the same ones.
     const std::vector<std::string> ck_groups = ck.light_groups.empty() ? std::vector<std::string>{"default"}
                                                                        : ck.light_groups;
@@ -28,10 +45,11 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
     const bool shared = layout.groups() > 1 && layout.map_groups() == 1;
     if (ck_groups.size() != layout.groups() || (!ck.light_groups.empty() && ck.light_groups != light_groups) ||
         ck_shared != shared)
-        throw InputError(path + ": the checkpoint keeps the light groups " + comma_list(ck_groups) +
+        throw InputError(path + ": the checkpoint keeps the light groups " + group_list(ck_groups) +
                          (ck_shared ? " (one surface map for all)" : "") + ", this scene has " +
-                         comma_list(light_groups) + (shared ? " (one surface map for all)" : "") +
-                         ": restart with the light groups and [run] group_maps the checkpoint was made with");
+                         group_list(light_groups) + (shared ? " (one surface map for all)" : "") +
+                         ": restart with the light groups and [run] group_maps the checkpoint was made with" +
+                         (ck.annual_direct.empty() ? "" : " (an annual run's: its sky, [annual] sun_group_days)"));
     // A sobol checkpoint of luxtrace 0.3: the same scene, but no replicate maps per side.
     if (layout.replicates() > 0 && ck.triangles == layout.triangles() && ck.bands == layout.bands() &&
         ck.layout_size + layout.sides() * layout.map_columns() * layout.replicates() == layout.size())
@@ -47,15 +65,6 @@ RestartState restore_checkpoint(const std::string& path, const RunConfig& run, c
                          "numbers differently (photon layout " +
                          std::to_string(ck.photon_layout) + ", this one " + std::to_string(kPhotonLayout) +
                          "); continue it with that version or start anew");
-    // Annual grids count the photons' direct arrivals or leave them to shadow rays: the
-    // counts of one way do not continue the other's.
-    if (!ck.annual_direct.empty() && (ck.annual_direct == "shadow_rays") != layout.any_direct_apart())
-        throw InputError(path + ": the checkpoint was made with [annual] direct = \"" + ck.annual_direct +
-                         "\"; restart with the same");
-    // A gathered grid's counts hold the weights of one gather table.
-    if (!annual_indirect.empty() && !ck.annual_indirect.empty() && ck.annual_indirect != annual_indirect)
-        throw InputError(path + ": the checkpoint was made with [annual] indirect = " + ck.annual_indirect +
-                         ", this scene asks " + annual_indirect + "; restart with the same");
     if (ck.seed != run.seed || ck.sampler != run.sampler)
         throw InputError(path + ": the checkpoint used seed " + std::to_string(ck.seed) + " and sampler " + ck.sampler +
                          "; restart with the same (drop --seed/--sampler)");

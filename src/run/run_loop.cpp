@@ -532,7 +532,8 @@ void RunLoop::gather_annual_part(std::size_t det, const std::vector<AnnualCellRa
     attempt([&] {
         for (std::size_t w = 0, r = 0; r < ranges.size(); w += word_counts[r++])
             if (all_words[w] != 0) throw std::runtime_error("rank " + std::to_string(r) + "'s part failed");
-        AnnualPartsMerge merge(scene_, det, kAnnualReplicates, direct);
+        const AnnualSeriesSink sink = series_sink();
+        AnnualPartsMerge merge(scene_, det, kAnnualReplicates, direct, &sink);
         std::size_t w = 0, x = 0;
         for (std::size_t r = 0; r < ranges.size(); w += word_counts[r++]) {
             AnnualGridPart p;
@@ -647,6 +648,37 @@ RunLoop::Traced RunLoop::traced() const {
     return t;
 }
 
+AnnualSeriesFile& RunLoop::series_file() {
+    if (!series_file_) {
+        std::vector<std::size_t> cells;
+        for (const Detector& d : scene_.detectors)
+            cells.push_back(annual_grid(d) ? static_cast<std::size_t>(d.cells()) : 0);
+        std::vector<std::uint8_t> daylit;
+        for (const AnnualHour& h : scene_.annual->sky->hours()) daylit.push_back(h.daylit ? 1 : 0);
+        series_file_ = std::make_unique<AnnualSeriesFile>(run_.output, cells, daylit, kAnnualBlockCells);
+    }
+    return *series_file_;
+}
+
+AnnualSeriesSink RunLoop::series_sink() {
+    AnnualSeriesFile& f = series_file();
+    return [&f](std::size_t det, std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma) {
+        f.write(det, first, value, sigma);
+    };
+}
+
+AnnualSeriesSource RunLoop::series_source() {
+    AnnualSeriesFile& f = series_file();
+    AnnualSeriesSource s;
+    s.read_hours = [&f](std::size_t det, std::size_t kind, std::size_t h0, std::size_t h1, std::span<float> out) {
+        f.read_hours(det, static_cast<AnnualSeriesFile::Kind>(kind), h0, h1, out);
+    };
+    s.read_cells = [&f](std::size_t det, std::size_t kind, std::size_t first, std::size_t count, std::span<float> out) {
+        f.read_cells(det, static_cast<AnnualSeriesFile::Kind>(kind), first, count, out);
+    };
+    return s;
+}
+
 RunInfo RunLoop::final_info(const Traced& t, double elapsed_s, const std::string& reason) const {
     RunInfo i = info_;
     i.photons = t.photons;
@@ -683,9 +715,11 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     } else if (scene_.annual)
         est.annual = steps.run("annual", [&] {
             update_gather_errors(e0);
+            const AnnualSeriesSink sink = series_sink();
             return estimate_annual(scene_, layout_, tallies, e0, n, as_checkpoint ? 0 : kAnnualReplicates,
-                                   annual_direct_);
+                                   annual_direct_, &sink);
         });
+    if (scene_.annual) est.annual_series = series_source();
     const RunInfo i = final_info(t, elapsed_s, reason);
     const CheckpointData ck = as_checkpoint ? checkpoint_data(t.done) : CheckpointData{};
     const std::vector<char> image = steps.run("image", [&] {
@@ -696,7 +730,7 @@ void RunLoop::write_file(const std::string& path, double elapsed_s, const std::s
     if (!as_checkpoint && scene_.annual && scene_.annual->options.write_ladybug) {
         const std::filesystem::path folder = ladybug_folder_for(scene_, path);
         try {
-            steps.run("ladybug", [&] { write_annual_ladybug(folder, scene_, est.annual); });
+            steps.run("ladybug", [&] { write_annual_ladybug(folder, scene_, est.annual, est.annual_series); });
         } catch (const IoError& e) {
             throw IoError("the result " + path + " was written, the Ladybug results folder " + folder.string() +
                           " was not: " + e.what());

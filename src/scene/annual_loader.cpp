@@ -86,6 +86,9 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
             if (!gather_key && !o.shadow_rays()) r.fail(k.key, "is for direct = \"shadow_rays\"");
             *k.rays = static_cast<int>(*n);
         }
+    // With the direct sun by shadow rays the suns' photons carry only their interreflected
+    // light, which a week of one clock hour shares (docs/ANNUAL.md "Suns' light groups").
+    o.sun_group_days = o.shadow_rays() ? AnnualOptions::kShadowRaySunGroupDays : 1;
     if (const auto days = r.integer("sun_group_days")) {
         if (*days < 1 || *days > 366)
             r.fail("sun_group_days", "must lie in 1 to 366 days, got " + std::to_string(*days));

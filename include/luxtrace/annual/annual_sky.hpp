@@ -60,8 +60,9 @@ struct AnnualOptions {
     // suns of one clock hour on this many consecutive days (from 1 January) share one, whose
     // interreflected and gathered light each sun then reads in its share of their direct
     // normal illuminance; 1: every sun its own group. Above 1 only with shadow rays (the
-    // direct sun stays every hour's own).
+    // direct sun stays every hour's own), where it is kShadowRaySunGroupDays by default.
     int sun_group_days = 1;
+    static constexpr int kShadowRaySunGroupDays = 7;
     // The rays' rule (but direct_sky_rays' 0): n x n strata, n even, 4 to 4096 rays.
     static bool valid_direct_rays(std::int64_t rays);
 };

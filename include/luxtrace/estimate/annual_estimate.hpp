@@ -6,6 +6,7 @@
 #include "luxtrace/stats/annual_metrics.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -30,6 +31,27 @@ struct AnnualDetectorEstimate {
     std::vector<double> gather_rays_sigma_rel;
 };
 
+// The post-processing's blocks of cells (each its coefficients, series and replicates on one
+// core): a block starts at a multiple of this.
+inline constexpr std::size_t kAnnualBlockCells = 32;
+
+// Where the grids' hourly series go block by block, from any core, instead of into
+// AnnualDetectorEstimate::value and sigma (a whole building's would not fit in memory,
+// io/annual_series_file.hpp): grid `det`, its cells [first, first + value.sensors), every
+// hour. Those estimates then hold the series' hours and sensors and no values.
+using AnnualSeriesSink =
+    std::function<void(std::size_t det, std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma)>;
+// ... and where they are read back: kind 0 the illuminance, 1 the direct sun, 2 and 3 their
+// errors; hours [h0, h1) of every cell hour-major, or cells [first, first + count) of every
+// hour cell-major.
+struct AnnualSeriesSource {
+    std::function<void(std::size_t det, std::size_t kind, std::size_t h0, std::size_t h1, std::span<float> out)>
+        read_hours;
+    std::function<void(std::size_t det, std::size_t kind, std::size_t first, std::size_t count, std::span<float> out)>
+        read_cells;
+    explicit operator bool() const { return static_cast<bool>(read_hours); }
+};
+
 // The hours LM-83 and EN 17037 count (occupied; EN 17037's daylight hours: the half of the
 // year with the most diffuse horizontal illuminance, annual_metrics.hpp).
 AnnualHours annual_hours(const AnnualSetup& annual);
@@ -41,7 +63,8 @@ AnnualHours annual_hours(const AnnualSetup& annual);
 // coefficients by shadow rays (empty with [annual] direct = "photons").
 AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det, const TallyLayout& layout,
                                             std::span<const std::uint64_t> data, double e0, std::uint64_t photons,
-                                            int replicates, bool series, const AnnualDirect& direct);
+                                            int replicates, bool series, const AnnualDirect& direct,
+                                            const AnnualSeriesSink* sink = nullptr);
 
 // The gathered year's exposure and its errors (AnnualDetectorEstimate::gather_*) from the
 // whole grid's tallies; nothing for a grid that gathers nothing.
@@ -79,13 +102,16 @@ AnnualGridPart estimate_annual_part(const Scene& scene, std::size_t det, const T
 // `direct` the whole grid's coefficients.
 class AnnualPartsMerge {
 public:
-    AnnualPartsMerge(const Scene& scene, std::size_t det, int replicates, const DirectCoefficients* direct);
+    // `sink`: where the parts' series go (AnnualSeriesSink), or null: into the estimate.
+    AnnualPartsMerge(const Scene& scene, std::size_t det, int replicates, const DirectCoefficients* direct,
+                     const AnnualSeriesSink* sink = nullptr);
     void add(const AnnualGridPart& part);
     AnnualDetectorEstimate finish();
 
 private:
     AnnualHours hours_;
-    std::size_t cells_ = 0;
+    std::size_t det_ = 0, cells_ = 0;
+    const AnnualSeriesSink* sink_ = nullptr;
     AnnualMetricDraws sums_;
     AnnualDetectorEstimate estimate_;
 };
@@ -96,6 +122,7 @@ private:
 std::vector<std::optional<AnnualDetectorEstimate>> estimate_annual(const Scene& scene, const TallyLayout& layout,
                                                                    std::span<const std::uint64_t> data, double e0,
                                                                    std::uint64_t photons, int replicates,
-                                                                   const AnnualDirect& direct);
+                                                                   const AnnualDirect& direct,
+                                                                   const AnnualSeriesSink* sink = nullptr);
 
 }  // namespace luxtrace

@@ -39,6 +39,8 @@ struct ResultEstimates {
     // Per Scene::detectors, annual runs only (estimate_annual; filled for the final result,
     // not for checkpoints).
     std::vector<std::optional<AnnualDetectorEstimate>> annual;
+    // Where their hourly series are when they hold none (AnnualSeriesSink): empty otherwise.
+    AnnualSeriesSource annual_series;
 };
 
 // A [[light_scene]]'s estimates (issue 22): the same as the plain run's, on the groups'

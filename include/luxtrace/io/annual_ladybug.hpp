@@ -16,7 +16,9 @@ struct Scene;
 // Where the folder goes: [annual] ladybug_folder, or beside the result as NAME_ladybug.
 std::filesystem::path ladybug_folder_for(const Scene& scene, const std::filesystem::path& result);
 
+// `source`: where the series are for estimates that hold none (AnnualSeriesSink).
 void write_annual_ladybug(const std::filesystem::path& folder, const Scene& scene,
-                          const std::vector<std::optional<AnnualDetectorEstimate>>& annual);
+                          const std::vector<std::optional<AnnualDetectorEstimate>>& annual,
+                          const AnnualSeriesSource& source = {});
 
 }  // namespace luxtrace

@@ -14,6 +14,7 @@
 // HDF5 stays the primary record (with the errors); this folder holds values only.
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ struct LadybugGrid {
     // the direct sun alone, no sky and no reflection (what ASE counts), as the recipe's.
     std::vector<float> total_lx;
     std::vector<float> direct_lx;
+    // Where both are empty: sensors [first, first + count)'s rows (count x hours,
+    // row-major) of the total (`direct` false) or the direct sun, a few at a time, so that a
+    // whole building's arrays never sit in memory.
+    std::function<void(bool direct, std::size_t first, std::size_t count, std::span<float> out)> rows;
 };
 
 // Writes the folder so that readers see the old folder or the new one, never a part:
@@ -44,5 +49,7 @@ void write_ladybug_results(const std::filesystem::path& folder, const std::vecto
 // array, little-endian ('<f4'), C order: the header is padded with spaces and a newline
 // so that the data start at a multiple of 64 bytes.
 std::string npy_float32(std::span<const float> values, std::size_t rows, std::size_t cols);
+// Its header alone (the data follow it).
+std::string npy_float32_header(std::size_t rows, std::size_t cols);
 
 }  // namespace luxtrace

@@ -20,6 +20,7 @@
 #include "luxtrace/annual/direct_coefficients.hpp"
 #include "luxtrace/core/word_array.hpp"
 #include "luxtrace/estimate/annual_estimate.hpp"
+#include "luxtrace/io/annual_series_file.hpp"
 #include "luxtrace/io/result_file.hpp"
 #include "luxtrace/reduction/communicator.hpp"
 #include "luxtrace/run/decision.hpp"
@@ -38,6 +39,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -131,6 +133,11 @@ private:
                             const DirectCoefficients* direct, PartAttempt& attempt,
                             std::optional<AnnualDetectorEstimate>& out);
     RunInfo final_info(const Traced& t, double elapsed_s, const std::string& reason) const;
+    // Rank 0: where the annual grids' hourly series go while they are made and are read back
+    // from for the files (io/annual_series_file.hpp), beside the result; made at first use.
+    AnnualSeriesFile& series_file();
+    AnnualSeriesSink series_sink();
+    AnnualSeriesSource series_source();
     CheckpointData checkpoint_data(const std::vector<PhotonRange>& done) const;
     std::string latest_checkpoint_note() const;
     // "the run's tallies are kept in the checkpoint ...; THEN: luxtrace run ... --restart ...".
@@ -163,6 +170,7 @@ private:
     // rank 0: the final result's annual estimates made by every rank, and their wall time
     std::optional<std::vector<std::optional<AnnualDetectorEstimate>>> shared_annual_;
     double shared_annual_s_ = 0.0;
+    std::unique_ptr<AnnualSeriesFile> series_file_;
     bool shared_annual_used_ = false;       // the result's annual step took them
     std::optional<RunController> control_;  // rank 0
     const std::string checkpoint_path_;

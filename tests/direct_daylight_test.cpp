@@ -66,10 +66,11 @@ TEST_F(DirectDaylight, OpenSkyGivesEachPatchItsProjectedSolidAngleAndEachSunItsC
     for (std::size_t det = 0; det < 2; ++det) {
         const DirectCoefficients d = compute(scene, det);
         for (std::size_t c = 0; c < d.cells; ++c) {
-            // Unobstructed, every stratum's cosine is integrated exactly: no noise at all.
+            // Unobstructed, every stratum's cosine is integrated exactly: no noise at all (to the
+            // floats' 6e-8 they are stored in).
             for (std::size_t e = 0; e < sky.patches().count(); ++e) {
                 const double expected = yearly[e] * sky.patches().projected_solid_angle_sr(e);
-                EXPECT_NEAR(d.sky(e, c), expected, 1e-9 * expected) << "patch " << e;
+                EXPECT_NEAR(d.sky(e, c), expected, 1e-7 * expected) << "patch " << e;
                 EXPECT_EQ(d.sky_var[e * d.cells + c], 0.0) << "patch " << e;
             }
             EXPECT_EQ(d.sky(sky.ground_entry(), c), 0.0);  // behind an upward sensor
@@ -79,7 +80,7 @@ TEST_F(DirectDaylight, OpenSkyGivesEachPatchItsProjectedSolidAngleAndEachSunItsC
                 const double mu = std::sin(h.sun_altitude_deg * kPi / 180.0);
                 if (mu < 0.01) continue;  // the disc's edge below the plane
                 const double expected = h.direct_normal_lx * mu * (1.0 + cos_half) / 2.0;
-                EXPECT_NEAR(d.sun(s, c), expected, 1e-9 * expected) << "sun " << s;
+                EXPECT_NEAR(d.sun(s, c), expected, 1e-7 * expected) << "sun " << s;
                 EXPECT_EQ(d.sun_var[s * d.cells + c], 0.0) << "sun " << s;
             }
         }
@@ -333,8 +334,8 @@ TEST_F(DirectDaylight, AShadowsEdgeThroughGlassIsNeverReadAsExact) {
         for (std::size_t i = 0; i < runs[0].sun_lx.size(); ++i) {
             double lo = runs[0].sun_lx[i], hi = lo;
             for (const DirectCoefficients& r : runs) {
-                lo = std::min(lo, r.sun_lx[i]);
-                hi = std::max(hi, r.sun_lx[i]);
+                lo = std::min<double>(lo, r.sun_lx[i]);
+                hi = std::max<double>(hi, r.sun_lx[i]);
             }
             if (!(hi - lo > 1e-3 * hi)) continue;  // the same in every seed: exact, or dark
             ++cut;
@@ -368,8 +369,8 @@ TEST_F(DirectDaylight, ACutDiscsSigmaIsItsScatterOverTheRaysSeeds) {
             double mean = 0.0, lo = runs[0].sun_lx[i], hi = lo;
             for (const DirectCoefficients& r : runs) {
                 mean += r.sun_lx[i] / K;
-                lo = std::min(lo, r.sun_lx[i]);
-                hi = std::max(hi, r.sun_lx[i]);
+                lo = std::min<double>(lo, r.sun_lx[i]);
+                hi = std::max<double>(hi, r.sun_lx[i]);
             }
             if (!(hi - lo > 1e-3 * hi)) continue;  // exact, or dark, in every seed
             for (const DirectCoefficients& r : runs) {

@@ -261,7 +261,7 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
         if (!d->holds(first, first + count) || d->entries != sky.sky_entries() || d->suns != sky.suns().size())
             throw std::logic_error("AnnualCoefficients: direct coefficients of other cells or another sky");
         // The block's columns of the [entry or sun][cell] tables.
-        auto columns = [&](const std::vector<double>& all, std::size_t rows, std::vector<double>& out) {
+        auto columns = [&](const auto& all, std::size_t rows, std::vector<double>& out) {
             out.resize(rows * count);
             for (std::size_t r = 0; r < rows; ++r) std::copy_n(&all[d->at(r, first)], count, &out[r * count]);
         };

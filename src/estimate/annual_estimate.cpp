@@ -114,7 +114,7 @@ std::uint64_t replicate_seed(const Scene& scene, std::size_t det) {
 // The year's direct exposure by shadow rays per cell (every coefficient's weights sum to
 // 1 over the year, annual_sky.hpp), with its error.
 void direct_year(const DirectCoefficients& dc, AnnualDetectorEstimate& e) {
-    auto year = [&](const std::vector<double>& x, const std::vector<double>& v, std::vector<double>& sum,
+    auto year = [&](const std::vector<float>& x, const std::vector<float>& v, std::vector<double>& sum,
                     std::vector<double>& sigma) {
         sum.assign(dc.cells, 0.0);
         sigma.assign(dc.cells, 0.0);

@@ -149,6 +149,10 @@ template <>
 MPI_Datatype mpi_type<double>() {
     return MPI_DOUBLE;
 }
+template <>
+MPI_Datatype mpi_type<float>() {
+    return MPI_FLOAT;
+}
 }  // namespace
 
 template <class Word>
@@ -261,6 +265,8 @@ template void Communicator::gather_to_root(std::span<const std::uint64_t>, const
                                            std::vector<std::uint64_t>&) const;
 template void Communicator::gather_to_root(std::span<const double>, const std::vector<std::size_t>&,
                                            std::vector<double>&) const;
+template void Communicator::gather_to_root(std::span<const float>, const std::vector<std::size_t>&,
+                                           std::vector<float>&) const;
 
 template <class Word>
 void Communicator::scatter_from_root(std::span<const Word> send, const std::vector<std::size_t>& counts,
@@ -283,6 +289,8 @@ template void Communicator::scatter_from_root(std::span<const std::uint64_t>, co
                                               std::vector<std::uint64_t>&) const;
 template void Communicator::scatter_from_root(std::span<const double>, const std::vector<std::size_t>&,
                                               std::vector<double>&) const;
+template void Communicator::scatter_from_root(std::span<const float>, const std::vector<std::size_t>&,
+                                              std::vector<float>&) const;
 
 void Communicator::broadcast(std::vector<double>& values) const {
     if (size_ == 1) return;

@@ -42,16 +42,16 @@ AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, c
         std::vector<std::size_t> counts;
         for (int r = 0; r < ranks; ++r)
             counts.push_back(mine.packed_words(first_cell(cells, r + 1, ranks) - first_cell(cells, r, ranks)));
-        std::vector<double> send;
+        std::vector<float> send;
         mine.pack_cells(first, last, send);
-        std::vector<double> recv;
-        comm.gather_to_root<double>(send, counts, recv);
+        std::vector<float> recv;
+        comm.gather_to_root<float>(send, counts, recv);
         if (!comm.is_root()) continue;
         out[det].resize(cells, entries, suns);
         std::size_t at = 0;
         for (int r = 0; r < ranks; ++r) {
             const std::size_t f = first_cell(cells, r, ranks), l = first_cell(cells, r + 1, ranks);
-            out[det].unpack_cells(std::span<const double>(recv).subspan(at, counts[static_cast<std::size_t>(r)]), f, l);
+            out[det].unpack_cells(std::span<const float>(recv).subspan(at, counts[static_cast<std::size_t>(r)]), f, l);
             at += counts[static_cast<std::size_t>(r)];
         }
     }

@@ -164,7 +164,7 @@ void RunLoop::trace() {
             if (layout_.gathered(det)) {
                 DirectCoefficients& d = annual_direct_[det];
                 d.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
-                d.gather_rel_var.assign(d.cells, 0.0);  // update_gather_errors
+                d.gather_rel_var.assign(d.cells, 0.0F);  // update_gather_errors
             }
         if (show_)
             out_ << "direct light by shadow rays at the annual grids: " << std::fixed << std::setprecision(2)
@@ -380,7 +380,8 @@ void RunLoop::update_gather_errors(double e0) {
         for (std::size_t grp = 0; grp < layout_.groups(); ++grp)
             for (std::size_t c = 0; c < d.cells; ++c)
                 gathered_lx[c] += per_unit * static_cast<double>(totals[layout_.detector_gathered(det, c, grp)]);
-        d.gather_rel_var = g.rays_rel_var(det, d.cells, site_lx, arrivals, gathered_lx);
+        const std::vector<double> rel_var = g.rays_rel_var(det, d.cells, site_lx, arrivals, gathered_lx);
+        d.gather_rel_var.assign(rel_var.begin(), rel_var.end());
     }
 }
 
@@ -486,16 +487,16 @@ AnnualDarkRates RunLoop::share_annual_inputs(std::size_t det, const std::vector<
                           scene_.annual->sky->suns().size(), mine.first);
         if (layout_.gathered(det)) {
             own_direct.gather_unit_lx_per_lm = surfaces_.gather().unit_lx_per_lm();
-            own_direct.gather_rel_var.assign(own_direct.cells, 0.0);  // filled from rank 0's below
+            own_direct.gather_rel_var.assign(own_direct.cells, 0.0F);  // filled from rank 0's below
         }
         const DirectCoefficients& all = root ? annual_direct_[det] : own_direct;
-        std::vector<double> dsend, drecv;
+        std::vector<float> dsend, drecv;
         std::vector<std::size_t> dcounts;
         for (const AnnualCellRange& r : ranges) {
             dcounts.push_back(all.packed_words(r.last - r.first));
             if (root) all.pack_cells(r.first, r.last, dsend);
         }
-        comm_.scatter_from_root<double>(dsend, dcounts, drecv);
+        comm_.scatter_from_root<float>(dsend, dcounts, drecv);
         if (!root) own_direct.unpack_cells(drecv, mine.first, mine.last);
         direct = root ? &annual_direct_[det] : &own_direct;
     }

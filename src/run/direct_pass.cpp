@@ -5,11 +5,15 @@
 #include "luxtrace/scene/scene.hpp"
 #include "luxtrace/tracer/direct_daylight.hpp"
 
+#include <algorithm>
 #include <span>
 
 namespace luxtrace {
 
 namespace {
+
+// The rows (entries and suns, values and variances) gathered to rank 0 at a time.
+constexpr std::size_t kRowsPerGather = 256;
 
 // Rank r's cells of n: [n r / R, n (r + 1) / R).
 std::size_t first_cell(std::size_t n, int rank, int ranks) {
@@ -39,20 +43,26 @@ AnnualDirect annual_direct_pass(const Scene& scene, const EmbreeScene& embree, c
             out[det] = std::move(mine);
             continue;
         }
-        std::vector<std::size_t> counts;
-        for (int r = 0; r < ranks; ++r)
-            counts.push_back(mine.packed_words(first_cell(cells, r + 1, ranks) - first_cell(cells, r, ranks)));
-        std::vector<float> send;
-        mine.pack_cells(first, last, send);
-        std::vector<float> recv;
-        comm.gather_to_root<float>(send, counts, recv);
-        if (!comm.is_root()) continue;
-        out[det].resize(cells, entries, suns);
-        std::size_t at = 0;
-        for (int r = 0; r < ranks; ++r) {
-            const std::size_t f = first_cell(cells, r, ranks), l = first_cell(cells, r + 1, ranks);
-            out[det].unpack_cells(std::span<const float>(recv).subspan(at, counts[static_cast<std::size_t>(r)]), f, l);
-            at += counts[static_cast<std::size_t>(r)];
+        // Gathered a slab of rows at a time, so that rank 0 never holds the grid twice.
+        if (comm.is_root()) out[det].resize(cells, entries, suns);
+        const std::size_t rows = mine.rows();
+        for (std::size_t r0 = 0; r0 < rows; r0 += kRowsPerGather) {
+            const std::size_t r1 = std::min(rows, r0 + kRowsPerGather);
+            std::vector<std::size_t> counts;
+            for (int r = 0; r < ranks; ++r)
+                counts.push_back(
+                    mine.packed_words(first_cell(cells, r + 1, ranks) - first_cell(cells, r, ranks), r0, r1));
+            std::vector<float> send, recv;
+            mine.pack_cells(first, last, send, r0, r1);
+            comm.gather_to_root<float>(send, counts, recv);
+            if (!comm.is_root()) continue;
+            std::size_t at = 0;
+            for (int r = 0; r < ranks; ++r) {
+                const std::size_t f = first_cell(cells, r, ranks), l = first_cell(cells, r + 1, ranks);
+                const std::size_t n = counts[static_cast<std::size_t>(r)];
+                out[det].unpack_cells(std::span<const float>(recv).subspan(at, n), f, l, r0, r1);
+                at += n;
+            }
         }
     }
     return out;

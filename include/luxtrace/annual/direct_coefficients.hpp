@@ -12,6 +12,7 @@
 // the variance of that mean, estimated from its own samples. Floats: seven digits, far
 // below the shadow rays' own error, and half the memory (a whole building's 100,000
 // sensors x 4,071 entries and suns x 2 are 3.3 GB as floats).
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -38,27 +39,36 @@ struct DirectCoefficients {
     }
     double sky(std::size_t entry, std::size_t cell) const { return sky_lx[at(entry, cell)]; }
     double sun(std::size_t s, std::size_t cell) const { return sun_lx[at(s, cell)]; }
-    // The arrays' values of grid cells [from, to), row by row (a row: an entry or a
-    // sun), appended to `out`; unpack_cells puts them back.
-    void pack_cells(std::size_t from, std::size_t to, std::vector<float>& out) const {
-        for (const std::vector<float>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
-            for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
-                out.insert(out.end(), a->begin() + static_cast<std::ptrdiff_t>(at(row, from)),
-                           a->begin() + static_cast<std::ptrdiff_t>(at(row, to)));
-        if (!gather_rel_var.empty())
-            for (std::size_t c = from; c < to; ++c) out.push_back(gather_rel_var[at(0, c)]);
+    // The arrays' values of grid cells [from, to), row by row (a row: an entry or a sun;
+    // the rows of sky_lx, sky_var, sun_lx, sun_var and gather_rel_var in turn, rows()
+    // in all), rows [row_first, row_last) of them, appended to `out`; unpack_cells puts
+    // them back.
+    std::size_t rows() const { return 2 * (entries + suns) + (gather_rel_var.empty() ? 0 : 1); }
+    void pack_cells(std::size_t from, std::size_t to, std::vector<float>& out, std::size_t row_first = 0,
+                    std::size_t row_last = ~std::size_t{0}) const {
+        for_rows(*this, row_first, row_last, [&](const std::vector<float>& a, std::size_t row) {
+            out.insert(out.end(), a.begin() + static_cast<std::ptrdiff_t>(at(row, from)),
+                       a.begin() + static_cast<std::ptrdiff_t>(at(row, to)));
+        });
     }
-    void unpack_cells(std::span<const float> in, std::size_t from, std::size_t to) {
+    void unpack_cells(std::span<const float> in, std::size_t from, std::size_t to, std::size_t row_first = 0,
+                      std::size_t row_last = ~std::size_t{0}) {
         std::size_t k = 0;
-        for (std::vector<float>* a : {&sky_lx, &sky_var, &sun_lx, &sun_var})
-            for (std::size_t row = 0; row < (cells > 0 ? a->size() / cells : 0); ++row)
-                for (std::size_t c = from; c < to; ++c) (*a)[at(row, c)] = in[k++];
-        if (!gather_rel_var.empty())
-            for (std::size_t c = from; c < to; ++c) gather_rel_var[at(0, c)] = in[k++];
+        for_rows(*this, row_first, row_last, [&](std::vector<float>& a, std::size_t row) {
+            for (std::size_t c = from; c < to; ++c) a[at(row, c)] = in[k++];
+        });
     }
-    // The words pack_cells writes for n cells.
-    std::size_t packed_words(std::size_t n) const {
-        return n * (2 * (entries + suns) + (gather_unit_lx_per_lm > 0.0 ? 1 : 0));
+    // The words pack_cells writes for n cells (all rows, or rows [row_first, row_last)).
+    std::size_t packed_words(std::size_t n, std::size_t row_first = 0, std::size_t row_last = ~std::size_t{0}) const {
+        return n * (std::min(row_last, rows()) - std::min(row_first, rows()));
+    }
+    // f(array, its row) for the rows [row_first, row_last) of all (const or not, as `self`).
+    template <class Self, class F>
+    static void for_rows(Self& self, std::size_t row_first, std::size_t row_last, F&& f) {
+        std::size_t row = 0;
+        for (auto* a : {&self.sky_lx, &self.sky_var, &self.sun_lx, &self.sun_var, &self.gather_rel_var})
+            for (std::size_t r = 0; r < (self.cells > 0 ? a->size() / self.cells : 0); ++r, ++row)
+                if (row >= row_first && row < row_last) f(*a, r);
     }
     void resize(std::size_t cells_, std::size_t entries_, std::size_t suns_, std::size_t first_ = 0) {
         cells = cells_;

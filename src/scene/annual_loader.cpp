@@ -15,43 +15,9 @@ namespace luxtrace::detail {
 
 namespace {
 
-AnnualOptions read_options(SceneLoad& load, TableReader& r) {
-    AnnualOptions o;
-    const auto weather = r.string("weather");
-    if (!weather) r.fail_entry("needs 'weather' (an EnergyPlus .epw or a Radiance .wea file)");
-    o.weather = load.resolve(*weather).lexically_normal();
-    if (const auto mf = r.integer("sky_mf")) {
-        if (*mf < 1 || *mf > 6)
-            r.fail("sky_mf",
-                   "must be 1 (Tregenza's 145 patches) to 6 (Reinhart's subdivisions), got " + std::to_string(*mf));
-        o.sky_mf = static_cast<int>(*mf);
-    }
-    if (const auto sky = r.string("sky")) {
-        if (*sky != "perez" && *sky != "cie") r.fail("sky", "must be \"perez\" or \"cie\", got '" + *sky + "'");
-        o.sky = *sky;
-    }
-    if (const auto type = r.integer("cie_type")) {
-        if (o.sky != "cie") r.fail("cie_type", "is for sky = \"cie\"");
-        if (*type < 1 || *type > 16) r.fail("cie_type", "must be 1 to 16, got " + std::to_string(*type));
-        o.cie_type = static_cast<int>(*type);
-    }
-    if (const auto rho = r.number("ground_reflectance")) {
-        if (!(*rho >= 0.0 && *rho <= 1.0)) r.fail("ground_reflectance", "must lie in [0, 1]");
-        o.ground_reflectance = *rho;
-    }
-    if (const auto hours = r.numbers("occupied_hours", 2)) {
-        if (!((*hours)[0] >= 0.0 && (*hours)[0] < (*hours)[1] && (*hours)[1] <= 24.0))
-            r.fail("occupied_hours", "must be [from, to] with 0 <= from < to <= 24 (local standard time)");
-        o.occupied_from_h = (*hours)[0];
-        o.occupied_to_h = (*hours)[1];
-    }
-    if (const auto folder = r.string("ladybug_folder")) {
-        if (folder->empty()) {
-            o.write_ladybug = false;
-        } else {
-            o.ladybug_folder = load.resolve(*folder);
-        }
-    }
+// How the grids get their light: [annual] direct, indirect, their rays, patches and the
+// suns' groups.
+void read_light_ways(TableReader& r, AnnualOptions& o) {
     if (const auto direct = r.string("direct")) {
         if (*direct != "photons" && *direct != "shadow_rays")
             r.fail("direct", "must be \"photons\" or \"shadow_rays\", got '" + *direct + "'");
@@ -96,6 +62,46 @@ AnnualOptions read_options(SceneLoad& load, TableReader& r) {
             r.fail("sun_group_days", "above 1 needs direct = \"shadow_rays\" (the direct sun stays each hour's own)");
         o.sun_group_days = static_cast<int>(*days);
     }
+}
+
+AnnualOptions read_options(SceneLoad& load, TableReader& r) {
+    AnnualOptions o;
+    const auto weather = r.string("weather");
+    if (!weather) r.fail_entry("needs 'weather' (an EnergyPlus .epw or a Radiance .wea file)");
+    o.weather = load.resolve(*weather).lexically_normal();
+    if (const auto mf = r.integer("sky_mf")) {
+        if (*mf < 1 || *mf > 6)
+            r.fail("sky_mf",
+                   "must be 1 (Tregenza's 145 patches) to 6 (Reinhart's subdivisions), got " + std::to_string(*mf));
+        o.sky_mf = static_cast<int>(*mf);
+    }
+    if (const auto sky = r.string("sky")) {
+        if (*sky != "perez" && *sky != "cie") r.fail("sky", "must be \"perez\" or \"cie\", got '" + *sky + "'");
+        o.sky = *sky;
+    }
+    if (const auto type = r.integer("cie_type")) {
+        if (o.sky != "cie") r.fail("cie_type", "is for sky = \"cie\"");
+        if (*type < 1 || *type > 16) r.fail("cie_type", "must be 1 to 16, got " + std::to_string(*type));
+        o.cie_type = static_cast<int>(*type);
+    }
+    if (const auto rho = r.number("ground_reflectance")) {
+        if (!(*rho >= 0.0 && *rho <= 1.0)) r.fail("ground_reflectance", "must lie in [0, 1]");
+        o.ground_reflectance = *rho;
+    }
+    if (const auto hours = r.numbers("occupied_hours", 2)) {
+        if (!((*hours)[0] >= 0.0 && (*hours)[0] < (*hours)[1] && (*hours)[1] <= 24.0))
+            r.fail("occupied_hours", "must be [from, to] with 0 <= from < to <= 24 (local standard time)");
+        o.occupied_from_h = (*hours)[0];
+        o.occupied_to_h = (*hours)[1];
+    }
+    if (const auto folder = r.string("ladybug_folder")) {
+        if (folder->empty()) {
+            o.write_ladybug = false;
+        } else {
+            o.ladybug_folder = load.resolve(*folder);
+        }
+    }
+    read_light_ways(r, o);
     if (const auto year = r.integer("year")) {
         if (*year < 1900 || *year > 2200) r.fail("year", "must lie in 1900 to 2200");
         o.year = static_cast<int>(*year);

@@ -64,6 +64,48 @@ std::vector<std::uint8_t> en17037_daylight_hours(std::span<const double> outdoor
     return mask;
 }
 
+namespace {
+
+struct OccupiedThresholds {
+    double da_lx, low_lx, high_lx, direct_lx;
+};
+
+// One occupied hour of a block's sensors into its sums (five arrays of n, from `sums`): DA,
+// continuous DA, UDI fell short and exceeded, ASE. Each sensor's sums run over the hours in
+// order, whatever the vector lanes: the same bits on any CPU.
+__attribute__((target_clones("avx2", "default"))) void occupied_hour(const double* __restrict e,
+                                                                     const double* __restrict d, std::size_t n,
+                                                                     OccupiedThresholds t, double* __restrict sums) {
+    double* __restrict da = sums;
+    double* __restrict cda = sums + n;
+    double* __restrict fell = sums + 2 * n;
+    double* __restrict exceeded = sums + 3 * n;
+    double* __restrict ase = sums + 4 * n;
+    for (std::size_t c = 0; c < n; ++c) {
+        da[c] += e[c] >= t.da_lx ? 1.0 : 0.0;
+        cda[c] += std::min(1.0, e[c] / t.da_lx);
+        fell[c] += e[c] < t.low_lx ? 1.0 : 0.0;
+        exceeded[c] += e[c] > t.high_lx ? 1.0 : 0.0;
+        ase[c] += d[c] >= t.direct_lx ? 1.0 : 0.0;
+    }
+}
+
+// The area units of the sensors at or above each of two levels (integers: any order).
+__attribute__((target_clones("avx2", "default"))) void area_above(const double* __restrict e,
+                                                                  const std::int64_t* __restrict w, std::size_t n,
+                                                                  double target, double minimum,
+                                                                  std::int64_t* __restrict above) {
+    std::int64_t at = 0, am = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+        at += e[c] >= target ? w[c] : 0;
+        am += e[c] >= minimum ? w[c] : 0;
+    }
+    above[0] = at;
+    above[1] = am;
+}
+
+}  // namespace
+
 AnnualMetricSums::AnnualMetricSums(const AnnualHours& hours, std::size_t sensors, const AnnualThresholds& t)
     : hours_(hours), t_(t), sensors_(sensors), target_units_(kEn17037Levels.size() * hours.occupied.size()),
       minimum_units_(kEn17037Levels.size() * hours.occupied.size()) {
@@ -97,37 +139,24 @@ void AnnualMetricSums::add(const AnnualSeries& block, std::size_t first) {
     // below run in vector lanes), added to the grid's at the end (each sensor is in one
     // block: 0 + its sum).
     std::vector<double> local(5 * n_s, 0.0);
-    double* __restrict da = local.data();
-    double* __restrict cda = da + n_s;
-    double* __restrict fell = cda + n_s;
-    double* __restrict exceeded = fell + n_s;
-    double* __restrict ase = exceeded + n_s;
+    double* da = local.data();
     const std::int64_t* w = &weight_units_[first];
-    const double da_lx = t_.da_lx, low = t_.udi_low_lx, high = t_.udi_high_lx, direct_lx = t_.ase_direct_lx;
+    const OccupiedThresholds occ{t_.da_lx, t_.udi_low_lx, t_.udi_high_lx, t_.ase_direct_lx};
     for (std::size_t h = 0; h < n_h; ++h) {
         const double* e = &block.total_lx[h * n_s];
-        if (hours_.occupied[h] != 0) {
-            const double* d = &block.direct_lx[h * n_s];
-            for (std::size_t c = 0; c < n_s; ++c) {
-                da[c] += e[c] >= da_lx ? 1.0 : 0.0;
-                cda[c] += std::min(1.0, e[c] / da_lx);
-                fell[c] += e[c] < low ? 1.0 : 0.0;
-                exceeded[c] += e[c] > high ? 1.0 : 0.0;
-                ase[c] += d[c] >= direct_lx ? 1.0 : 0.0;
-            }
-        }
+        if (hours_.occupied[h] != 0) occupied_hour(e, &block.direct_lx[h * n_s], n_s, occ, da);
         if (hours_.en17037_hours[h] == 0) continue;
         for (std::size_t l = 0; l < kEn17037Levels.size(); ++l) {
-            std::int64_t above_target = 0, above_minimum = 0;
-            const double target = kEn17037Levels[l].target_lx, minimum = kEn17037Levels[l].minimum_lx;
-            for (std::size_t c = 0; c < n_s; ++c) {
-                above_target += e[c] >= target ? w[c] : 0;
-                above_minimum += e[c] >= minimum ? w[c] : 0;
-            }
-            target_units_[l * n_h + h].fetch_add(above_target, std::memory_order_relaxed);
-            minimum_units_[l * n_h + h].fetch_add(above_minimum, std::memory_order_relaxed);
+            std::int64_t above[2] = {0, 0};
+            area_above(e, w, n_s, kEn17037Levels[l].target_lx, kEn17037Levels[l].minimum_lx, above);
+            target_units_[l * n_h + h].fetch_add(above[0], std::memory_order_relaxed);
+            minimum_units_[l * n_h + h].fetch_add(above[1], std::memory_order_relaxed);
         }
     }
+    const double* cda = da + n_s;
+    const double* fell = cda + n_s;
+    const double* exceeded = fell + n_s;
+    const double* ase = exceeded + n_s;
     AnnualMetrics::Sensors& s = sums_;
     for (std::size_t c = 0; c < n_s; ++c) {
         s.da[first + c] += da[c];

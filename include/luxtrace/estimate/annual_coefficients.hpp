@@ -78,7 +78,8 @@ public:
     AnnualCoefficients(const AnnualGridCounts& grid, std::size_t first, std::size_t count, const AnnualDarkRates& dark);
 
     // Series are hours x the block's cells (AnnualSeries::sensors = count), hour-major,
-    // every hour of the weather file (0 in the dark ones).
+    // every hour of the weather file (0 in the dark ones). A series passed in is either of
+    // another size (it is remade) or one these methods made (its zeros are kept).
     // The estimate and its standard errors (sigma_lx: of total_lx and direct_lx).
     void series(AnnualSeries& estimate, AnnualSeries& sigma) const;
     // The estimate alone (kept: later calls copy it).

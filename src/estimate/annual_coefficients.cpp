@@ -272,8 +272,6 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
         if (!d->gather_rel_var.empty()) columns(d->gather_rel_var, 1, gather_rel_var_);
     }
     const Counts counts(grid, first);
-    if (counts.gathered) gather_loadings(counts, dark);
-    sky_coefficients(counts);
     SunRows rows(counts);
     pool_ = std::move(rows.pool);
     pool_share_ = std::move(rows.pool_share);
@@ -282,6 +280,8 @@ AnnualCoefficients::AnnualCoefficients(const AnnualGridCounts& grid, std::size_t
     evidence_ = std::move(rows.evidence);
     evidence_flux_ = std::move(rows.evidence_flux);
     row_clock_ = std::move(rows.clock);
+    if (counts.gathered) gather_loadings(counts, dark);
+    sky_coefficients(counts);
     sun_priors(counts);
     sun_coefficients(counts);
 }
@@ -310,7 +310,7 @@ void AnnualCoefficients::gather_loadings(const Counts& c, const AnnualDarkRates&
         }
     };
     for (std::size_t e = 0; e < sky.sky_entries(); ++e) loadings(c.sky_group(e), sky_loading_);
-    for (std::size_t r = 0; r < annual_.sun_rows(); ++r) loadings(c.row_group(r), sun_loading_);
+    for (std::size_t r = 0; r < row_clock_.size(); ++r) loadings(c.row_group(r), sun_loading_);
 }
 
 // In an hour's error, a cell that no photon of an emitting group reached is not exact: its

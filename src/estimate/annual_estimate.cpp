@@ -128,9 +128,12 @@ void direct_year(const DirectCoefficients& dc, AnnualDetectorEstimate& e) {
     year(dc.sun_lx, dc.sun_var, e.direct_sun_lx_h, e.direct_sun_sigma_lx_h);
 }
 
-void size_series(std::size_t hours, std::size_t cells, AnnualSeries& x) {
+// A grid's series of `hours` x `cells`: their values, or (with a sink: the values go there)
+// their shape alone.
+void size_series(std::size_t hours, std::size_t cells, AnnualSeries& x, bool values = true) {
     x.hours = hours;
     x.sensors = cells;
+    if (!values) return;
     x.total_lx.assign(hours * cells, 0.0);
     x.direct_lx.assign(hours * cells, 0.0);
 }
@@ -149,10 +152,8 @@ AnnualDetectorEstimate estimate_annual_grid(const Scene& scene, std::size_t det,
     if (dc != nullptr) direct_year(*dc, e);
     annual_gather_year(scene, det, layout, data, e0, photons, dc, e);
     if (series)
-        for (AnnualSeries* x : {&e.value, &e.sigma}) {
-            if (sink != nullptr) x->hours = hours.occupied.size(), x->sensors = grid.cells;
-            else size_series(hours.occupied.size(), grid.cells, *x);
-        }
+        for (AnnualSeries* x : {&e.value, &e.sigma})
+            size_series(hours.occupied.size(), grid.cells, *x, sink == nullptr);
     // Block by block on every core: each block's coefficients, its hourly series and its
     // replicates' (annual_metrics.hpp).
     const AnnualDarkRates dark = AnnualCoefficients::dark_rates(grid);
@@ -179,8 +180,9 @@ void annual_gather_year(const Scene& scene, std::size_t det, const TallyLayout& 
     for (auto* v : {&e.gather_sky_lx_h, &e.gather_sky_sigma_lx_h, &e.gather_sun_lx_h, &e.gather_sun_sigma_lx_h})
         v->assign(g.cells, 0.0);
     const std::size_t patches = a.sky->sky_entries() - 1;  // the ground is the last entry
+    const std::size_t suns_end = a.first_sun_group + a.sun_rows();
     for (std::size_t grp = 0; grp < layout.groups(); ++grp) {
-        const bool sun = grp >= a.first_sun_group && grp < a.first_sun_group + a.sun_rows();
+        const bool sun = grp >= a.first_sun_group && grp < suns_end;
         const bool sky = grp == a.ground_group || (grp >= a.first_patch_group && grp < a.first_patch_group + patches);
         if (!sun && !sky) continue;
         std::vector<double>& sum = sun ? e.gather_sun_lx_h : e.gather_sky_lx_h;
@@ -249,10 +251,8 @@ AnnualPartsMerge::AnnualPartsMerge(const Scene& scene, std::size_t det, int repl
     : hours_(annual_hours(*scene.annual)), det_(det), cells_(static_cast<std::size_t>(scene.detectors[det].cells())),
       sink_(sink), sums_(hours_, cells_, {}, replicates) {
     if (direct != nullptr) direct_year(*direct, estimate_);
-    for (AnnualSeries* x : {&estimate_.value, &estimate_.sigma}) {
-        if (sink_ != nullptr) x->hours = hours_.occupied.size(), x->sensors = cells_;
-        else size_series(hours_.occupied.size(), cells_, *x);
-    }
+    for (AnnualSeries* x : {&estimate_.value, &estimate_.sigma})
+        size_series(hours_.occupied.size(), cells_, *x, sink_ == nullptr);
 }
 
 void AnnualPartsMerge::add(const AnnualGridPart& p) {

@@ -51,7 +51,7 @@ void write_annual_ladybug(const std::filesystem::path& folder, const Scene& scen
             g.rows = [&source, &kept, d, hours = s.hours](bool direct, std::size_t first, std::size_t count,
                                                           std::span<float> out) {
                 std::vector<float> all(count * hours);
-                source.read_cells(d, direct ? 1 : 0, first, count, all);
+                source.read_cells(d, direct ? AnnualSeriesKind::direct : AnnualSeriesKind::total, first, count, all);
                 for (std::size_t c = 0; c < count; ++c)
                     for (std::size_t k = 0; k < kept.size(); ++k) out[c * kept.size() + k] = all[c * hours + kept[k]];
             };

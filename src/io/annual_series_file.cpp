@@ -85,6 +85,7 @@ void AnnualSeriesFile::write(std::size_t det, std::size_t first, const AnnualSer
     if (det >= cells_.size() || first % block_cells_ != 0 || first + count > cells_[det] || value.hours != hours ||
         sigma.sensors != count || sigma.hours != hours)
         throw std::logic_error("AnnualSeriesFile::write: a block beyond its grid");
+    // In AnnualSeriesKind's order.
     const std::vector<double>* series[kKinds] = {&value.total_lx, &value.direct_lx, &sigma.total_lx, &sigma.direct_lx};
     std::vector<float> block(kKinds * rows_ * block_cells_);
     for (std::size_t b0 = 0; b0 < count; b0 += block_cells_) {
@@ -121,7 +122,8 @@ void AnnualSeriesFile::read_hours(std::size_t det, Kind kind, std::size_t h0, st
         const std::size_t n = std::min(block_cells_, cells - b * block_cells_);
         pread_all(buf.data(), buf.size() * sizeof(float),
                   block_offset(det, b) +
-                      ((kind * rows_ + static_cast<std::size_t>(r0)) * block_cells_) * sizeof(float));
+                      ((static_cast<std::size_t>(kind) * rows_ + static_cast<std::size_t>(r0)) * block_cells_) *
+                          sizeof(float));
         for (std::size_t h = h0; h < h1; ++h) {
             if (row_of_hour_[h] < 0) continue;
             const float* in = &buf[static_cast<std::size_t>(row_of_hour_[h] - r0) * block_cells_];
@@ -141,7 +143,7 @@ void AnnualSeriesFile::read_cells(std::size_t det, Kind kind, std::size_t first,
         const std::size_t b = c / block_cells_, in_block = c % block_cells_;
         const std::size_t n = std::min(block_cells_ - in_block, first + count - c);
         pread_all(buf.data(), buf.size() * sizeof(float),
-                  block_offset(det, b) + kind * rows_ * block_cells_ * sizeof(float));
+                  block_offset(det, b) + static_cast<std::size_t>(kind) * rows_ * block_cells_ * sizeof(float));
         for (std::size_t h = 0; h < hours; ++h) {
             if (row_of_hour_[h] < 0) continue;
             const float* in = &buf[static_cast<std::size_t>(row_of_hour_[h]) * block_cells_ + in_block];

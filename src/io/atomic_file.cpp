@@ -78,6 +78,20 @@ int remove_stale_temporaries(const fs::path& path) {
 
 }  // namespace
 
+int write_all(int fd, std::span<const char> bytes) {
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return errno;
+        if (n == 0) return EIO;
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    return 0;
+}
+
 void check_writable(const fs::path& path, const std::string& what) {
     remove_stale_temporaries(path);
     struct stat st {};
@@ -100,15 +114,8 @@ void write_file_atomically(const fs::path& path, std::span<const char> bytes,
     const int fd = ::open(tmp_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throw IoError(path.string() + ": cannot create " + tmp_path.string() + ": " + reason(errno));
     Temporary tmp(tmp_path, fd);
-    const char* p = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-        const ssize_t n = ::write(tmp.fd(), p, left);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw IoError(path.string() + ": cannot write: " + reason(n < 0 ? errno : EIO));
-        p += n;
-        left -= static_cast<std::size_t>(n);
-    }
+    if (const int err = write_all(tmp.fd(), bytes); err != 0)
+        throw IoError(path.string() + ": cannot write: " + reason(err));
     // Data on disk before the rename: a crash leaves either the old file or the new one.
     if (::fsync(tmp.fd()) != 0) throw IoError(path.string() + ": cannot write (fsync): " + reason(errno));
     if (tmp.close() != 0) throw IoError(path.string() + ": cannot write (close): " + reason(errno));

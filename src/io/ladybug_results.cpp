@@ -255,16 +255,9 @@ void write_npy_rows(const fs::path& path, const LadybugGrid& g, bool direct, std
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throw IoError(path.string() + ": cannot create the file: " + reason(errno));
     auto put = [&](const std::string& bytes) {
-        std::size_t done = 0;
-        while (done < bytes.size()) {
-            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) {
-                const int err = n < 0 ? errno : ENOSPC;
-                ::close(fd);
-                throw IoError(path.string() + ": cannot write the file: " + reason(err));
-            }
-            done += static_cast<std::size_t>(n);
+        if (const int err = write_all(fd, bytes); err != 0) {
+            ::close(fd);
+            throw IoError(path.string() + ": cannot write the file: " + reason(err));
         }
     };
     put(npy_float32_header(g.sensors, hours));

@@ -17,7 +17,7 @@ namespace {
 // estimate, or, where it holds none, from where the post-processing put them (a slab of
 // hours at a time).
 void hourly(hid_t g, const std::string& name, const AnnualSeries& s, const std::vector<double>& values,
-            const AnnualSeriesSource& source, std::size_t det, std::size_t kind) {
+            const AnnualSeriesSource& source, std::size_t det, AnnualSeriesKind kind) {
     if (!values.empty() || !source) {
         write_dataset(g, name, {s.hours, s.sensors}, H5T_IEEE_F32LE, H5T_NATIVE_DOUBLE, values.data());
         return;
@@ -203,10 +203,12 @@ void write_annual(hid_t file, const Scene& scene, const TallyLayout& layout, std
         const AnnualDetectorEstimate& e = *est.annual[d];
         const Detector& det = scene.detectors[d];
         const Id dg = create_group(dets, det.name, "group /annual/detectors/" + det.name);
-        hourly(dg, "illuminance_lx", e.value, e.value.total_lx, est.annual_series, d, 0);
-        hourly(dg, "illuminance_sigma_lx", e.sigma, e.sigma.total_lx, est.annual_series, d, 2);
-        hourly(dg, "direct_sun_lx", e.value, e.value.direct_lx, est.annual_series, d, 1);
-        hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx, est.annual_series, d, 3);
+        hourly(dg, "illuminance_lx", e.value, e.value.total_lx, est.annual_series, d, AnnualSeriesKind::total);
+        hourly(dg, "illuminance_sigma_lx", e.sigma, e.sigma.total_lx, est.annual_series, d,
+               AnnualSeriesKind::total_sigma);
+        hourly(dg, "direct_sun_lx", e.value, e.value.direct_lx, est.annual_series, d, AnnualSeriesKind::direct);
+        hourly(dg, "direct_sun_sigma_lx", e.sigma, e.sigma.direct_lx, est.annual_series, d,
+               AnnualSeriesKind::direct_sigma);
         write_metrics(dg, e.metrics, e.value.sensors);
         write_coefficients(dg, annual, layout, tallies, d, e.value.sensors);
         // The year's parts per cell, where the run has them: PREFIX_{sky,sun}[_sigma]_lx_h.

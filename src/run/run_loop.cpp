@@ -671,12 +671,11 @@ AnnualSeriesSink RunLoop::series_sink() {
 AnnualSeriesSource RunLoop::series_source() {
     AnnualSeriesFile& f = series_file();
     AnnualSeriesSource s;
-    s.read_hours = [&f](std::size_t det, std::size_t kind, std::size_t h0, std::size_t h1, std::span<float> out) {
-        f.read_hours(det, static_cast<AnnualSeriesFile::Kind>(kind), h0, h1, out);
+    s.read_hours = [&f](std::size_t det, AnnualSeriesKind kind, std::size_t h0, std::size_t h1, std::span<float> out) {
+        f.read_hours(det, kind, h0, h1, out);
     };
-    s.read_cells = [&f](std::size_t det, std::size_t kind, std::size_t first, std::size_t count, std::span<float> out) {
-        f.read_cells(det, static_cast<AnnualSeriesFile::Kind>(kind), first, count, out);
-    };
+    s.read_cells = [&f](std::size_t det, AnnualSeriesKind kind, std::size_t first, std::size_t count,
+                        std::span<float> out) { f.read_cells(det, kind, first, count, out); };
     return s;
 }
 

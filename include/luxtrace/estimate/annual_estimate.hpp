@@ -41,13 +41,16 @@ inline constexpr std::size_t kAnnualBlockCells = 32;
 // hour. Those estimates then hold the series' hours and sensors and no values.
 using AnnualSeriesSink =
     std::function<void(std::size_t det, std::size_t first, const AnnualSeries& value, const AnnualSeries& sigma)>;
-// ... and where they are read back: kind 0 the illuminance, 1 the direct sun, 2 and 3 their
-// errors; hours [h0, h1) of every cell hour-major, or cells [first, first + count) of every
-// hour cell-major.
+// A grid's four hourly series: the illuminance, the direct sun, and their errors.
+enum class AnnualSeriesKind : std::size_t { total = 0, direct = 1, total_sigma = 2, direct_sigma = 3 };
+inline constexpr std::size_t kAnnualSeriesKinds = 4;
+// ... and where they are read back: hours [h0, h1) of every cell hour-major, or cells
+// [first, first + count) of every hour cell-major.
 struct AnnualSeriesSource {
-    std::function<void(std::size_t det, std::size_t kind, std::size_t h0, std::size_t h1, std::span<float> out)>
+    std::function<void(std::size_t det, AnnualSeriesKind kind, std::size_t h0, std::size_t h1, std::span<float> out)>
         read_hours;
-    std::function<void(std::size_t det, std::size_t kind, std::size_t first, std::size_t count, std::span<float> out)>
+    std::function<void(std::size_t det, AnnualSeriesKind kind, std::size_t first, std::size_t count,
+                       std::span<float> out)>
         read_cells;
     explicit operator bool() const { return static_cast<bool>(read_hours); }
 };

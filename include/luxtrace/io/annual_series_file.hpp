@@ -9,7 +9,7 @@
 //
 // A scratch file beside the result (hidden, named after it and the process), removed when
 // this object goes; only the daylit hours are stored (the others are 0).
-#include "luxtrace/stats/annual_metrics.hpp"
+#include "luxtrace/estimate/annual_estimate.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -20,7 +20,8 @@ namespace luxtrace {
 
 class AnnualSeriesFile {
 public:
-    enum Kind : std::size_t { kTotal = 0, kDirect = 1, kTotalSigma = 2, kDirectSigma = 3, kKinds = 4 };
+    using Kind = AnnualSeriesKind;
+    static constexpr std::size_t kKinds = kAnnualSeriesKinds;
     // Per detector its cells (0: not an annual grid); `daylit` per hour of the year, 1 where
     // the hour has a sky. Throws IoError naming the file when it cannot be made.
     AnnualSeriesFile(const std::filesystem::path& beside, const std::vector<std::size_t>& grid_cells,

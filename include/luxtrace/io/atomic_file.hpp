@@ -17,6 +17,10 @@ namespace luxtrace {
 void write_file_atomically(const std::filesystem::path& path, std::span<const char> bytes,
                            const std::function<void()>& before_rename = {});
 
+// Writes all of `bytes` to the open descriptor (again where a write is cut short or
+// interrupted); 0, or the operating system's error number (EIO for a write of nothing).
+int write_all(int fd, std::span<const char> bytes);
+
 // Throws IoError unless a file can be created in `path`'s directory and an existing
 // `path` may be replaced (a file without any write permission bit is kept as the
 // user's wish, even for root). Creates and removes one probe file.
